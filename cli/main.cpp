@@ -1,0 +1,57 @@
+//! The `sdflow` command: surface diffusion flow and its toolbox from the shell.
+//!
+//! Exit codes: 0 success; 1 unexpected failure; 2 bad input (unreadable or invalid mesh, bad
+//! parameter, command-line error); 3 numerical failure (solver, unstable run).
+
+#include "verbs.h"
+
+#include "sdflow/errors.h"
+#include "sdflow/log.h"
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <iostream>
+
+namespace {
+
+void install_stderr_logger(bool verbose, bool quiet)
+{
+  auto sink = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
+  auto logger = std::make_shared<spdlog::logger>("sdflow", sink);
+  logger->set_pattern("%^%l%$: %v");
+  logger->set_level(quiet ? spdlog::level::err : verbose ? spdlog::level::debug : spdlog::level::info);
+  sdflow::set_logger(logger);
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  CLI::App app{"sdflow: surface diffusion flow (V_N = -ΔH) on triangulated surfaces"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "sdflow 0.1.0");
+  bool verbose = false, quiet = false;
+  app.add_flag("-v,--verbose", verbose, "Log debugging detail");
+  app.add_flag("-q,--quiet", quiet, "Log errors only");
+  app.parse_complete_callback([&] { install_stderr_logger(verbose, quiet); });
+
+  sdflow::cli::add_stats_verb(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  } catch (const sdflow::SolverFailure& e) {
+    std::cerr << "sdflow: error: " << e.what() << '\n';
+    return 3;
+  } catch (const sdflow::Error& e) {
+    std::cerr << "sdflow: error: " << e.what() << '\n';
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "sdflow: unexpected error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

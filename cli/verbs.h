@@ -1,0 +1,12 @@
+#pragma once
+//! \file verbs.h
+//! \brief The sdflow command's verbs. Each file `verb_NAME.cpp` adds one subcommand: it parses
+//! options into the toolbox's option structs, calls the toolbox, and reports. No numerics here.
+
+#include <CLI/CLI.hpp>
+
+namespace sdflow::cli {
+
+void add_stats_verb(CLI::App& app);
+
+} // namespace sdflow::cli

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs every Debian bookworm package sdflow needs to build, test and benchmark. Idempotent:
+# apt-get skips what is already installed. Run as root or with sudo available.
+#   scripts/install-deps.sh            toolbox, CLI, tests
+#   scripts/install-deps.sh --bench    also the benchmark peers (CGAL, Surface Evolver, hyperfine)
+set -euo pipefail
+
+packages=(
+  cmake ninja-build g++ pkg-config
+  libopenmesh-dev libeigen3-dev
+  libsuitesparse-dev libmetis-dev libopenblas-dev
+  libtet1.5-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libnanoflann-dev libcli11-dev libtomlplusplus-dev libspdlog-dev libfmt-dev libmuparser-dev libtbb-dev
+  gnuplot-nox
+)
+if [[ " $* " == *" --bench "* ]]; then
+  packages+=(libcgal-dev evolver-nox hyperfine)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]} == 0)); then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo_cmd=()
+if [[ $(id -u) -ne 0 ]]; then sudo_cmd=(sudo); fi
+export DEBIAN_FRONTEND=noninteractive
+echo "install-deps: installing ${missing[*]}"
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,85 @@
+#include "sdflow/geometry/measures.h"
+
+#include "sdflow/errors.h"
+#include "sdflow/geometry/topology.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+namespace sdflow {
+namespace {
+
+//! Signed volume of the cone from the origin over triangle f: a·(b×c)/6.
+double cone_volume(const Mesh& mesh, Mesh::FaceHandle f)
+{
+  auto h = mesh.halfedge_handle(f);
+  const Eigen::Vector3d a = to_eigen(mesh.point(mesh.from_vertex_handle(h)));
+  const Eigen::Vector3d b = to_eigen(mesh.point(mesh.to_vertex_handle(h)));
+  const Eigen::Vector3d c = to_eigen(mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h))));
+  return a.dot(b.cross(c)) / 6.0;
+}
+
+} // namespace
+
+double surface_area(const Mesh& mesh)
+{
+  double area = 0;
+  for (auto f : mesh.faces())
+    area += mesh.calc_face_area(f);
+  return area;
+}
+
+double enclosed_volume(const Mesh& mesh)
+{
+  double volume = 0;
+  for (auto f : mesh.faces())
+    volume += cone_volume(mesh, f);
+  return volume;
+}
+
+std::vector<double> component_volumes(const Mesh& mesh)
+{
+  int count = 0;
+  const std::vector<int> id = face_component_ids(mesh, &count);
+  std::vector<double> volumes(count, 0.0);
+  for (auto f : mesh.faces())
+    volumes[id[f.idx()]] += cone_volume(mesh, f);
+  return volumes;
+}
+
+CurvatureDeviation curvature_deviation(const Eigen::VectorXd& curvature, const Eigen::VectorXd& vertex_areas)
+{
+  if (curvature.size() != vertex_areas.size())
+    throw InvalidParameter(fmt::format("curvature_deviation: {} curvatures for {} areas", curvature.size(),
+                                       vertex_areas.size()));
+  const double total = vertex_areas.sum();
+  if (!(total > 0))
+    throw InvalidParameter("curvature_deviation: the vertex areas sum to zero");
+  CurvatureDeviation d;
+  d.mean = curvature.dot(vertex_areas) / total;
+  d.deviation = (curvature.array() - d.mean).abs().matrix().dot(vertex_areas) / total;
+  d.deviation_pct = d.mean != 0 ? 100.0 * d.deviation / std::abs(d.mean) : std::numeric_limits<double>::infinity();
+  return d;
+}
+
+SphereDeviation sphere_deviation(const Mesh& mesh, const Eigen::VectorXd& vertex_areas,
+                                 const Eigen::Vector3d& centre, double radius)
+{
+  if (vertex_areas.size() != static_cast<Eigen::Index>(mesh.n_vertices()))
+    throw InvalidParameter("sphere_deviation: one area per vertex is needed");
+  if (!(radius > 0))
+    throw InvalidParameter(fmt::format("sphere_deviation: radius must be positive, got {}", radius));
+  Eigen::VectorXd gap(mesh.n_vertices());
+  for (auto v : mesh.vertices())
+    gap[v.idx()] = std::abs((to_eigen(mesh.point(v)) - centre).norm() - radius);
+  // §4.4 normalises by A(S^n), the surface area, which equals Σ A(U_i) for mixed Voronoi areas.
+  const double total = vertex_areas.sum();
+  SphereDeviation d;
+  d.d1 = gap.dot(vertex_areas) / total;
+  d.d2 = (gap.array() - d.d1).abs().matrix().dot(vertex_areas) / total;
+  return d;
+}
+
+} // namespace sdflow

@@ -1,0 +1,43 @@
+#pragma once
+//! \file measures.h
+//! \brief Area, enclosed volume, mean-curvature deviation and the sphere distances D1/D2 of §4.4.
+
+#include "sdflow/mesh.h"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace sdflow {
+
+//! Sum of triangle areas (§2.2.4).
+double surface_area(const Mesh& mesh);
+
+//! Signed enclosed volume by the divergence theorem, Σ a·(b×c)/6 over triangles (§2.2.4).
+//! Positive for outward-oriented closed surfaces; meaningful only for closed components.
+double enclosed_volume(const Mesh& mesh);
+
+//! Signed volume of each component, in the order of face_component_ids().
+std::vector<double> component_volumes(const Mesh& mesh);
+
+//! Area-weighted mean curvature H̃ and its L1 deviation H_dev (§2.2.4), weights A(U_i).
+struct CurvatureDeviation {
+  double mean = 0;          //!< H̃ = Σ H_i A_i / Σ A_i
+  double deviation = 0;     //!< H_dev = Σ |H_i - H̃| A_i / Σ A_i
+  double deviation_pct = 0; //!< 100 H_dev / |H̃| (infinite when H̃ = 0)
+};
+
+//! H̃ and H_dev from per-vertex curvature and vertex areas (mixed Voronoi areas).
+CurvatureDeviation curvature_deviation(const Eigen::VectorXd& curvature, const Eigen::VectorXd& vertex_areas);
+
+//! Distances to a reference sphere (§4.4), weights A(U_i): D1 = mean of ||v_i - c| - r|, D2 = mean
+//! absolute deviation of ||v_i - c| - r| from D1.
+struct SphereDeviation {
+  double d1 = 0;
+  double d2 = 0;
+};
+
+SphereDeviation sphere_deviation(const Mesh& mesh, const Eigen::VectorXd& vertex_areas,
+                                 const Eigen::Vector3d& centre = Eigen::Vector3d::Zero(), double radius = 1.0);
+
+} // namespace sdflow

@@ -1,0 +1,28 @@
+#pragma once
+//! \file topology.h
+//! \brief Connected components and their topology (Euler characteristic, genus, boundary loops).
+
+#include "sdflow/mesh.h"
+
+#include <vector>
+
+namespace sdflow {
+
+//! Topology of one connected component (connected through edges).
+struct ComponentTopology {
+  int vertices = 0;
+  int edges = 0;
+  int faces = 0;
+  int boundary_loops = 0;
+  int euler_characteristic = 0; //!< V - E + F
+  int genus = 0;                //!< (2 - χ - b) / 2
+  bool closed() const { return boundary_loops == 0; }
+};
+
+//! Component id of every face (0-based, numbered in order of each component's first face).
+std::vector<int> face_component_ids(const Mesh& mesh, int* component_count = nullptr);
+
+//! Topology of each component, in the order of face_component_ids.
+std::vector<ComponentTopology> component_topology(const Mesh& mesh);
+
+} // namespace sdflow

@@ -1,0 +1,49 @@
+#pragma once
+//! \file mesh.h
+//! \brief The surface type: an OpenMesh triangle mesh with double-precision points.
+//!
+//! Conventions (DESIGN.md §1): vertex i of every per-vertex array is `Mesh::VertexHandle(i)`, so
+//! meshes handed to the geometry and flow code carry no deleted elements (call
+//! `garbage_collection()` after editing). Closed components are oriented with outward normals.
+
+#include <Eigen/Core>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+namespace sdflow {
+
+//! OpenMesh traits: double points and normals, status flags for editing, previous-halfedge links.
+struct MeshTraits : public OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+  VertexAttributes(OpenMesh::Attributes::Status);
+  EdgeAttributes(OpenMesh::Attributes::Status);
+  FaceAttributes(OpenMesh::Attributes::Status);
+  HalfedgeAttributes(OpenMesh::Attributes::PrevHalfedge);
+};
+
+//! An oriented triangulated surface, possibly with boundary and several components.
+using Mesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
+
+//! Per-vertex 3-vectors (#V by 3), row i for vertex i: positions, normals, displacements.
+using VertexVectors = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+//! OpenMesh point to Eigen vector.
+inline Eigen::Vector3d to_eigen(const Mesh::Point& p) { return {p[0], p[1], p[2]}; }
+
+//! Eigen vector to OpenMesh point.
+inline Mesh::Point to_point(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+//! Vertex positions as a #V by 3 matrix.
+VertexVectors vertex_positions(const Mesh& mesh);
+
+//! Overwrite vertex positions from a #V by 3 matrix (throws InvalidParameter on a size mismatch).
+void set_vertex_positions(Mesh& mesh, const VertexVectors& positions);
+
+//! Make a mesh from vertex positions and triangles (indices into `positions`), in this order.
+//! Throws InvalidMesh if OpenMesh rejects a triangle (non-manifold or inconsistently oriented).
+Mesh make_mesh(const VertexVectors& positions, const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>& triangles);
+
+//! Triangles as a #F by 3 matrix of vertex indices, in face order.
+Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> face_indices(const Mesh& mesh);
+
+} // namespace sdflow

@@ -1,0 +1,22 @@
+#pragma once
+//! \file soup.h
+//! \brief A polygon soup: what a mesh file says, before any validation.
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <vector>
+
+namespace sdflow {
+
+//! Points and polygons exactly as read; indices are 0-based but not yet checked.
+//! `point_lines` / `polygon_lines` give the 1-based line of each element in a text file (0 in a
+//! binary file, where messages name the element's index instead).
+struct PolygonSoup {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::vector<long long>> polygons;
+  std::vector<std::size_t> point_lines;
+  std::vector<std::size_t> polygon_lines;
+};
+
+} // namespace sdflow

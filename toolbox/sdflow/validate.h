@@ -1,0 +1,55 @@
+#pragma once
+//! \file validate.h
+//! \brief Turning a polygon soup into a valid oriented mesh, with precise findings.
+//!
+//! Errors (throw InvalidMesh, listing every problem found with its element and line):
+//! `empty-mesh`, `non-finite-coordinate`, `face-index-out-of-range`, `face-repeated-index`,
+//! `zero-area-face`, `duplicate-vertex`, `non-manifold-edge`, `non-manifold-vertex`,
+//! `inconsistent-orientation`. Warnings (the mesh is repaired): `polygon-triangulated`,
+//! `isolated-vertex` (removed). Information: `orientation-flipped` (a closed component had inward
+//! normals), `duplicate-vertices-merged` (STL), `has-boundary`.
+
+#include "sdflow/mesh.h"
+#include "sdflow/soup.h"
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace sdflow {
+
+enum class Severity { info, warning, error };
+
+//! One validation finding: a stable code (documented above) and a human message.
+struct Finding {
+  Severity severity = Severity::info;
+  std::string code;
+  std::string message;
+};
+
+//! How a soup becomes a mesh.
+struct BuildOptions {
+  //! Flip closed components whose signed volume is negative (DESIGN.md §1).
+  bool orient_outward = true;
+  //! Merge vertices with bit-identical coordinates instead of reporting them (STL stores no
+  //! shared vertices, so its reader turns this on).
+  bool merge_duplicate_vertices = false;
+  //! A triangle is degenerate when its area is below this fraction of its longest edge squared.
+  double zero_area_tolerance = 1e-12;
+};
+
+//! A valid mesh and what was found (and repaired) on the way.
+struct BuiltMesh {
+  Mesh mesh;
+  std::vector<Finding> findings;
+};
+
+//! Validate `soup` and build the mesh; `source` names it in messages (usually the file path).
+//! Throws InvalidMesh when any error-level finding exists, with all of them in the message.
+BuiltMesh build_mesh(const PolygonSoup& soup, std::string_view source, const BuildOptions& options = {});
+
+//! Check a mesh built in memory: finite coordinates and no zero-area triangles.
+//! Throws InvalidMesh naming the first offending vertex or face; `what` prefixes the message.
+void check_geometry(const Mesh& mesh, std::string_view what, double zero_area_tolerance = 1e-12);
+
+} // namespace sdflow
