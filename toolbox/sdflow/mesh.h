@@ -7,6 +7,7 @@
 //! `garbage_collection()` after editing). Closed components are oriented with outward normals.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 namespace sdflow {

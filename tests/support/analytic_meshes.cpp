@@ -1,0 +1,160 @@
+#include "support/analytic_meshes.h"
+
+#include <cmath>
+#include <array>
+#include <map>
+#include <numbers>
+#include <utility>
+#include <vector>
+
+namespace sdflow::analytic {
+namespace {
+
+using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+//! Unit icosahedron subdivided `level` times, every vertex on the unit sphere.
+std::pair<std::vector<Eigen::Vector3d>, std::vector<std::array<int, 3>>> unit_icosphere(int level)
+{
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<Eigen::Vector3d> v = {{-1, t, 0}, {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                                    {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+  for (auto& p : v)
+    p.normalize();
+  std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                       {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                       {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                       {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  for (int l = 0; l < level; ++l) {
+    std::map<std::pair<int, int>, int> midpoint;
+    auto mid = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      auto [it, inserted] = midpoint.try_emplace(key, static_cast<int>(v.size()));
+      if (inserted)
+        v.push_back((v[a] + v[b]).normalized());
+      return it->second;
+    };
+    std::vector<std::array<int, 3>> next;
+    next.reserve(4 * f.size());
+    for (const auto& [a, b, c] : f) {
+      const int ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
+      next.push_back({a, ab, ca});
+      next.push_back({b, bc, ab});
+      next.push_back({c, ca, bc});
+      next.push_back({ab, bc, ca});
+    }
+    f = std::move(next);
+  }
+  return {v, f};
+}
+
+Mesh mesh_from(const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<int, 3>>& faces)
+{
+  VertexVectors x(points.size(), 3);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    x.row(i) = points[i].transpose();
+  Triangles t(faces.size(), 3);
+  for (std::size_t i = 0; i < faces.size(); ++i)
+    t.row(i) << faces[i][0], faces[i][1], faces[i][2];
+  return make_mesh(x, t);
+}
+
+} // namespace
+
+Mesh icosphere(int level, double radius, const Eigen::Vector3d& centre)
+{
+  auto [points, faces] = unit_icosphere(level);
+  for (auto& p : points)
+    p = centre + radius * p;
+  return mesh_from(points, faces);
+}
+
+Mesh ellipsoid(int level, double a, double b, double c)
+{
+  auto [points, faces] = unit_icosphere(level);
+  for (auto& p : points)
+    p = Eigen::Vector3d(a * p.x(), b * p.y(), c * p.z());
+  return mesh_from(points, faces);
+}
+
+Mesh torus(int around, int tube, double major, double minor)
+{
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(static_cast<std::size_t>(around) * tube);
+  for (int i = 0; i < around; ++i)
+    for (int j = 0; j < tube; ++j) {
+      const double u = 2 * std::numbers::pi * i / around, v = 2 * std::numbers::pi * j / tube;
+      const double rho = major + minor * std::cos(v);
+      points.emplace_back(rho * std::cos(u), rho * std::sin(u), minor * std::sin(v));
+    }
+  auto id = [&](int i, int j) { return ((i + around) % around) * tube + (j + tube) % tube; };
+  std::vector<std::array<int, 3>> faces;
+  for (int i = 0; i < around; ++i)
+    for (int j = 0; j < tube; ++j) {
+      // (u, v) is positively oriented with the outward normal (∂u × ∂v points outward).
+      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      faces.push_back({a, b, c});
+      faces.push_back({a, c, d});
+    }
+  return mesh_from(points, faces);
+}
+
+Mesh disk(int rings, double radius)
+{
+  std::vector<Eigen::Vector3d> points{{0, 0, 0}};
+  std::vector<std::array<int, 3>> faces;
+  // Ring k has 6k vertices, so triangles stay close to equilateral.
+  auto ring_start = [](int k) { return k == 0 ? 0 : 1 + 3 * k * (k - 1); };
+  for (int k = 1; k <= rings; ++k)
+    for (int s = 0; s < 6 * k; ++s) {
+      const double angle = 2 * std::numbers::pi * s / (6 * k);
+      points.emplace_back(radius * k / rings * std::cos(angle), radius * k / rings * std::sin(angle), 0.0);
+    }
+  for (int k = 1; k <= rings; ++k) {
+    const int outer = ring_start(k), n_outer = 6 * k;
+    if (k == 1) {
+      for (int o = 0; o < n_outer; ++o)
+        faces.push_back({0, outer + o, outer + (o + 1) % n_outer});
+      continue;
+    }
+    const int inner = ring_start(k - 1), n_inner = 6 * (k - 1);
+    // Walk both rings together by angle; each step closes one counter-clockwise (+z) triangle.
+    for (int i = 0, o = 0; i < n_inner || o < n_outer;) {
+      const bool advance_outer = o < n_outer && (i >= n_inner || (o + 1) * n_inner <= (i + 1) * n_outer);
+      if (advance_outer) {
+        faces.push_back({inner + i % n_inner, outer + o, outer + (o + 1) % n_outer});
+        ++o;
+      } else {
+        faces.push_back({inner + i, outer + o % n_outer, inner + (i + 1) % n_inner});
+        ++i;
+      }
+    }
+  }
+  return mesh_from(points, faces);
+}
+
+double torus_mean_curvature(double major, double minor, double v)
+{
+  return -(major + 2 * minor * std::cos(v)) / (2 * minor * (major + minor * std::cos(v)));
+}
+
+Eigen::Vector3d ellipsoid_normal(double a, double b, double c, const Eigen::Vector3d& p)
+{
+  return Eigen::Vector3d(p.x() / (a * a), p.y() / (b * b), p.z() / (c * c)).normalized();
+}
+
+double ellipsoid_mean_curvature(double a, double b, double c, const Eigen::Vector3d& p)
+{
+  // For x²/a²+y²/b²+z²/c² = 1: H = -(|p|² - a² - b² - c²)·... use the gradient form
+  // H = -div(∇f/|∇f|)/2 with f = x²/a² + y²/b² + z²/c² - 1.
+  const Eigen::Vector3d g(2 * p.x() / (a * a), 2 * p.y() / (b * b), 2 * p.z() / (c * c));
+  const Eigen::Vector3d hess(2 / (a * a), 2 / (b * b), 2 / (c * c));
+  const double gn = g.norm();
+  // div(g/|g|) = (tr(Hf) |g|² - gᵀ Hf g) / |g|³
+  double tr = hess.sum(), gHg = 0;
+  for (int i = 0; i < 3; ++i)
+    gHg += g[i] * hess[i] * g[i];
+  const double divergence = (tr * gn * gn - gHg) / (gn * gn * gn);
+  return -0.5 * divergence;
+}
+
+} // namespace sdflow::analytic

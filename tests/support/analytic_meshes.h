@@ -1,0 +1,34 @@
+#pragma once
+//! \file analytic_meshes.h
+//! \brief Test surfaces with known geometry: subdivided icosahedra on spheres and ellipsoids,
+//! parametric tori, flat disks. All closed ones are oriented outward.
+
+#include "sdflow/mesh.h"
+
+namespace sdflow::analytic {
+
+//! Icosahedron subdivided `level` times (4^level × 20 triangles), projected on the sphere.
+Mesh icosphere(int level, double radius = 1.0, const Eigen::Vector3d& centre = Eigen::Vector3d::Zero());
+
+//! Icosphere of the unit sphere mapped to the ellipsoid x²/a² + y²/b² + z²/c² = 1 by scaling.
+Mesh ellipsoid(int level, double a, double b, double c);
+
+//! Torus with centre-line radius `major` and tube radius `minor`, axis z, on a `around` × `tube`
+//! grid of the angles (u around the axis, v around the tube), every quad split along the same
+//! diagonal, so every vertex has valence 6.
+Mesh torus(int around, int tube, double major, double minor);
+
+//! Flat disk of `radius` in the plane z = 0, normal +z, meshed on `rings` concentric rings.
+Mesh disk(int rings, double radius = 1.0);
+
+//! Analytic mean curvature of the torus (outward normals, sphere-of-radius-R convention H = -1/R)
+//! at the point whose tube angle is v: H = -(major + 2 minor cos v) / (2 minor (major + minor cos v)).
+double torus_mean_curvature(double major, double minor, double v);
+
+//! Analytic mean curvature of an ellipsoid at point p (same sign convention).
+double ellipsoid_mean_curvature(double a, double b, double c, const Eigen::Vector3d& p);
+
+//! Outward unit normal of the ellipsoid at point p.
+Eigen::Vector3d ellipsoid_normal(double a, double b, double c, const Eigen::Vector3d& p);
+
+} // namespace sdflow::analytic
