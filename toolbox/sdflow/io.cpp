@@ -109,6 +109,7 @@ void write_atomically(const std::filesystem::path& file, const std::function<voi
   if (!out)
     throw IoError(fmt::format("{}: cannot create the temporary file {} ({})", file.string(), temporary.string(),
                               std::strerror(errno)));
+  errno = 0;
   try {
     write(out);
   } catch (...) {
@@ -120,8 +121,9 @@ void write_atomically(const std::filesystem::path& file, const std::function<voi
   const bool written = static_cast<bool>(out);
   out.close();
   if (!written || out.fail()) {
+    const std::string reason = errno != 0 ? std::strerror(errno) : "the stream reported an error";
     discard();
-    throw IoError(fmt::format("{}: writing failed ({})", file.string(), std::strerror(errno)));
+    throw IoError(fmt::format("{}: writing failed ({}); the file is unchanged", file.string(), reason));
   }
   std::error_code ec;
   std::filesystem::rename(temporary, file, ec);

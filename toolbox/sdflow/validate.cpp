@@ -272,12 +272,18 @@ void check_connectivity(std::size_t point_count, const std::vector<Triangle>& tr
   };
   std::vector<Use> uses;
   uses.reserve(3 * triangles.size());
+  // Triangles with two corners at one vertex (merged STL points) are reported as zero-area faces;
+  // counting their collapsed edges here would only add confusing findings.
+  auto collapsed = [&](std::size_t t) {
+    const auto& [a, b, c] = triangles[t].v;
+    return a == b || b == c || c == a;
+  };
   for (std::size_t t = 0; t < triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const int a = triangles[t].v[k], b = triangles[t].v[(k + 1) % 3];
-      if (a != b)
+    if (!collapsed(t))
+      for (int k = 0; k < 3; ++k) {
+        const int a = triangles[t].v[k], b = triangles[t].v[(k + 1) % 3];
         uses.push_back({std::min(a, b), std::max(a, b), static_cast<int>(t), a < b});
-    }
+      }
   std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) {
     return std::tie(x.low, x.high, x.triangle) < std::tie(y.low, y.high, y.triangle);
   });
@@ -316,8 +322,9 @@ void check_connectivity(std::size_t point_count, const std::vector<Triangle>& tr
   // Around each vertex, join the triangles sharing one of its edges; more than one group = several fans.
   std::vector<std::vector<int>> around(point_count);
   for (std::size_t t = 0; t < triangles.size(); ++t)
-    for (const int v : triangles[t].v)
-      around[v].push_back(static_cast<int>(t));
+    if (!collapsed(t))
+      for (const int v : triangles[t].v)
+        around[v].push_back(static_cast<int>(t));
   std::vector<int> parent;
   std::vector<std::pair<int, int>> spokes; // (other end of an edge at v, triangle)
   for (std::size_t v = 0; v < point_count; ++v) {
