@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <random>
 #include <sstream>
@@ -423,6 +424,40 @@ TEST(Validate, any_face_order_is_accepted)
       EXPECT_NEAR(enclosed_volume(built.mesh), enclosed_volume(mesh), exact_tolerance);
     }
   }
+}
+
+TEST(Validate, random_soups_are_rejected_by_validation_never_by_openmesh)
+{
+  // Random triangles over a few points produce every kind of non-manifold and inconsistent
+  // configuration. Validation must catch each one before OpenMesh, which would print to stderr
+  // and reject the face (build_mesh then throws a plain InvalidMesh, not MeshValidationError).
+  std::mt19937 random(2024);
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  std::uniform_int_distribution<int> corner(0, 6);
+  std::uniform_int_distribution<int> face_count(1, 10);
+  std::ostringstream captured;
+  std::streambuf* const cerr_buffer = std::cerr.rdbuf(captured.rdbuf());
+  int accepted = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    PolygonSoup soup;
+    for (int i = 0; i < 7; ++i)
+      soup.points.emplace_back(coordinate(random), coordinate(random), coordinate(random));
+    for (int f = face_count(random); f > 0; --f) {
+      const long long a = corner(random), b = corner(random), c = corner(random);
+      if (a != b && b != c && c != a)
+        soup.polygons.push_back({a, b, c});
+    }
+    try {
+      build_mesh(soup, "random");
+      ++accepted;
+    } catch (const MeshValidationError&) {
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "trial " << trial << ": " << e.what();
+    }
+  }
+  std::cerr.rdbuf(cerr_buffer);
+  EXPECT_EQ(captured.str(), "");
+  EXPECT_GT(accepted, 100); // the sample must include valid surfaces too
 }
 
 TEST(CheckGeometry, names_the_non_finite_vertex_or_zero_area_face)
