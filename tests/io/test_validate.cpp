@@ -150,6 +150,19 @@ TEST(Validate, face_index_out_of_range_names_face_vertex_and_line)
   expect_single_error(soup, "face-index-out-of-range", {"test.off:14: face 3 uses vertex -2"});
 }
 
+TEST(Validate, shipped_bad_off_names_file_line_face_and_vertex)
+{
+  const std::string file = std::string(SDFLOW_SOURCE_DIR) + "/tests/data/bad.off";
+  try {
+    read_mesh(file);
+    ADD_FAILURE() << "no exception";
+  } catch (const MeshValidationError& e) {
+    EXPECT_EQ(std::string(e.what()), file + ":14: face 3 uses vertex 12, but there are only 8 vertices");
+    ASSERT_EQ(e.findings().size(), 1u);
+    EXPECT_EQ(e.findings().front().code, "face-index-out-of-range");
+  }
+}
+
 TEST(Validate, face_index_out_of_range_from_a_file)
 {
   test::TempDir dir;
