@@ -3,6 +3,10 @@
 # apt-get skips what is already installed. Run as root or with sudo available.
 #   scripts/install-deps.sh            toolbox, CLI, tests
 #   scripts/install-deps.sh --bench    also the benchmark peers (CGAL, Surface Evolver, hyperfine)
+#   scripts/install-deps.sh --meshlab  also what the MeshLab plugin needs: Debian's MeshLab, Qt 5,
+#                                      GLEW, dpkg-dev (to unpack MeshLab's source package for its
+#                                      headers) and Xvfb (meshlabserver needs an X server)
+# Flags combine.
 set -euo pipefail
 
 packages=(
@@ -16,6 +20,9 @@ packages=(
 )
 if [[ " $* " == *" --bench "* ]]; then
   packages+=(libcgal-dev evolver-nox hyperfine)
+fi
+if [[ " $* " == *" --meshlab "* ]]; then
+  packages+=(meshlab qtbase5-dev libqt5opengl5-dev libglew-dev dpkg-dev xvfb xauth)
 fi
 
 missing=()
