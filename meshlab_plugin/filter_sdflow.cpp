@@ -63,8 +63,9 @@ QString FilterSdflowPlugin::filterInfo(FilterIDType filter) const
   case FP_SURFACE_DIFFUSION:
     return "Evolves the surface by <b>surface diffusion flow</b>: every point moves along the normal with "
            "speed V<sub>N</sub> = -&Delta;H, the negative surface Laplacian of the mean curvature. The flow "
-           "keeps the enclosed volume, lowers the area, and drives closed surfaces toward spheres; it is the "
-           "motion of a solid surface by atom migration (sintering, void and pore evolution).<br>"
+           "keeps the enclosed volume and lowers the area, rounding a closed surface of genus 0 into a "
+           "sphere; it is the motion of a solid surface by atom migration (sintering, void and pore "
+           "evolution).<br>"
            "Each step solves the semi-implicit scheme (I + &tau;&beta;&Delta;&sup2;) w = &Delta;H, "
            "X &larr; X - &tau; w N, with the cotangent/Voronoi Laplace-Beltrami operator, normals by Max's "
            "weights and the mean curvature as the integral of normal curvatures, exactly as the <i>sdflow</i> "
