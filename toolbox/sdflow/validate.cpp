@@ -16,7 +16,6 @@
 #include <iterator>
 #include <numeric>
 #include <span>
-#include <tuple>
 #include <unordered_map>
 
 namespace sdflow {
