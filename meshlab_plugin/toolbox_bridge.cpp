@@ -105,9 +105,10 @@ Mesh checked_mesh(const Surface& surface, const std::string& name)
       logger().error("{}: {}", finding.code, finding.message);
     throw;
   }
+  // Repairs are worth a warning; build_mesh itself logs the one notable information (a flip).
   for (const Finding& finding : built.findings)
-    logger().log(finding.severity == Severity::info ? spdlog::level::info : spdlog::level::warn, "{}: {}",
-                 finding.code, finding.message);
+    if (finding.severity == Severity::warning)
+      logger().warn("{}: {}", finding.code, finding.message);
   return std::move(built.mesh);
 }
 
