@@ -1,0 +1,121 @@
+//! The flow step's cost on geodesic spheres of 10k, 100k and 400k vertices (DESIGN.md §2):
+//! operators, assembly, CHOLMOD factorisation and solve, and a full step amortised over a run.
+//!   bench_flow --benchmark_filter=Step --benchmark_repetitions=3
+//! Reported times are per step; `factorisations` and `cg_iterations` are per run.
+
+#include "flow_meshes.h"
+
+#include "sdflow/flow/scheme.h"
+#include "sdflow/flow/solver.h"
+#include "sdflow/geometry/laplacian.h"
+
+#include <benchmark/benchmark.h>
+
+#include <Eigen/CholmodSupport>
+
+#include <chrono>
+#include <map>
+
+namespace {
+
+using sdflow::Mesh;
+
+constexpr double perturbation = 0.05; // P2 amplitude: the surface evolves, as in a real run
+constexpr double tau = 1e-4;
+constexpr double beta = 0.5;
+
+//! k with 10k² + 2 vertices ≈ the requested count.
+const Mesh& sphere(int vertices)
+{
+  static std::map<int, Mesh> cache;
+  auto it = cache.find(vertices);
+  if (it == cache.end()) {
+    const int k = static_cast<int>(std::lround(std::sqrt((vertices - 2) / 10.0)));
+    it = cache.emplace(vertices, sdflow::bench::geodesic_sphere(k, perturbation)).first;
+  }
+  return it->second;
+}
+
+void Operators(benchmark::State& state)
+{
+  const Mesh& mesh = sphere(static_cast<int>(state.range(0)));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(sdflow::flow_operators(mesh));
+  state.counters["vertices"] = static_cast<double>(mesh.n_vertices());
+}
+
+void Assembly(benchmark::State& state)
+{
+  const Mesh& mesh = sphere(static_cast<int>(state.range(0)));
+  const auto op = sdflow::flow_operators(mesh);
+  const sdflow::FlowSystem system{op.laplacian, op.areas, op.held, tau * beta};
+  for (auto _ : state)
+    benchmark::DoNotOptimize(sdflow::flow_matrix(system));
+}
+
+void CholmodFactorise(benchmark::State& state)
+{
+  const Mesh& mesh = sphere(static_cast<int>(state.range(0)));
+  const auto op = sdflow::flow_operators(mesh);
+  const sdflow::FlowSystem system{op.laplacian, op.areas, op.held, tau * beta};
+  const sdflow::SparseMatrix a = sdflow::flow_matrix(system);
+  Eigen::CholmodSupernodalLLT<sdflow::SparseMatrix, Eigen::Lower> llt;
+  llt.analyzePattern(a);
+  for (auto _ : state)
+    llt.factorize(a);
+  state.counters["factor_nnz"] = llt.cholmod().lnz;
+  state.counters["factor_gflop"] = llt.cholmod().fl * 1e-9;
+}
+
+void CholmodSolve(benchmark::State& state)
+{
+  const Mesh& mesh = sphere(static_cast<int>(state.range(0)));
+  const auto op = sdflow::flow_operators(mesh);
+  const sdflow::FlowSystem system{op.laplacian, op.areas, op.held, tau * beta};
+  Eigen::CholmodSupernodalLLT<sdflow::SparseMatrix, Eigen::Lower> llt(sdflow::flow_matrix(system));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(Eigen::VectorXd(llt.solve(op.rhs)));
+}
+
+//! `steps` full steps (operators + solve + update) on a copy of the sphere; time per step.
+void run_steps(benchmark::State& state, sdflow::FactorisationPolicy policy)
+{
+  const int steps = static_cast<int>(state.range(1));
+  long factorisations = 0, iterations = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Mesh mesh = sphere(static_cast<int>(state.range(0)));
+    sdflow::FlowSolver solver({.policy = policy});
+    Eigen::VectorXd w;
+    factorisations = iterations = 0;
+    state.ResumeTiming();
+    const auto start = std::chrono::steady_clock::now();
+    for (int s = 0; s < steps; ++s) {
+      const auto op = sdflow::flow_operators(mesh);
+      auto step = sdflow::solve_step(mesh, op, tau, beta, solver, w);
+      sdflow::set_vertex_positions(mesh, step.positions);
+      w = std::move(step.w);
+      factorisations += step.solve.factorised;
+      iterations += step.solve.iterations;
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    state.SetIterationTime(seconds / steps);
+  }
+  state.counters["factorisations"] = static_cast<double>(factorisations);
+  state.counters["cg_iterations"] = static_cast<double>(iterations);
+}
+
+void StepReuse(benchmark::State& state) { run_steps(state, sdflow::FactorisationPolicy::reuse); }
+void StepEveryStep(benchmark::State& state) { run_steps(state, sdflow::FactorisationPolicy::every_step); }
+
+} // namespace
+
+BENCHMARK(Operators)->Arg(10'000)->Arg(100'000)->Arg(400'000)->Unit(benchmark::kMillisecond);
+BENCHMARK(Assembly)->Arg(10'000)->Arg(100'000)->Arg(400'000)->Unit(benchmark::kMillisecond);
+BENCHMARK(CholmodFactorise)->Arg(10'000)->Arg(100'000)->Arg(400'000)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(CholmodSolve)->Arg(10'000)->Arg(100'000)->Arg(400'000)->Unit(benchmark::kMillisecond);
+BENCHMARK(StepReuse)->Args({10'000, 100})->Args({100'000, 100})->Args({400'000, 30})
+    ->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(StepEveryStep)->Args({10'000, 20})->Args({100'000, 5})->Args({400'000, 3})
+    ->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_MAIN();
