@@ -1,3 +1,8 @@
 target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/scheme.cpp
-  sdflow/flow/solver.cpp)
+  sdflow/flow/simulation.cpp
+  sdflow/flow/solver.cpp
+  sdflow/flow/checkpoint.cpp
+  sdflow/flow/parameters.cpp
+  sdflow/flow/time_step.cpp
+  sdflow/flow/volume.cpp)
