@@ -1,0 +1,2 @@
+target_sources(sdflow_tests PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/test_scheme.cpp)
