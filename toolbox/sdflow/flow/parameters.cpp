@@ -193,8 +193,9 @@ std::string run_parameters_toml(const RunParameters& p)
   const char* modes[] = {"constant", "schedule", "adaptive"};
   std::string s;
   s += "# sdflow run parameters, fully resolved (read back by `sdflow run --resume`)\n";
-  s += fmt::format("input = {}\n", quoted(std::filesystem::absolute(p.input).lexically_normal().string()));
-  s += fmt::format("out = {}\n", quoted(std::filesystem::absolute(p.output_dir).lexically_normal().string()));
+  for (const auto& [key, path] : {std::pair{"input", &p.input}, std::pair{"out", &p.output_dir}})
+    if (!path->empty())
+      s += fmt::format("{} = {}\n", key, quoted(std::filesystem::absolute(*path).lexically_normal().string()));
   s += fmt::format("steps = {}\n", p.steps);
   if (std::isfinite(p.end_time))
     s += fmt::format("t_end = {}\n", p.end_time);
