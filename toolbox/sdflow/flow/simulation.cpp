@@ -257,8 +257,7 @@ private:
         has_anchor_ = p_.solver.kind == SolverKind::cholmod;
         anchor_positions_ = positions_;
         anchor_tau_beta_ = tau * p_.scheme.beta;
-        if (p_.solver.policy == FactorisationPolicy::reuse && step_ > 0)
-          log_event(fmt::format("factorised again (τ = {})", tau), next_step);
+        logger().debug("step {}: factorised (τ = {})", next_step, tau);
       }
       const StepCheck c = check(trial.positions, trial.w, tau, edge_lengths, volumes);
       if (controller_.judge(next_step, tau, c))

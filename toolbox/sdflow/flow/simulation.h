@@ -7,7 +7,7 @@
 //! DIR/snapshots/step_NNNNNN.ply, .vtp   surfaces; the .vtp carry per-vertex H, N and w
 //! DIR/series.pvd         ParaView time series of the .vtp files
 //! DIR/run.toml           the fully resolved parameters
-//! DIR/events.log         rejections, re-triangulations, factorisations, checkpoints, resumptions
+//! DIR/events.log         start, rejections, re-triangulations, resumption, the end or the failure
 //! DIR/checkpoint.bin     the state to resume from (checkpoint.h)
 //! ```
 //! Every file is replaced atomically. metrics.csv and events.log are rewritten at each snapshot and
