@@ -93,10 +93,11 @@ TEST(RunCommand, killed_run_leaves_complete_files_and_resumes_bit_for_bit)
   while (std::getline(metrics, line))
     EXPECT_EQ(std::count(line.begin(), line.end(), ','), 13) << line;
   for (const auto& entry : fs::directory_iterator(dir / "killed/snapshots")) {
-    if (entry.path().extension() == ".ply")
+    if (entry.path().extension() == ".ply") {
       EXPECT_NO_THROW(read_mesh(entry.path())) << entry.path();
-    else if (entry.path().extension() == ".vtp")
+    } else if (entry.path().extension() == ".vtp") {
       EXPECT_NE(test::read_file(entry.path()).find("</VTKFile>"), std::string::npos) << entry.path();
+    }
   }
   EXPECT_NE(test::read_file(dir / "killed/series.pvd").find("</VTKFile>"), std::string::npos);
 
