@@ -1,6 +1,7 @@
 //! The flow step's cost on geodesic spheres of 10k, 100k and 400k vertices (DESIGN.md §2):
 //! operators, assembly, CHOLMOD factorisation and solve, and a full step amortised over a run.
 //!   bench_flow --benchmark_filter=Step --benchmark_repetitions=3
+//! PaperQrStep is the paper's solver on the same spheres (slow: minutes at 10k vertices).
 //! Reported times are per step; `factorisations` and `cg_iterations` are per run.
 
 #include "flow_meshes.h"
@@ -12,6 +13,8 @@
 #include <benchmark/benchmark.h>
 
 #include <Eigen/CholmodSupport>
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseQR>
 
 #include <chrono>
 #include <map>
@@ -106,6 +109,17 @@ void run_steps(benchmark::State& state, sdflow::FactorisationPolicy policy)
 }
 
 void StepReuse(benchmark::State& state) { run_steps(state, sdflow::FactorisationPolicy::reuse); }
+
+//! One step solved as the paper did: SuiteSparseQR on (I + τβΔ²) w = ΔH (operators included).
+void PaperQrStep(benchmark::State& state)
+{
+  const Mesh& mesh = sphere(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    sdflow::FlowSolver solver({.kind = sdflow::SolverKind::qr});
+    const auto op = sdflow::flow_operators(mesh);
+    benchmark::DoNotOptimize(sdflow::solve_step(mesh, op, tau, beta, solver));
+  }
+}
 void StepEveryStep(benchmark::State& state) { run_steps(state, sdflow::FactorisationPolicy::every_step); }
 
 } // namespace
@@ -118,4 +132,24 @@ BENCHMARK(StepReuse)->Args({10'000, 100})->Args({100'000, 100})->Args({400'000, 
     ->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(StepEveryStep)->Args({10'000, 20})->Args({100'000, 5})->Args({400'000, 3})
     ->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
+//! The paper's implementation solved with Eigen's own SparseQR (COLAMD ordering): the solver the
+//! paper's program used, as a historical reference (bench only; sdflow's `--solver qr` is SPQR).
+void EigenSparseQrStep(benchmark::State& state)
+{
+  const Mesh& mesh = sphere(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    const auto op = sdflow::flow_operators(mesh);
+    const Eigen::VectorXd inverse_areas = op.areas.cwiseInverse();
+    const sdflow::SparseMatrix delta = inverse_areas.asDiagonal() * op.laplacian;
+    sdflow::SparseMatrix a = delta * delta * (tau * beta);
+    for (Eigen::Index i = 0; i < a.rows(); ++i)
+      a.coeffRef(i, i) += 1.0;
+    a.makeCompressed();
+    Eigen::SparseQR<sdflow::SparseMatrix, Eigen::COLAMDOrdering<int>> qr(a);
+    benchmark::DoNotOptimize(Eigen::VectorXd(qr.solve(Eigen::VectorXd(op.rhs.cwiseQuotient(op.areas)))));
+  }
+}
+
+BENCHMARK(PaperQrStep)->Arg(2'500)->Arg(10'000)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(EigenSparseQrStep)->Arg(2'500)->Arg(10'000)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();
