@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # Proves that ParaView reads an sdflow run's time series: opens DIR/series.pvd with pvpython
-# (Debian package `paraview`, large: install with `apt-get install --no-install-recommends paraview`),
+# (Debian packages `paraview` and `python3-paraview`, large: `apt-get install --no-install-recommends
+# paraview python3-paraview`),
 # checks the time steps against the .pvd and the per-vertex arrays H, N and w of the last dataset.
 #   scripts/check-paraview.sh RUN_DIR
 # Without RUN_DIR it makes a short run of samples/meshes/ellipsoid_5_4_3.ply in a temporary folder
 # with the sdflow binary found in build/ (or $SDFLOW).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-command -v pvpython > /dev/null || { echo "check-paraview: pvpython not found (apt-get install paraview)"; exit 2; }
+command -v pvpython > /dev/null || { echo "check-paraview: pvpython not found (apt-get install paraview python3-paraview)"; exit 2; }
 
 run_dir=${1:-}
 if [[ -z "$run_dir" ]]; then
@@ -15,7 +16,7 @@ if [[ -z "$run_dir" ]]; then
   [[ -x "$sdflow" ]] || { echo "check-paraview: no sdflow binary (build with -DSDFLOW_BUILD_CLI=ON)"; exit 2; }
   run_dir=$(mktemp -d)/run
   trap 'rm -rf "$(dirname "$run_dir")"' EXIT
-  "$sdflow" run --input samples/meshes/ellipsoid_5_4_3.ply --out "$run_dir" --steps 12 --snapshot-every 4 --quiet
+  "$sdflow" -q run --input samples/meshes/ellipsoid_5_4_3.ply --out "$run_dir" --steps 12 --snapshot-every 4 --quiet
 fi
 
 # pvpython needs an X-less offscreen context only for rendering; reading and fetching data does not.
