@@ -213,6 +213,29 @@ TEST(FlowStep, fixed_boundary_stays_put_and_free_boundary_moves)
   EXPECT_GT(free_motion, 0.0);
 }
 
+TEST(CotangentCache, assembles_the_geometry_operators_exactly_and_checks_connectivity)
+{
+  constexpr double tolerance = 1e-15; // relative; the sums run in the same order
+  for (const Mesh& start : {analytic::ellipsoid(2, 5, 4, 3), analytic::disk(5), analytic::torus(20, 10, 3, 1)}) {
+    SCOPED_TRACE(start.n_vertices());
+    Mesh mesh = start;
+    const CotangentCache cache(mesh);
+    for (auto v : mesh.vertices()) // move the vertices: the cache keeps only the connectivity
+      mesh.set_point(v, mesh.point(v) * (1 + 0.05 * std::sin(3.0 * v.idx())));
+    SparseMatrix l;
+    Eigen::VectorXd areas;
+    cache.assemble(mesh, l, areas);
+    const SparseMatrix reference = cotangent_laplacian(mesh);
+    EXPECT_LE((l - reference).cwiseAbs().sum(), tolerance * reference.cwiseAbs().sum());
+    EXPECT_LE((areas - mixed_voronoi_areas(mesh)).cwiseAbs().maxCoeff(), tolerance * areas.maxCoeff());
+  }
+  const CotangentCache cache(analytic::icosphere(1));
+  EXPECT_FALSE(cache.fits(analytic::icosphere(2)));
+  SparseMatrix l;
+  Eigen::VectorXd areas;
+  EXPECT_THROW(cache.assemble(analytic::icosphere(2), l, areas), InvalidParameter);
+}
+
 TEST(FlowStep, rejects_bad_parameters_with_a_clear_error)
 {
   const Mesh mesh = analytic::icosphere(1);

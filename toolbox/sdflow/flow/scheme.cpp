@@ -8,7 +8,7 @@
 
 namespace sdflow {
 
-FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options)
+FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options, const CotangentCache* cache)
 {
   if (!(options.beta >= 0) || !std::isfinite(options.beta))
     throw InvalidParameter(fmt::format("flow step: β must be finite and ≥ 0, got {}", options.beta));
@@ -17,8 +17,12 @@ FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options)
   FlowOperators op;
   op.normals = vertex_normals(mesh, options.normals);
   op.curvature = mean_curvature(mesh, op.normals, options.curvature);
-  op.laplacian = cotangent_laplacian(mesh);
-  op.areas = mixed_voronoi_areas(mesh);
+  if (cache) {
+    cache->assemble(mesh, op.laplacian, op.areas);
+  } else {
+    op.laplacian = cotangent_laplacian(mesh);
+    op.areas = mixed_voronoi_areas(mesh);
+  }
   for (Eigen::Index i = 0; i < op.areas.size(); ++i)
     if (!(op.areas[i] > 0))
       throw InvalidMesh(fmt::format("flow step: vertex {} has no area (isolated or degenerate star)", i));

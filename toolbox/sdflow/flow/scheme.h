@@ -3,6 +3,7 @@
 //! \brief One step of the semi-implicit scheme, eq. (6) of the paper in the SPD form of DESIGN.md §2:
 //! (M + τβ L M⁻¹ L) w = L H, then X ← X - τ w N (so the normal velocity is V_N = -w ≈ -ΔH).
 
+#include "sdflow/flow/cotangent_cache.h"
 #include "sdflow/flow/solver.h"
 #include "sdflow/geometry/curvature.h"
 #include "sdflow/geometry/normals.h"
@@ -38,8 +39,10 @@ struct FlowOperators {
   std::vector<bool> held;      //!< vertices with w = 0 (empty if none)
 };
 
-//! N, H, L, M and L H of `mesh`. Throws InvalidMesh on a degenerate star or triangle.
-FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options = {});
+//! N, H, L, M and L H of `mesh`. With `cache` (built for this connectivity) L and M are assembled
+//! into its kept pattern. Throws InvalidMesh on a degenerate star or triangle.
+FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options = {},
+                             const CotangentCache* cache = nullptr);
 
 //! The outcome of solving one step for a given τ (the mesh itself is not modified).
 struct StepResult {

@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace sdflow {
@@ -120,7 +121,7 @@ public:
     write_atomically(dir_ / "run.toml", [&](std::ostream& out) { out << run_parameters_toml(p_); });
     log_event(fmt::format("start: {} vertices, {} faces, {} components", mesh_.n_vertices(), mesh_.n_faces(),
                           topology_.count));
-    op_ = flow_operators(mesh_, p_.scheme);
+    op_ = flow_operators(mesh_, p_.scheme, &*cache_);
     append_metrics(0, {});
     snapshot();
     save();
@@ -143,7 +144,7 @@ public:
       // Refactorise the anchor's system: the preconditioner is then the one the uninterrupted run
       // would be using, so the CG iterates (and every later decision) are identical.
       Mesh anchor = make_mesh(c.anchor_positions, c.triangles);
-      const FlowOperators anchor_op = flow_operators(anchor, p_.scheme);
+      const FlowOperators anchor_op = flow_operators(anchor, p_.scheme, &*cache_);
       solver_.restore(FlowSystem{anchor_op.laplacian, anchor_op.areas, anchor_op.held, c.anchor_tau_beta}, c.solver);
       has_anchor_ = true;
       anchor_positions_ = c.anchor_positions;
@@ -153,7 +154,7 @@ public:
     events_ = read_truncated(dir_ / "events.log", "step ", step_, false);
     write_atomically(dir_ / "run.toml", [&](std::ostream& out) { out << run_parameters_toml(p_); });
     log_event(fmt::format("resumed from the checkpoint at t = {}", time_));
-    op_ = flow_operators(mesh_, p_.scheme);
+    op_ = flow_operators(mesh_, p_.scheme, &*cache_);
   }
 
   SimulationResult run()
@@ -185,6 +186,7 @@ private:
   {
     triangles_ = face_indices(mesh_);
     topology_ = topology_of(mesh_);
+    cache_.emplace(mesh_);
   }
 
   double automatic_tau(const Eigen::VectorXd& edge_lengths) const
@@ -296,7 +298,7 @@ private:
         log_event(fmt::format("re-triangulated ({}): {}", join_events(events), report.detail));
       }
     }
-    op_ = flow_operators(mesh_, p_.scheme);
+    op_ = flow_operators(mesh_, p_.scheme, &*cache_);
     record.event = join_events(events);
     append_metrics(tau, record.event);
 
@@ -381,6 +383,7 @@ private:
   Mesh mesh_;
   Triangles triangles_;
   Topology topology_;
+  std::optional<CotangentCache> cache_;
   FlowOperators op_;
   VertexVectors positions_;
   long step_ = 0;
