@@ -216,8 +216,8 @@ private:
     const VertexVectors& now = positions_;
     for (Eigen::Index f = 0; f < triangles_.rows(); ++f) {
       const auto normal = [&](const VertexVectors& x) {
-        const Eigen::Vector3d a = x.row(triangles_(f, 0)), b = x.row(triangles_(f, 1)), c3 = x.row(triangles_(f, 2));
-        return Eigen::Vector3d((b - a).cross(c3 - a));
+        const Eigen::Vector3d a = x.row(triangles_(f, 0)), b = x.row(triangles_(f, 1)), d = x.row(triangles_(f, 2));
+        return Eigen::Vector3d((b - a).cross(d - a));
       };
       if (normal(now).dot(normal(next)) <= 0)
         ++c.inverted_triangles;

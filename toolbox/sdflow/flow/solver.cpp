@@ -6,6 +6,7 @@
 #include <Eigen/SPQRSupport>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace sdflow {
