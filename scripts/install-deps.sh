@@ -3,6 +3,7 @@
 # apt-get skips what is already installed. Run as root or with sudo available.
 #   scripts/install-deps.sh            toolbox, CLI, tests
 #   scripts/install-deps.sh --bench    also the benchmark peers (CGAL, Surface Evolver, hyperfine)
+#   scripts/install-deps.sh --paraview also ParaView and pvpython (large) for scripts/check-paraview.sh
 #   scripts/install-deps.sh --meshlab  also what the MeshLab plugin needs: Debian's MeshLab, Qt 5,
 #                                      GLEW, dpkg-dev (to unpack MeshLab's source package for its
 #                                      headers) and Xvfb (meshlabserver needs an X server)
@@ -20,6 +21,9 @@ packages=(
 )
 if [[ " $* " == *" --bench "* ]]; then
   packages+=(libcgal-dev evolver-nox hyperfine)
+fi
+if [[ " $* " == *" --paraview "* ]]; then
+  packages+=(paraview python3-paraview)
 fi
 if [[ " $* " == *" --meshlab "* ]]; then
   packages+=(meshlab qtbase5-dev libqt5opengl5-dev libglew-dev dpkg-dev xvfb xauth)
