@@ -129,8 +129,8 @@ ShadedSurface shaded(const Mesh& mesh, const SchemeOptions& scheme)
   return result;
 }
 
-} // namespace
-
+//! Mean edge length of `input`, or 0 if it is not a valid surface (the filter reports why when it
+//! is applied).
 double mean_edge_length(const Surface& input)
 {
   const LoggerScope silent{Reporter{}};
@@ -140,6 +140,8 @@ double mean_edge_length(const Surface& input)
     return 0;
   }
 }
+
+} // namespace
 
 double natural_time_step(const Surface& input) { return std::pow(mean_edge_length(input), 4); }
 

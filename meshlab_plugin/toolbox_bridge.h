@@ -32,10 +32,6 @@ struct DiffusionSettings {
   bool fixed_boundary = false;    //!< hold boundary vertices in place
 };
 
-//! Mean edge length of `input`, or 0 if it is not a valid surface (the filter reports why when
-//! it is applied). Dialogs use it to propose scale-aware defaults.
-double mean_edge_length(const Surface& input);
-
 //! A time step on the natural scale of the fourth-order flow, h⁴ for the mean edge length h
 //! (0 if `input` is not a valid surface): the default of the constant-τ parameter.
 double natural_time_step(const Surface& input);
