@@ -133,6 +133,25 @@ TEST(ReadErrors, truncated_files_throw_io_error)
   }
 }
 
+TEST(ReadErrors, truncated_binary_files_name_the_element)
+{
+  test::TempDir dir;
+  const Mesh sphere = analytic::icosphere(1); // 42 vertices, 80 triangles
+  write_mesh(sphere, dir / "full.ply", {.encoding = Encoding::binary});
+  write_mesh(sphere, dir / "full.stl", {.encoding = Encoding::binary});
+  const std::string ply = test::read_file(dir / "full.ply"), stl = test::read_file(dir / "full.stl");
+  // PLY faces take 1 + 3·4 bytes each: cutting 20 bytes leaves face 78 incomplete.
+  test::write_file(dir / "cut.ply", ply.substr(0, ply.size() - 20));
+  expect_mentions(io_error_of(dir / "cut.ply"), {"cut.ply: ", "face 78 of 80", "truncated"});
+  // Cutting into the vertices: 42 vertices of 24 bytes follow the header.
+  const std::size_t header = ply.find("end_header\n") + 11;
+  test::write_file(dir / "early.ply", ply.substr(0, header + 24 * 10 + 5));
+  expect_mentions(io_error_of(dir / "early.ply"), {"vertex 10 of 42"});
+  // STL triangles take 50 bytes: cutting 60 leaves triangle 78 incomplete.
+  test::write_file(dir / "cut.stl", stl.substr(0, stl.size() - 60));
+  expect_mentions(io_error_of(dir / "cut.stl"), {"cut.stl: ", "triangle 78 of the 80", "truncated"});
+}
+
 TEST(ReadErrors, truncated_obj_records_throw_io_error)
 {
   // OBJ has no counts: a cut at a line end is a valid shorter file, but a cut record is caught.
@@ -152,7 +171,7 @@ TEST(ReadErrors, huge_counts_do_not_allocate_before_failing)
   std::string list = "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
                      "property float z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n";
   list += std::string("\xff\xff\xff\x7f", 4);
-  expect_mentions(io_error_of_text(dir, "list.ply", list), {"more than the data holds"});
+  expect_mentions(io_error_of_text(dir, "list.ply", list), {"face 0 of 1", "more than the rest of the file holds"});
 }
 
 } // namespace

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <random>
 #include <sstream>
@@ -147,6 +148,19 @@ TEST(Validate, face_index_out_of_range_names_face_vertex_and_line)
   expect_single_error(soup, "face-index-out-of-range", {"test.off:14: face 3 uses vertex 12, but there are only 8 vertices"});
   soup.polygons[3][1] = -2;
   expect_single_error(soup, "face-index-out-of-range", {"test.off:14: face 3 uses vertex -2"});
+}
+
+TEST(Validate, shipped_bad_off_names_file_line_face_and_vertex)
+{
+  const std::string file = std::string(SDFLOW_SOURCE_DIR) + "/tests/data/bad.off";
+  try {
+    read_mesh(file);
+    ADD_FAILURE() << "no exception";
+  } catch (const MeshValidationError& e) {
+    EXPECT_EQ(std::string(e.what()), file + ":14: face 3 uses vertex 12, but there are only 8 vertices");
+    ASSERT_EQ(e.findings().size(), 1u);
+    EXPECT_EQ(e.findings().front().code, "face-index-out-of-range");
+  }
 }
 
 TEST(Validate, face_index_out_of_range_from_a_file)
@@ -298,7 +312,7 @@ TEST(Validate, polygons_are_triangulated_with_a_warning)
   ASSERT_EQ(built.findings.size(), 1u);
   EXPECT_EQ(built.findings.front().code, "polygon-triangulated");
   EXPECT_EQ(built.findings.front().severity, Severity::warning);
-  EXPECT_NE(built.findings.front().message.find("6 faces"), std::string::npos);
+  EXPECT_NE(built.findings.front().message.find("6 face(s)"), std::string::npos);
   EXPECT_EQ(built.mesh.n_faces(), 12u);
   EXPECT_NEAR(enclosed_volume(built.mesh), 1.0, exact_tolerance);
   EXPECT_NEAR(surface_area(built.mesh), 6.0, exact_tolerance);
@@ -423,6 +437,40 @@ TEST(Validate, any_face_order_is_accepted)
       EXPECT_NEAR(enclosed_volume(built.mesh), enclosed_volume(mesh), exact_tolerance);
     }
   }
+}
+
+TEST(Validate, random_soups_are_rejected_by_validation_never_by_openmesh)
+{
+  // Random triangles over a few points produce every kind of non-manifold and inconsistent
+  // configuration. Validation must catch each one before OpenMesh, which would print to stderr
+  // and reject the face (build_mesh then throws a plain InvalidMesh, not MeshValidationError).
+  std::mt19937 random(2024);
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  std::uniform_int_distribution<int> corner(0, 6);
+  std::uniform_int_distribution<int> face_count(1, 10);
+  std::ostringstream captured;
+  std::streambuf* const cerr_buffer = std::cerr.rdbuf(captured.rdbuf());
+  int accepted = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    PolygonSoup soup;
+    for (int i = 0; i < 7; ++i)
+      soup.points.emplace_back(coordinate(random), coordinate(random), coordinate(random));
+    for (int f = face_count(random); f > 0; --f) {
+      const long long a = corner(random), b = corner(random), c = corner(random);
+      if (a != b && b != c && c != a)
+        soup.polygons.push_back({a, b, c});
+    }
+    try {
+      build_mesh(soup, "random");
+      ++accepted;
+    } catch (const MeshValidationError&) {
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "trial " << trial << ": " << e.what();
+    }
+  }
+  std::cerr.rdbuf(cerr_buffer);
+  EXPECT_EQ(captured.str(), "");
+  EXPECT_GT(accepted, 100); // the sample must include valid surfaces too
 }
 
 TEST(CheckGeometry, names_the_non_finite_vertex_or_zero_area_face)

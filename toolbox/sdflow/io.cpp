@@ -126,6 +126,10 @@ void write_atomically(const std::filesystem::path& file, const std::function<voi
     throw IoError(fmt::format("{}: writing failed ({}); the file is unchanged", file.string(), reason));
   }
   std::error_code ec;
+  // A replaced file keeps its permissions, as it would if it had been overwritten in place.
+  if (const auto status = std::filesystem::status(file, ec); !ec && std::filesystem::is_regular_file(status))
+    std::filesystem::permissions(temporary, status.permissions(), ec);
+  ec.clear();
   std::filesystem::rename(temporary, file, ec);
   if (ec) {
     discard();

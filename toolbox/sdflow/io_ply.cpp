@@ -217,6 +217,8 @@ public:
     return count <= static_cast<long long>(tokens_.size() - next_);
   }
 
+  std::string_view remainder() const { return "the rest of the line"; }
+
   void end()
   {
     if (next_ != tokens_.size())
@@ -287,6 +289,8 @@ public:
     return count <= static_cast<long long>((data_.size() - pos_) / item_size);
   }
 
+  std::string_view remainder() const { return "the rest of the file"; }
+
   void end() {}
 
   void finish()
@@ -345,8 +349,8 @@ PolygonSoup read_data(const Header& header, const Roles& roles, Values& values)
             as_integer(values.value(property.count_type, property.name), element, i, property, values.where(), file);
         if (length < 0 || !values.has(length, size_of(property.type)))
           fail(file, values.where(),
-               fmt::format("{} {}: list '{}' announces {} items, more than the data holds", element.name, i,
-                           property.name, length));
+               fmt::format("{} {} of {}: list '{}' announces {} items, more than {} holds (truncated?)", element.name,
+                           i, element.count, property.name, length, values.remainder()));
         const bool indices = is_face && roles.face_list == static_cast<int>(p);
         if (indices) {
           if (length < 3)

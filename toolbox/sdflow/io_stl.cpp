@@ -155,10 +155,16 @@ PolygonSoup read_stl(std::string_view bytes, const std::filesystem::path& file)
     const std::uint64_t expected = binary_header_size + std::uint64_t{binary_triangle_size} * triangles;
     if (expected == bytes.size())
       return read_binary_stl(bytes, triangles);
-    if (!(starts_with_solid(bytes) && looks_textual(bytes)))
+    if (!(starts_with_solid(bytes) && looks_textual(bytes))) {
+      if (bytes.size() < expected)
+        fail(file, 0,
+             fmt::format("binary STL: the file ends inside triangle {} of the {} its header announces ({} of {} "
+                         "bytes): the file is truncated", (bytes.size() - binary_header_size) / binary_triangle_size,
+                         triangles, bytes.size(), expected));
       fail(file, 0,
            fmt::format("binary STL: the header announces {} triangles, which need {} bytes, but the file has {} "
-                       "bytes (truncated, or not an STL file)", triangles, expected, bytes.size()));
+                       "bytes (wrong count, or not an STL file)", triangles, expected, bytes.size()));
+    }
   } else if (!starts_with_solid(bytes)) {
     fail(file, 0,
          fmt::format("{} bytes are too few for a binary STL (at least {}) and the file does not start with 'solid'",
