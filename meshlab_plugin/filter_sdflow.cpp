@@ -6,6 +6,7 @@
 #include "sdflow/errors.h"
 
 #include <exception>
+#include <stdexcept>
 
 namespace {
 
@@ -153,6 +154,8 @@ bool FilterSdflowPlugin::applyFilter(QAction* action, MeshDocument& document, co
     case FP_SURFACE_DIFFUSION:
       result = sdflow::meshlab::surface_diffusion(input, label, diffusion_settings(parameters), reporter);
       break;
+    default:
+      throw std::logic_error("unknown filter " + name.toStdString());
     }
     // Only a complete result touches the user's mesh.
     sdflow::meshlab::replace_mesh(model->cm, result);
