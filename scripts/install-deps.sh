@@ -7,6 +7,8 @@
 #   scripts/install-deps.sh --meshlab  also what the MeshLab plugin needs: Debian's MeshLab, Qt 5,
 #                                      GLEW, dpkg-dev (to unpack MeshLab's source package for its
 #                                      headers) and Xvfb (meshlabserver needs an X server)
+#   scripts/install-deps.sh --screenshots  also xdotool and ImageMagick, to drive MeshLab under Xvfb
+#                                      and capture docs/images/meshlab-surface-diffusion.png
 # Flags combine.
 set -euo pipefail
 
@@ -27,6 +29,9 @@ if [[ " $* " == *" --paraview "* ]]; then
 fi
 if [[ " $* " == *" --meshlab "* ]]; then
   packages+=(meshlab qtbase5-dev libqt5opengl5-dev libglew-dev dpkg-dev xvfb xauth)
+fi
+if [[ " $* " == *" --screenshots "* ]]; then
+  packages+=(xdotool imagemagick)
 fi
 
 missing=()
