@@ -68,6 +68,53 @@ Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vecto
   return best;
 }
 
+//! A float ≤ x, at most two units in the last place below it (|x| within float range). Without
+//! branches: refits convert every box, and a data-dependent branch here mispredicts half the time.
+float float_at_most(double x)
+{
+  const float f = static_cast<float>(x); // within half a unit of x
+  return f - (std::abs(f) * 0x1p-23f + 0x1p-126f);
+}
+
+//! A float ≥ x, at most two units in the last place above it.
+float float_at_least(double x) { return -float_at_most(-x); }
+
+//! The 16 low bits of x moved to every third bit position (bit i to bit 3i).
+std::uint64_t spread_bits(std::uint32_t x)
+{
+  std::uint64_t v = x & 0xffff;
+  v = (v | v << 16) & 0x0000ff0000ffULL;
+  v = (v | v << 8) & 0x00f00f00f00fULL;
+  v = (v | v << 4) & 0x0c30c30c30c3ULL;
+  v = (v | v << 2) & 0x249249249249ULL;
+  return v;
+}
+
+//! Sort 48-bit `keys` and permute `values` along (least-significant-digit radix sort, 12-bit
+//! digits: 4096 buckets stay in cache while scattering).
+void sort_by_key(std::vector<std::uint64_t>& keys, std::vector<std::int32_t>& values)
+{
+  const std::size_t n = keys.size();
+  std::vector<std::uint64_t> key_buffer(n);
+  std::vector<std::int32_t> value_buffer(n);
+  std::vector<std::size_t> offset(1 << 12);
+  for (int shift = 0; shift < 48; shift += 12) {
+    std::fill(offset.begin(), offset.end(), 0);
+    for (std::uint64_t k : keys)
+      ++offset[(k >> shift) & 0xfff];
+    std::size_t sum = 0;
+    for (auto& o : offset)
+      sum += std::exchange(o, sum);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t slot = offset[(keys[i] >> shift) & 0xfff]++;
+      key_buffer[slot] = keys[i];
+      value_buffer[slot] = values[i];
+    }
+    keys.swap(key_buffer);
+    values.swap(value_buffer);
+  }
+}
+
 } // namespace
 
 Bvh::Bvh(const VertexVectors& positions, const Triangles& triangles, const BvhOptions& options)
@@ -105,123 +152,86 @@ void Bvh::copy_positions(const VertexVectors& positions)
   for (Eigen::Index v = 0; v < positions.rows(); ++v)
     for (int k = 0; k < 3; ++k) {
       const double x = positions(v, k);
-      if (!std::isfinite(x))
-        throw InvalidMesh(fmt::format("Bvh: vertex {} has a non-finite coordinate", v));
+      // Boxes are stored in float: keep well inside its range.
+      if (!(std::abs(x) <= 1e30))
+        throw InvalidMesh(fmt::format("Bvh: vertex {} has a coordinate that is not finite or beyond ±1e30 ({})", v, x));
       points_[3 * v + k] = x;
     }
 }
 
-void Bvh::compute_triangle_boxes()
+Bvh::Box32 Bvh::Box32::outward(const Aabb& b)
 {
-  triangle_box_.resize(triangles_.size());
-  for (std::size_t t = 0; t < triangles_.size(); ++t) {
-    Aabb box;
-    for (int v : triangles_[t])
-      box.extend(point(v));
-    triangle_box_[t] = box;
+  Box32 out;
+  for (int k = 0; k < 3; ++k) {
+    out.lo[k] = float_at_most(b.lo[k]);
+    out.hi[k] = float_at_least(b.hi[k]);
   }
+  return out;
 }
+
+float Bvh::float_gap(double margin) { return float_at_least(2.0 * margin); }
 
 void Bvh::build(const BvhOptions& options)
 {
   if (options.max_leaf_size < 1)
     throw InvalidParameter(fmt::format("Bvh: max_leaf_size must be at least 1, not {}", options.max_leaf_size));
-  if (options.sah_bins < 2)
-    throw InvalidParameter(fmt::format("Bvh: sah_bins must be at least 2, not {}", options.sah_bins));
-  compute_triangle_boxes();
   const int count = triangle_count();
   nodes_.clear();
+  bounds_ = Aabb{};
   slot_triangle_.resize(count);
   std::iota(slot_triangle_.begin(), slot_triangle_.end(), 0);
-  if (count == 0) {
-    slot_box_.clear();
+  triangle_slot_.resize(count);
+  slot_box_.resize(count);
+  if (count == 0)
     return;
-  }
-  std::vector<std::array<double, 3>> centre(count);
-  for (int t = 0; t < count; ++t)
-    for (int k = 0; k < 3; ++k)
-      centre[t][k] = 0.5 * (triangle_box_[t].lo[k] + triangle_box_[t].hi[k]);
 
+  // Morton codes of the centroids, quantised to 16 bits per axis over the centroids' bounds.
+  std::vector<std::array<double, 3>> centroid(count);
+  Aabb centroids;
+  for (int t = 0; t < count; ++t) {
+    const auto& [a, b, c] = triangles_[t];
+    for (int k = 0; k < 3; ++k)
+      centroid[t][k] = (point(a)[k] + point(b)[k] + point(c)[k]) / 3.0;
+    centroids.extend(centroid[t].data());
+  }
+  std::vector<std::uint64_t> code(count);
+  for (int t = 0; t < count; ++t) {
+    std::uint64_t key = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double extent = centroids.hi[k] - centroids.lo[k];
+      const double unit = extent > 0 ? (centroid[t][k] - centroids.lo[k]) / extent : 0.0;
+      key |= spread_bits(static_cast<std::uint32_t>(std::clamp(unit * 65536.0, 0.0, 65535.0))) << (2 - k);
+    }
+    code[t] = key;
+  }
+  sort_by_key(code, slot_triangle_);
+  for (int i = 0; i < count; ++i)
+    triangle_slot_[slot_triangle_[i]] = i;
+
+  // Top-down: split each range where its highest differing Morton bit changes (a spatial median
+  // of the curve); ranges of equal codes split at the middle. Children follow their parent.
   struct Task {
     int node, begin, end;
   };
-  struct Bin {
-    Aabb box;
-    int count = 0;
-  };
-  const int bins = options.sah_bins;
-  std::vector<Bin> bin(bins);
-  std::vector<double> right_area(bins);
-  std::vector<int> right_count(bins);
-  nodes_.reserve(2 * (count / options.max_leaf_size) + 2);
+  nodes_.reserve(2 * count / std::min(options.max_leaf_size, 2) + 1);
   nodes_.emplace_back();
   std::vector<Task> tasks = {{0, 0, count}};
   while (!tasks.empty()) {
     const Task task = tasks.back();
     tasks.pop_back();
-    Aabb box, centres;
-    for (int i = task.begin; i < task.end; ++i) {
-      box.extend(triangle_box_[slot_triangle_[i]]);
-      centres.extend(centre[slot_triangle_[i]].data());
-    }
-    nodes_[task.node].box = box;
-    const int n = task.end - task.begin;
-    if (n <= options.max_leaf_size) {
+    if (task.end - task.begin <= options.max_leaf_size) {
       nodes_[task.node].first = task.begin;
-      nodes_[task.node].count = n;
+      nodes_[task.node].count = task.end - task.begin;
       continue;
     }
-    int axis = 0;
-    for (int k = 1; k < 3; ++k)
-      if (centres.hi[k] - centres.lo[k] > centres.hi[axis] - centres.lo[axis])
-        axis = k;
-    const double lo = centres.lo[axis], extent = centres.hi[axis] - centres.lo[axis];
-    int mid = task.begin + n / 2;
-    if (extent > 0) {
-      // Binned SAH along the widest centroid axis: cost of a split = Σ side count × side area.
-      const double scale = bins / extent;
-      auto bin_of = [&](int t) { return std::min(bins - 1, static_cast<int>((centre[t][axis] - lo) * scale)); };
-      std::fill(bin.begin(), bin.end(), Bin{});
-      for (int i = task.begin; i < task.end; ++i) {
-        Bin& b = bin[bin_of(slot_triangle_[i])];
-        b.box.extend(triangle_box_[slot_triangle_[i]]);
-        ++b.count;
-      }
-      Aabb acc;
-      int acc_count = 0;
-      for (int b = bins - 1; b > 0; --b) {
-        acc.extend(bin[b].box);
-        acc_count += bin[b].count;
-        right_area[b] = acc.half_area();
-        right_count[b] = acc_count;
-      }
-      acc = Aabb{};
-      acc_count = 0;
-      double best_cost = std::numeric_limits<double>::infinity();
-      int best = -1;
-      for (int b = 0; b + 1 < bins; ++b) {
-        acc.extend(bin[b].box);
-        acc_count += bin[b].count;
-        if (acc_count == 0 || right_count[b + 1] == 0)
-          continue;
-        const double cost = acc_count * acc.half_area() + right_count[b + 1] * right_area[b + 1];
-        if (cost < best_cost) {
-          best_cost = cost;
-          best = b;
-        }
-      }
-      if (best >= 0) {
-        auto split = std::partition(slot_triangle_.begin() + task.begin, slot_triangle_.begin() + task.end,
-                                    [&](int t) { return bin_of(t) <= best; });
-        mid = static_cast<int>(split - slot_triangle_.begin());
-      } else {
-        // Every centroid fell in one bin: split at the median centroid instead.
-        std::nth_element(slot_triangle_.begin() + task.begin, slot_triangle_.begin() + mid,
-                         slot_triangle_.begin() + task.end,
-                         [&](int s, int t) { return centre[s][axis] < centre[t][axis]; });
-      }
+    int mid = task.begin + (task.end - task.begin) / 2;
+    const std::uint64_t first = code[task.begin], last = code[task.end - 1];
+    if (first != last) {
+      const std::uint64_t bit = std::uint64_t{1} << (63 - std::countl_zero(first ^ last));
+      mid = static_cast<int>(std::partition_point(code.begin() + task.begin, code.begin() + task.end,
+                                                  [&](std::uint64_t c) { return (c & bit) == 0; }) -
+                             code.begin());
     }
-    // Coincident centroids (extent 0) keep mid = the middle slot: any split is as good.
     const int left = static_cast<int>(nodes_.size());
     nodes_.emplace_back();
     nodes_.emplace_back();
@@ -230,9 +240,7 @@ void Bvh::build(const BvhOptions& options)
     tasks.push_back({left + 1, mid, task.end});
     tasks.push_back({left, task.begin, mid});
   }
-  slot_box_.resize(count);
-  for (int i = 0; i < count; ++i)
-    slot_box_[i] = triangle_box_[slot_triangle_[i]];
+  refit_nodes();
 }
 
 void Bvh::refit(const VertexVectors& positions)
@@ -241,7 +249,6 @@ void Bvh::refit(const VertexVectors& positions)
     throw InvalidParameter(fmt::format("Bvh::refit: {} positions given for a tree over {} vertices", positions.rows(),
                                        vertex_count()));
   copy_positions(positions);
-  compute_triangle_boxes();
   refit_nodes();
 }
 
@@ -255,19 +262,28 @@ void Bvh::refit(const Mesh& mesh)
 
 void Bvh::refit_nodes()
 {
-  for (std::size_t i = 0; i < slot_triangle_.size(); ++i)
-    slot_box_[i] = triangle_box_[slot_triangle_[i]];
+  bounds_ = Aabb{};
   // Children always follow their parent in the array, so a backward sweep sees them first.
   for (auto node = nodes_.rbegin(); node != nodes_.rend(); ++node) {
-    Aabb box;
     if (node->leaf()) {
-      for (int i = node->first; i < node->first + node->count; ++i)
-        box.extend(slot_box_[i]);
+      Aabb leaf;
+      for (int i = node->first; i < node->first + node->count; ++i) {
+        Aabb box;
+        for (int v : triangles_[slot_triangle_[i]])
+          box.extend(point(v));
+        slot_box_[i] = Box32::outward(box);
+        leaf.extend(box);
+      }
+      bounds_.extend(leaf);
+      node->box = Box32::outward(leaf);
     } else {
-      box = nodes_[node->first].box;
-      box.extend(nodes_[node->first + 1].box);
+      const Box32& l = nodes_[node->first].box;
+      const Box32& r = nodes_[node->first + 1].box;
+      for (int k = 0; k < 3; ++k) {
+        node->box.lo[k] = std::min(l.lo[k], r.lo[k]);
+        node->box.hi[k] = std::max(l.hi[k], r.hi[k]);
+      }
     }
-    node->box = box;
   }
 }
 
@@ -297,7 +313,7 @@ ClosestPoint Bvh::closest_point(const Eigen::Vector3d& query, double max_squared
   // Depth-first, nearer child first, pruning boxes farther than the best triangle so far.
   std::vector<std::pair<double, std::int32_t>> stack;
   stack.reserve(64);
-  stack.emplace_back(nodes_.front().box.squared_distance(q), 0);
+  stack.emplace_back(nodes_.front().box.box().squared_distance(q), 0);
   while (!stack.empty()) {
     const auto [box_distance, index] = stack.back();
     stack.pop_back();
@@ -306,7 +322,7 @@ ClosestPoint Bvh::closest_point(const Eigen::Vector3d& query, double max_squared
     const Node& node = nodes_[index];
     if (node.leaf()) {
       for (int i = node.first; i < node.first + node.count; ++i) {
-        if (slot_box_[i].squared_distance(q) > best.squared_distance)
+        if (slot_box_[i].box().squared_distance(q) > best.squared_distance)
           continue;
         const int t = slot_triangle_[i];
         const auto& [a, b, c] = triangles_[t];
@@ -322,8 +338,8 @@ ClosestPoint Bvh::closest_point(const Eigen::Vector3d& query, double max_squared
       }
       continue;
     }
-    const double dl = nodes_[node.first].box.squared_distance(q);
-    const double dr = nodes_[node.first + 1].box.squared_distance(q);
+    const double dl = nodes_[node.first].box.box().squared_distance(q);
+    const double dr = nodes_[node.first + 1].box.box().squared_distance(q);
     // Push the farther child first so the nearer one is searched first.
     if (dl <= dr) {
       stack.emplace_back(dr, node.first + 1);
@@ -361,7 +377,7 @@ RayHit Bvh::first_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& dire
   while (!stack.empty()) {
     const Node& node = nodes_[stack.back()];
     stack.pop_back();
-    if (!enters(node.box))
+    if (!enters(node.box.box()))
       continue;
     if (!node.leaf()) {
       stack.push_back(node.first + 1);

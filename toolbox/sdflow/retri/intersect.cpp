@@ -114,18 +114,11 @@ Canonical canonical_vertex(const int s[3])
   return {0, false};
 }
 
-//! Guigue & Devillers (2003): closed non-degenerate triangles t and u share a point.
-bool triangles_meet(const P t[3], const P u[3])
+//! Guigue & Devillers (2003): closed non-degenerate triangles t and u share a point, given the
+//! sides st of t's corners relative to u's plane and su of u's corners relative to t's plane,
+//! neither all equal and non-zero.
+bool triangles_meet(const P t[3], const P u[3], const int st[3], const int su[3])
 {
-  int st[3], su[3];
-  for (int i = 0; i < 3; ++i)
-    st[i] = side(u[0], u[1], u[2], t[i]);
-  if (all_same_strict_sign(st))
-    return false;
-  for (int i = 0; i < 3; ++i)
-    su[i] = side(t[0], t[1], t[2], u[i]);
-  if (all_same_strict_sign(su))
-    return false;
   if (st[0] == 0 && st[1] == 0 && st[2] == 0)
     return triangles_meet_2d(t, u, exact::projection_axis(t[0], t[1], t[2]));
 
@@ -148,63 +141,190 @@ bool triangles_meet(const P t[3], const P u[3])
   return side(q1, p2, p1, q2) <= 0 && side(p1, p2, r1, r2) <= 0;
 }
 
-//! The face-pair rule of intersect.h for faces with vertex indices f and g (f ≠ g).
-bool faces_meet(const std::array<int, 3>& f, const std::array<int, 3>& g, const Bvh& tree)
-{
-  int shared = 0, fi[2] = {-1, -1}, gj[2] = {-1, -1};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (f[i] == g[j]) {
-        if (shared < 2) {
-          fi[shared] = i;
-          gj[shared] = j;
-        }
-        ++shared;
-      }
-  switch (shared) {
-  case 0: {
-    const P t[3] = {tree.point(f[0]), tree.point(f[1]), tree.point(f[2])};
-    const P u[3] = {tree.point(g[0]), tree.point(g[1]), tree.point(g[2])};
-    return triangles_meet(t, u);
+//! The face-pair rule of intersect.h over the triangles of a tree, with every triangle's plane
+//! prepared once: most of the work is deciding on which side of a face's plane a point lies.
+class FaceTester {
+public:
+  explicit FaceTester(const Bvh& tree) : tree_(tree) { prepare(); }
+
+  //! Recompute the planes after the tree's points moved.
+  void prepare()
+  {
+    const Bvh& tree = tree_;
+    plane_.resize(tree.triangle_count());
+    flat_.resize(tree.triangle_count());
+    for (int t = 0; t < tree.triangle_count(); ++t) {
+      const auto& [a, b, c] = tree.triangle(t);
+      plane_[t] = exact::PreparedPlane(tree.point(a), tree.point(b), tree.point(c));
+      flat_[t] = !plane_[t].surely_proper() && exact::projection_axis(tree.point(a), tree.point(b), tree.point(c)) < 0;
+    }
   }
-  case 1: {
-    P v = tree.point(f[fi[0]]);
-    P a = tree.point(f[(fi[0] + 1) % 3]), b = tree.point(f[(fi[0] + 2) % 3]);
-    P c = tree.point(g[(gj[0] + 1) % 3]), d = tree.point(g[(gj[0] + 2) % 3]);
-    // Either opposite edge must reach the other triangle; both tests fail at once when one
-    // triangle lies strictly on one side of the other's plane apart from v.
-    const int sc = side(v, a, b, c), sd = side(v, a, b, d);
+
+  //! Three collinear corners.
+  bool degenerate(int t) const { return flat_[t]; }
+
+  //! Faces s and t share a vertex.
+  bool adjacent(int s, int t) const
+  {
+    const auto& f = tree_.triangle(s);
+    const auto& g = tree_.triangle(t);
+    return (f[0] == g[0]) | (f[0] == g[1]) | (f[0] == g[2]) | (f[1] == g[0]) | (f[1] == g[1]) | (f[1] == g[2]) |
+           (f[2] == g[0]) | (f[2] == g[1]) | (f[2] == g[2]);
+  }
+
+  //! Side of point x relative to the plane of triangle t (oriented by its corner order).
+  int side_of(int t, P x) const
+  {
+    const int s = plane_[t].filtered_side(x);
+    if (s != exact::PreparedPlane::undecided)
+      return s;
+    const auto& [a, b, c] = tree_.triangle(t);
+    return side(tree_.point(a), tree_.point(b), tree_.point(c), x);
+  }
+
+  //! Faces s ≠ t of this tree, neither degenerate, intersect (the rule of intersect.h).
+  bool faces(int s, int t) const
+  {
+    const auto& f = tree_.triangle(s);
+    const auto& g = tree_.triangle(t);
+    int shared = 0, fi[2] = {-1, -1}, gj[2] = {-1, -1};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (f[i] == g[j]) {
+          if (shared < 2) {
+            fi[shared] = i;
+            gj[shared] = j;
+          }
+          ++shared;
+        }
+    switch (shared) {
+    case 0:
+      return triangles(*this, s, *this, t);
+    case 1: {
+      const int v = f[fi[0]];
+      return share_vertex(s, v, f[(fi[0] + 1) % 3], f[(fi[0] + 2) % 3], t, g[(gj[0] + 1) % 3], g[(gj[0] + 2) % 3]);
+    }
+    case 2:
+      return share_edge(s, f[fi[0]], f[fi[1]], f[3 - fi[0] - fi[1]], g[3 - gj[0] - gj[1]]);
+    default:
+      return true;
+    }
+  }
+
+  //! Faces s = (v, a, b) and t = (v, c, d) share exactly vertex v (indices, in either face's
+  //! cyclic order): they intersect iff an edge opposite v meets the other triangle. Both tests
+  //! fail at once when one triangle lies strictly on one side of the other's plane apart from v.
+  bool share_vertex(int s, int v, int a, int b, int t, int c, int d) const
+  {
+    P pc = tree_.point(c), pd = tree_.point(d);
+    const int sc = side_of(s, pc), sd = side_of(s, pd);
     if (sc * sd > 0)
       return false;
-    const int sa = side(v, c, d, a), sb = side(v, c, d, b);
+    P pa = tree_.point(a), pb = tree_.point(b);
+    const int sa = side_of(t, pa), sb = side_of(t, pb);
     if (sa * sb > 0)
       return false;
-    return segment_meets_triangle(c, d, v, a, b, sc, sd) || segment_meets_triangle(a, b, v, c, d, sa, sb);
+    P pv = tree_.point(v);
+    return segment_meets_triangle(pc, pd, pv, pa, pb, sc, sd) || segment_meets_triangle(pa, pb, pv, pc, pd, sa, sb);
   }
-  case 2: {
-    P p = tree.point(f[fi[0]]), q = tree.point(f[fi[1]]);
-    P r = tree.point(f[3 - fi[0] - fi[1]]), s = tree.point(g[3 - gj[0] - gj[1]]);
-    if (orient3d(p, q, r, s) != 0)
+
+  //! Face s = (p, q, r) and a face t with edge pq and third corner w intersect iff they fold onto
+  //! each other: w in the plane of s, strictly on r's side of pq.
+  bool share_edge(int s, int p, int q, int r, int w) const
+  {
+    P pw = tree_.point(w);
+    if (side_of(s, pw) != 0)
       return false;
-    const int axis = exact::projection_axis(p, q, r);
-    return orient2d(p, q, r, axis) * orient2d(p, q, s, axis) > 0;
+    P pp = tree_.point(p), pq = tree_.point(q), pr = tree_.point(r);
+    const int axis = exact::projection_axis(pp, pq, pr);
+    return orient2d(pp, pq, pr, axis) * orient2d(pp, pq, pw, axis) > 0;
   }
-  default:
-    return true;
+
+  //! Triangle s of `x` and triangle t of `y` (no shared vertices) have a point in common.
+  static bool triangles(const FaceTester& x, int s, const FaceTester& y, int t)
+  {
+    const auto& f = x.tree_.triangle(s);
+    const auto& g = y.tree_.triangle(t);
+    const P u[3] = {x.tree_.point(f[0]), x.tree_.point(f[1]), x.tree_.point(f[2])};
+    const P v[3] = {y.tree_.point(g[0]), y.tree_.point(g[1]), y.tree_.point(g[2])};
+    int su[3], sv[3];
+    for (int i = 0; i < 3; ++i)
+      su[i] = y.side_of(t, u[i]);
+    if (all_same_strict_sign(su))
+      return false;
+    for (int i = 0; i < 3; ++i)
+      sv[i] = x.side_of(s, v[i]);
+    if (all_same_strict_sign(sv))
+      return false;
+    return triangles_meet(u, v, su, sv);
   }
-}
 
-bool degenerate(const std::array<int, 3>& t, const Bvh& tree)
-{
-  return exact::projection_axis(tree.point(t[0]), tree.point(t[1]), tree.point(t[2])) < 0;
-}
+private:
+  const Bvh& tree_;
+  std::vector<exact::PreparedPlane> plane_;
+  std::vector<char> flat_;
+};
 
-std::vector<char> degenerate_flags(const Bvh& tree)
+//! The triangles around each vertex (compressed rows).
+struct Stars {
+  std::vector<int> offset, face;
+
+  explicit Stars(const Bvh& tree) : offset(tree.vertex_count() + 1, 0), face(3 * tree.triangle_count())
+  {
+    for (int t = 0; t < tree.triangle_count(); ++t)
+      for (int v : tree.triangle(t))
+        ++offset[v + 1];
+    for (std::size_t v = 1; v < offset.size(); ++v)
+      offset[v] += offset[v - 1];
+    std::vector<int> next(offset.begin(), offset.end() - 1);
+    for (int t = 0; t < tree.triangle_count(); ++t)
+      for (int v : tree.triangle(t))
+        face[next[v]++] = t;
+  }
+};
+
+//! Intersecting pairs of faces that share a vertex, found through the vertex stars instead of the
+//! tree: every such pair is tested once, at its shared vertex of smallest index, with the star's
+//! corners and planes hot in cache.
+void adjacent_intersections(const Bvh& tree, const FaceTester& tester, const Stars& stars, std::vector<FacePair>& out)
 {
-  std::vector<char> flag(tree.triangle_count());
-  for (int t = 0; t < tree.triangle_count(); ++t)
-    flag[t] = degenerate(tree.triangle(t), tree);
-  return flag;
+  struct Corner {
+    int face, a, b; // the face and its corners after v, in order
+  };
+  std::vector<Corner> star;
+  for (int v = 0; v < tree.vertex_count(); ++v) {
+    star.clear();
+    for (int i = stars.offset[v]; i < stars.offset[v + 1]; ++i) {
+      const int f = stars.face[i];
+      if (tester.degenerate(f))
+        continue;
+      const auto& t = tree.triangle(f);
+      const int k = t[0] == v ? 0 : (t[1] == v ? 1 : 2);
+      star.push_back({f, t[(k + 1) % 3], t[(k + 2) % 3]});
+    }
+    for (std::size_t i = 0; i < star.size(); ++i) {
+      const Corner& x = star[i];
+      for (std::size_t j = i + 1; j < star.size(); ++j) {
+        const Corner& y = star[j];
+        bool hit;
+        if (x.a == y.b && x.b == y.a) {
+          hit = v < x.a && v < x.b; // a doubled face, counted once
+        } else if (x.a == y.b) {
+          hit = v < x.a && tester.share_edge(x.face, v, x.a, x.b, y.a);
+        } else if (x.b == y.a) {
+          hit = v < x.b && tester.share_edge(x.face, x.b, v, x.a, y.b);
+        } else if (x.a == y.a || x.b == y.b || x.a == y.b || x.b == y.a) {
+          // Same-direction edge: impossible in an oriented manifold, handled by the general rule.
+          const int u = x.a == y.a ? x.a : x.b;
+          hit = v < u && tester.faces(x.face, y.face);
+        } else {
+          hit = tester.share_vertex(x.face, v, x.a, x.b, y.face, y.a, y.b);
+        }
+        if (hit)
+          out.push_back({std::min(x.face, y.face), std::max(x.face, y.face)});
+      }
+    }
+  }
 }
 
 double mean_edge_length(const Mesh& mesh)
@@ -220,11 +340,18 @@ double mean_edge_length(const Mesh& mesh)
 bool triangles_intersect(const std::array<Eigen::Vector3d, 3>& a, const std::array<Eigen::Vector3d, 3>& b)
 {
   exact::prepare_exact_predicates();
-  const P t[3] = {a[0].data(), a[1].data(), a[2].data()};
-  const P u[3] = {b[0].data(), b[1].data(), b[2].data()};
-  if (exact::projection_axis(t[0], t[1], t[2]) < 0 || exact::projection_axis(u[0], u[1], u[2]) < 0)
+  VertexVectors x(6, 3);
+  for (int i = 0; i < 3; ++i) {
+    x.row(i) = a[i].transpose();
+    x.row(3 + i) = b[i].transpose();
+  }
+  Bvh::Triangles t(2, 3);
+  t << 0, 1, 2, 3, 4, 5;
+  const Bvh tree(x, t);
+  const FaceTester tester(tree);
+  if (tester.degenerate(0) || tester.degenerate(1))
     throw InvalidParameter("triangles_intersect: a triangle is degenerate (its corners are collinear)");
-  return triangles_meet(t, u);
+  return tester.faces(0, 1);
 }
 
 bool faces_intersect(const Mesh& mesh, Mesh::FaceHandle f, Mesh::FaceHandle g)
@@ -250,24 +377,26 @@ bool faces_intersect(const Mesh& mesh, Mesh::FaceHandle f, Mesh::FaceHandle g)
   for (std::size_t i = 0; i < vertices.size(); ++i)
     x.row(i) = to_eigen(mesh.point(vertices[i])).transpose();
   const Bvh tree(x, triangles);
+  const FaceTester tester(tree);
   for (int t = 0; t < 2; ++t)
-    if (degenerate(tree.triangle(t), tree))
+    if (tester.degenerate(t))
       throw InvalidParameter(fmt::format("faces_intersect: face {} is degenerate (its corners are collinear)",
                                          (t == 0 ? f : g).idx()));
-  return faces_meet(tree.triangle(0), tree.triangle(1), tree);
+  return tester.faces(0, 1);
 }
 
 std::vector<FacePair> self_intersections(const Mesh& mesh)
 {
   exact::prepare_exact_predicates();
   const Bvh tree(mesh);
-  const std::vector<char> flat = degenerate_flags(tree);
+  const FaceTester tester(tree);
   std::vector<FacePair> pairs;
   for (int t = 0; t < tree.triangle_count(); ++t)
-    if (flat[t])
+    if (tester.degenerate(t))
       pairs.push_back({t, t});
+  adjacent_intersections(tree, tester, Stars(tree), pairs);
   tree.for_each_overlapping_pair([&](int s, int t) {
-    if (!flat[s] && !flat[t] && faces_meet(tree.triangle(s), tree.triangle(t), tree))
+    if (!tester.adjacent(s, t) && !tester.degenerate(s) && !tester.degenerate(t) && tester.faces(s, t))
       pairs.push_back({std::min(s, t), std::max(s, t)});
   });
   std::sort(pairs.begin(), pairs.end());
@@ -278,81 +407,109 @@ std::vector<FacePair> surface_intersections(const Mesh& a, const Mesh& b)
 {
   exact::prepare_exact_predicates();
   const Bvh ta(a), tb(b);
-  for (const auto* tree : {&ta, &tb})
-    for (int t = 0; t < tree->triangle_count(); ++t)
-      if (degenerate(tree->triangle(t), *tree))
-        throw InvalidMesh(fmt::format("surface_intersections: face {} of the {} surface is degenerate (its corners "
-                                      "are collinear)", t, tree == &ta ? "first" : "second"));
+  const FaceTester xa(ta), xb(tb);
+  for (int t = 0; t < ta.triangle_count(); ++t)
+    if (xa.degenerate(t))
+      throw InvalidMesh(fmt::format("surface_intersections: face {} of the first surface is degenerate (its corners "
+                                    "are collinear)", t));
+  for (int t = 0; t < tb.triangle_count(); ++t)
+    if (xb.degenerate(t))
+      throw InvalidMesh(fmt::format("surface_intersections: face {} of the second surface is degenerate (its "
+                                    "corners are collinear)", t));
   std::vector<FacePair> pairs;
   ta.for_each_overlapping_pair(tb, [&](int s, int t) {
-    const auto& f = ta.triangle(s);
-    const auto& g = tb.triangle(t);
-    const P u[3] = {ta.point(f[0]), ta.point(f[1]), ta.point(f[2])};
-    const P v[3] = {tb.point(g[0]), tb.point(g[1]), tb.point(g[2])};
-    if (triangles_meet(u, v))
+    if (FaceTester::triangles(xa, s, xb, t))
       pairs.push_back({s, t});
   });
   std::sort(pairs.begin(), pairs.end());
   return pairs;
 }
 
+struct SelfIntersectionTracker::State {
+  explicit State(const Mesh& mesh, const BvhOptions& options) : bvh(mesh, options), stars(bvh), tester(bvh) {}
+
+  void collect_candidates()
+  {
+    reference.assign(bvh.point(0), bvh.point(0) + 3 * static_cast<std::size_t>(bvh.vertex_count()));
+    candidates.clear();
+    bvh.for_each_overlapping_pair(
+      [&](int s, int t) {
+        if (!tester.adjacent(s, t))
+          candidates.push_back({std::min(s, t), std::max(s, t)});
+      },
+      margin);
+    std::sort(candidates.begin(), candidates.end());
+    ++collections;
+  }
+
+  void test()
+  {
+    exact::prepare_exact_predicates();
+    tester.prepare();
+    pairs.clear();
+    for (int t = 0; t < bvh.triangle_count(); ++t)
+      if (tester.degenerate(t))
+        pairs.push_back({t, t});
+    adjacent_intersections(bvh, tester, stars, pairs);
+    for (const FacePair& c : candidates)
+      if (bvh.boxes_overlap(c.first, c.second) && !tester.degenerate(c.first) && !tester.degenerate(c.second) &&
+          tester.faces(c.first, c.second))
+        pairs.push_back(c);
+    std::sort(pairs.begin(), pairs.end());
+  }
+
+  Bvh bvh;
+  Stars stars;
+  FaceTester tester;
+  double margin = 0;
+  std::vector<double> reference; // positions when the candidates were collected
+  std::vector<FacePair> candidates;
+  std::vector<FacePair> pairs;
+  int collections = 0;
+};
+
 SelfIntersectionTracker::SelfIntersectionTracker(const Mesh& mesh, const TrackerOptions& options)
-  : bvh_(mesh, options.bvh)
 {
   if (!(options.margin > 0) || !std::isfinite(options.margin))
     throw InvalidParameter(fmt::format("SelfIntersectionTracker: margin must be positive and finite, not {}",
                                        options.margin));
-  margin_ = options.margin * mean_edge_length(mesh);
-  collect_candidates();
-  test_candidates();
+  state_ = std::make_unique<State>(mesh, options.bvh);
+  state_->margin = options.margin * mean_edge_length(mesh);
+  state_->collect_candidates();
+  state_->test();
 }
+
+SelfIntersectionTracker::~SelfIntersectionTracker() = default;
+SelfIntersectionTracker::SelfIntersectionTracker(SelfIntersectionTracker&&) noexcept = default;
+SelfIntersectionTracker& SelfIntersectionTracker::operator=(SelfIntersectionTracker&&) noexcept = default;
 
 const std::vector<FacePair>& SelfIntersectionTracker::update(const VertexVectors& positions)
 {
-  bvh_.refit(positions);
+  State& s = *state_;
+  s.bvh.refit(positions);
   // The candidates cover every pair whose boxes can overlap while no coordinate has moved more
-  // than the margin; a tenth is kept back for the rounding of the grown-box comparisons.
+  // than the margin; a tenth is kept back for rounding.
   double moved = 0;
-  for (int v = 0; v < bvh_.vertex_count(); ++v)
+  for (int v = 0; v < s.bvh.vertex_count(); ++v)
     for (int k = 0; k < 3; ++k)
-      moved = std::max(moved, std::abs(bvh_.point(v)[k] - reference_[3 * v + k]));
-  if (!(moved <= 0.9 * margin_))
-    collect_candidates();
-  test_candidates();
-  return pairs_;
+      moved = std::max(moved, std::abs(s.bvh.point(v)[k] - s.reference[3 * v + k]));
+  if (!(moved <= 0.9 * s.margin))
+    s.collect_candidates();
+  s.test();
+  return s.pairs;
 }
 
 const std::vector<FacePair>& SelfIntersectionTracker::update(const Mesh& mesh)
 {
-  if (static_cast<int>(mesh.n_faces()) != bvh_.triangle_count())
+  if (static_cast<int>(mesh.n_faces()) != state_->bvh.triangle_count())
     throw InvalidParameter(fmt::format("SelfIntersectionTracker::update: the mesh has {} faces, the tracker {}",
-                                       mesh.n_faces(), bvh_.triangle_count()));
+                                       mesh.n_faces(), state_->bvh.triangle_count()));
   return update(vertex_positions(mesh));
 }
 
-void SelfIntersectionTracker::collect_candidates()
-{
-  reference_.assign(bvh_.point(0), bvh_.point(0) + 3 * static_cast<std::size_t>(bvh_.vertex_count()));
-  candidates_.clear();
-  bvh_.for_each_overlapping_pair(
-    [&](int s, int t) { candidates_.push_back({std::min(s, t), std::max(s, t)}); }, margin_);
-  std::sort(candidates_.begin(), candidates_.end());
-  ++collections_;
-}
-
-void SelfIntersectionTracker::test_candidates()
-{
-  exact::prepare_exact_predicates();
-  const std::vector<char> flat = degenerate_flags(bvh_);
-  pairs_.clear();
-  for (int t = 0; t < bvh_.triangle_count(); ++t)
-    if (flat[t])
-      pairs_.push_back({t, t});
-  for (const FacePair& c : candidates_)
-    if (!flat[c.first] && !flat[c.second] && bvh_.triangle_box(c.first).overlaps(bvh_.triangle_box(c.second)) &&
-        faces_meet(bvh_.triangle(c.first), bvh_.triangle(c.second), bvh_))
-      pairs_.push_back(c);
-  std::sort(pairs_.begin(), pairs_.end());
-}
+const std::vector<FacePair>& SelfIntersectionTracker::pairs() const { return state_->pairs; }
+const Bvh& SelfIntersectionTracker::bvh() const { return state_->bvh; }
+int SelfIntersectionTracker::candidate_count() const { return static_cast<int>(state_->candidates.size()); }
+int SelfIntersectionTracker::collections() const { return state_->collections; }
 
 } // namespace sdflow

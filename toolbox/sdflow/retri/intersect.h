@@ -23,6 +23,7 @@
 
 #include <array>
 #include <compare>
+#include <memory>
 #include <vector>
 
 namespace sdflow {
@@ -57,17 +58,21 @@ struct TrackerOptions {
   //! They stay valid until some vertex has moved farther (in any coordinate) than the margin since
   //! they were collected; then the tree is refitted and they are collected again. Given as a
   //! fraction of the mean edge length; > 0.
-  double margin = 0.25;
+  double margin = 0.1;
   BvhOptions bvh;
 };
 
 //! Self-intersections of a surface whose vertices move while its connectivity stays fixed, as in a
-//! time step: `update()` refits the tree instead of rebuilding it, and re-tests only the face pairs
+//! time step. `update()` refits the tree instead of rebuilding it, re-tests the faces sharing a
+//! vertex through the vertex stars kept from construction, and re-tests only the other face pairs
 //! that can have come into contact, cached with a margin (temporal coherence).
 class SelfIntersectionTracker {
 public:
   //! Build the tree and find the intersecting pairs of `mesh` (no deleted faces).
   explicit SelfIntersectionTracker(const Mesh& mesh, const TrackerOptions& options = {});
+  ~SelfIntersectionTracker();
+  SelfIntersectionTracker(SelfIntersectionTracker&&) noexcept;
+  SelfIntersectionTracker& operator=(SelfIntersectionTracker&&) noexcept;
 
   //! Re-check after the vertices moved to `positions` (#V by 3, same vertices as at construction).
   const std::vector<FacePair>& update(const VertexVectors& positions);
@@ -75,23 +80,16 @@ public:
   const std::vector<FacePair>& update(const Mesh& mesh);
 
   //! Intersecting pairs at the last check (same rule and order as self_intersections()).
-  const std::vector<FacePair>& pairs() const { return pairs_; }
-  const Bvh& bvh() const { return bvh_; }
-  //! Number of cached candidate pairs.
-  int candidate_count() const { return static_cast<int>(candidates_.size()); }
+  const std::vector<FacePair>& pairs() const;
+  const Bvh& bvh() const;
+  //! Number of cached candidate pairs of faces sharing no vertex.
+  int candidate_count() const;
   //! How many times the candidates were collected (once at construction, then after large moves).
-  int collections() const { return collections_; }
+  int collections() const;
 
 private:
-  void collect_candidates();
-  void test_candidates();
-
-  Bvh bvh_;
-  double margin_ = 0;
-  std::vector<double> reference_;      // positions when the candidates were collected
-  std::vector<FacePair> candidates_;   // sorted
-  std::vector<FacePair> pairs_;
-  int collections_ = 0;
+  struct State;
+  std::unique_ptr<State> state_;
 };
 
 } // namespace sdflow

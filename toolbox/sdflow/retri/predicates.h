@@ -79,6 +79,53 @@ inline int orient2d(const double* a, const double* b, const double* c, int axis)
   return detail::sign(detail::adaptive_orient2d(a[u], a[v], b[u], b[v], c[u], c[v]));
 }
 
+//! The plane of triangle (a, b, c) prepared for many side queries. The filter evaluates the same
+//! determinant, with the same rounding and error bound, as orient3d with a as the base point, but
+//! the triangle's part (the cross product of its edges and the absolute values of its terms) is
+//! computed once; undecided queries must go to side(a, b, c, x).
+class PreparedPlane {
+public:
+  static constexpr int undecided = 2;
+
+  PreparedPlane() = default;
+  PreparedPlane(const double* a, const double* b, const double* c)
+  {
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    for (int k = 0; k < 3; ++k) {
+      const int i = (k + 1) % 3, j = (k + 2) % 3;
+      base_[k] = a[k];
+      normal_[k] = u[i] * w[j] - u[j] * w[i];
+      terms_[k] = std::abs(u[i] * w[j]) + std::abs(u[j] * w[i]);
+    }
+  }
+
+  //! side(a, b, c, x) when the filter decides it, else `undecided`.
+  int filtered_side(const double* x) const
+  {
+    const double d0 = x[0] - base_[0], d1 = x[1] - base_[1], d2 = x[2] - base_[2];
+    const double det = d0 * normal_[0] + d1 * normal_[1] + d2 * normal_[2];
+    const double bound =
+      detail::orient3d_bound * (std::abs(d0) * terms_[0] + std::abs(d1) * terms_[1] + std::abs(d2) * terms_[2]);
+    return det > bound ? 1 : (-det > bound ? -1 : undecided);
+  }
+
+  //! True when some normal component is certainly non-zero (orient2d's filter on each coordinate
+  //! plane), so the triangle is certainly not degenerate; false means "ask projection_axis".
+  bool surely_proper() const
+  {
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(normal_[k]) > detail::orient2d_bound * terms_[k])
+        return true;
+    return false;
+  }
+
+private:
+  double base_[3] = {0, 0, 0};
+  double normal_[3] = {0, 0, 0};
+  double terms_[3] = {0, 0, 0};
+};
+
 //! A coordinate to drop so that triangle (a, b, c) projects to a non-degenerate 2-D triangle
 //! (decided exactly, preferring the largest normal component), or -1 when the three points are
 //! collinear (the triangle is degenerate).
