@@ -38,6 +38,8 @@ int main(int argc, char** argv)
   app.parse_complete_callback([&] { install_stderr_logger(verbose, quiet); });
 
   sdflow::cli::add_stats_verb(app);
+  sdflow::cli::add_intersections_verb(app);
+  sdflow::cli::add_components_verb(app);
 
   try {
     app.parse(argc, argv);
