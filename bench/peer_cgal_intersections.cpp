@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <iostream>
 #include <iterator>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -82,19 +84,19 @@ void BM_Cgal_SelfIntersections(benchmark::State& state, const Input* input)
   state.counters["pairs"] = static_cast<double>(pairs);
 }
 
-void BM_Sdflow_SelfIntersections(benchmark::State& state, const Input* input)
+void BM_Sdflow_SelfIntersections(benchmark::State& state, const Input* input, Execution execution)
 {
   std::size_t pairs = 0;
   for (auto _ : state)
-    pairs = self_intersections(input->mesh).size();
+    pairs = self_intersections(input->mesh, {.execution = execution}).size();
   state.counters["pairs"] = static_cast<double>(pairs);
 }
 
 //! A smooth step along the normals (amplitude 2e-4 of the radius, a sixtieth of an edge)
 //! re-checked by the tracker: refit and re-test.
-void BM_Sdflow_TrackerSmoothStep(benchmark::State& state, const Input* input)
+void BM_Sdflow_TrackerSmoothStep(benchmark::State& state, const Input* input, Execution execution)
 {
-  SelfIntersectionTracker tracker(input->mesh);
+  SelfIntersectionTracker tracker(input->mesh, {.execution = execution});
   const VertexVectors a = bench::smooth_step(input->mesh, 2e-4), b = bench::smooth_step(input->mesh, -2e-4);
   bool flip = false;
   std::size_t pairs = 0;
@@ -105,9 +107,9 @@ void BM_Sdflow_TrackerSmoothStep(benchmark::State& state, const Input* input)
 
 //! Independent noise on every coordinate (1e-4 of the radius, a hundredth of an edge): adjacent
 //! faces become nearly coplanar at random, the hard case for the re-check.
-void BM_Sdflow_TrackerNoisyStep(benchmark::State& state, const Input* input)
+void BM_Sdflow_TrackerNoisyStep(benchmark::State& state, const Input* input, Execution execution)
 {
-  SelfIntersectionTracker tracker(input->mesh);
+  SelfIntersectionTracker tracker(input->mesh, {.execution = execution});
   const VertexVectors a = bench::jiggled(input->mesh, 1e-4, 4), b = bench::jiggled(input->mesh, 1e-4, 5);
   bool flip = false;
   std::size_t pairs = 0;
@@ -132,22 +134,23 @@ int main(int argc, char** argv)
   const bool same = same_results("sphere", sphere()) & same_results("pushed-through sphere", pushed());
   if (!same)
     return 1;
-  benchmark::RegisterBenchmark("Cgal_SelfIntersections/sphere", BM_Cgal_SelfIntersections, &sphere())
-    ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("Sdflow_SelfIntersections/sphere", BM_Sdflow_SelfIntersections, &sphere())
-    ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("Sdflow_TrackerSmoothStep/sphere", BM_Sdflow_TrackerSmoothStep, &sphere())
-    ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("Sdflow_TrackerNoisyStep/sphere", BM_Sdflow_TrackerNoisyStep, &sphere())
-    ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("Cgal_SelfIntersections/pushed", BM_Cgal_SelfIntersections, &pushed())
-    ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("Sdflow_SelfIntersections/pushed", BM_Sdflow_SelfIntersections, &pushed())
-    ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("Sdflow_TrackerSmoothStep/pushed", BM_Sdflow_TrackerSmoothStep, &pushed())
-    ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("Sdflow_TrackerNoisyStep/pushed", BM_Sdflow_TrackerNoisyStep, &pushed())
-    ->Unit(benchmark::kMillisecond);
+  for (const auto& [name, input] : {std::pair{"sphere", &sphere()}, std::pair{"pushed", &pushed()}}) {
+    const std::string tag = std::string("/") + name;
+    benchmark::RegisterBenchmark(("Cgal_SelfIntersections" + tag).c_str(), BM_Cgal_SelfIntersections, input)
+      ->Unit(benchmark::kMillisecond);
+    for (const auto& [mode, execution] :
+         {std::pair{"Sequential", Execution::sequential}, std::pair{"Parallel", Execution::parallel}}) {
+      benchmark::RegisterBenchmark(("Sdflow_SelfIntersections" + std::string(mode) + tag).c_str(),
+                                   BM_Sdflow_SelfIntersections, input, execution)
+        ->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark(("Sdflow_TrackerSmoothStep" + std::string(mode) + tag).c_str(),
+                                   BM_Sdflow_TrackerSmoothStep, input, execution)
+        ->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark(("Sdflow_TrackerNoisyStep" + std::string(mode) + tag).c_str(),
+                                   BM_Sdflow_TrackerNoisyStep, input, execution)
+        ->Unit(benchmark::kMillisecond);
+    }
+  }
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -235,6 +235,7 @@ TEST(SelfIntersections, equal_brute_force_exact_reference_on_adversarial_meshes)
     const auto expected = reference::self_intersections(c.mesh);
     const auto found = self_intersections(c.mesh);
     EXPECT_EQ(found, expected);
+    EXPECT_EQ(self_intersections(c.mesh, {.execution = Execution::sequential}), expected);
     EXPECT_EQ(!expected.empty(), c.expect_pairs);
   }
 }
@@ -248,6 +249,21 @@ TEST(SelfIntersections, smooth_surfaces_have_none_and_results_are_sorted_pairs)
   EXPECT_TRUE(std::is_sorted(pairs.begin(), pairs.end()));
   for (const auto& p : pairs)
     EXPECT_LT(p.first, p.second);
+}
+
+TEST(SelfIntersections, threads_do_not_change_the_result_on_a_large_mesh)
+{
+  const Mesh a = test::mapped(analytic::icosphere(5), [](const Eigen::Vector3d& p) {
+    Eigen::Vector3d q = p;
+    if (q.z() > 0.2)
+      q.z() = 0.2 - 2.2 * (q.z() - 0.2);
+    return q;
+  });
+  const auto parallel = self_intersections(a);
+  ASSERT_GT(parallel.size(), 100u);
+  EXPECT_EQ(self_intersections(a, {.execution = Execution::sequential}), parallel);
+  SelfIntersectionTracker sequential_tracker(a, {.execution = Execution::sequential});
+  EXPECT_EQ(sequential_tracker.pairs(), parallel);
 }
 
 TEST(SelfIntersections, invariant_under_exact_scaling_and_translation)

@@ -287,6 +287,46 @@ void Bvh::refit_nodes()
   }
 }
 
+std::vector<std::pair<int, int>> Bvh::traversal_seeds(int count, double margin) const
+{
+  std::vector<std::pair<int, int>> seeds;
+  if (nodes_.empty())
+    return seeds;
+  const float gap = float_gap(margin);
+  seeds.emplace_back(0, 0);
+  // Expand every seed one level per sweep (as the traversal would) until there are enough.
+  bool expanded = true;
+  while (static_cast<int>(seeds.size()) < count && expanded) {
+    expanded = false;
+    std::vector<std::pair<int, int>> next;
+    for (const auto& [a, b] : seeds) {
+      const Node& na = nodes_[a];
+      const Node& nb = nodes_[b];
+      if (a == b && !na.leaf()) {
+        next.emplace_back(na.first, na.first);
+        next.emplace_back(na.first + 1, na.first + 1);
+        next.emplace_back(na.first, na.first + 1);
+        expanded = true;
+      } else if (a != b && !na.box.overlaps(nb.box, gap)) {
+        expanded = true; // contributes nothing
+      } else if (a != b && !(na.leaf() && nb.leaf())) {
+        if (nb.leaf() || (!na.leaf() && na.box.box().half_area() >= nb.box.box().half_area())) {
+          next.emplace_back(na.first, b);
+          next.emplace_back(na.first + 1, b);
+        } else {
+          next.emplace_back(a, nb.first);
+          next.emplace_back(a, nb.first + 1);
+        }
+        expanded = true;
+      } else {
+        next.emplace_back(a, b);
+      }
+    }
+    seeds.swap(next);
+  }
+  return seeds;
+}
+
 std::vector<std::pair<int, int>> Bvh::overlapping_pairs(double margin) const
 {
   std::vector<std::pair<int, int>> pairs;

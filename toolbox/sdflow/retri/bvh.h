@@ -130,6 +130,13 @@ public:
   //! Call `visit(s, t)` once for every unordered pair of distinct triangles s ≠ t whose boxes,
   //! each grown by `margin` on every side, overlap (conservatively, see the file comment).
   template <class Visit> void for_each_overlapping_pair(Visit&& visit, double margin = 0.0) const;
+  //! Node pairs that together stand for every pair for_each_overlapping_pair() visits, each one
+  //! an independent unit of work (for a parallel traversal): at least `count` when the tree is
+  //! large enough. A node paired with itself stands for the pairs inside its subtree.
+  std::vector<std::pair<int, int>> traversal_seeds(int count, double margin = 0.0) const;
+  //! The pairs of one seed of traversal_seeds() (with the same margin).
+  template <class Visit>
+  void for_each_overlapping_pair(std::pair<int, int> seed, Visit&& visit, double margin = 0.0) const;
   //! Call `visit(s, t)` for every triangle s of this tree and t of `other` whose grown boxes overlap.
   template <class Visit> void for_each_overlapping_pair(const Bvh& other, Visit&& visit, double margin = 0.0) const;
   //! Call `visit(t)` for every triangle whose box overlaps `box`.
@@ -204,13 +211,18 @@ private:
 
 template <class Visit> void Bvh::for_each_overlapping_pair(Visit&& visit, double margin) const
 {
-  if (nodes_.empty())
-    return;
+  if (!nodes_.empty())
+    for_each_overlapping_pair({0, 0}, visit, margin);
+}
+
+template <class Visit>
+void Bvh::for_each_overlapping_pair(std::pair<int, int> seed, Visit&& visit, double margin) const
+{
   const float gap = float_gap(margin);
   // (a, a) stands for "all pairs inside subtree a", (a, b) for "pairs across subtrees a and b".
   std::vector<std::pair<std::int32_t, std::int32_t>> stack;
   stack.reserve(256);
-  stack.emplace_back(0, 0);
+  stack.push_back(seed);
   while (!stack.empty()) {
     const auto [a, b] = stack.back();
     stack.pop_back();

@@ -4,6 +4,9 @@
 #include "sdflow/retri/predicates.h"
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -141,24 +144,58 @@ bool triangles_meet(const P t[3], const P u[3], const int st[3], const int su[3]
   return side(q1, p2, p1, q2) <= 0 && side(p1, p2, r1, r2) <= 0;
 }
 
+//! Run body(begin, end) over blocks of [0, n), on threads when asked.
+template <class Body> void for_blocks(Execution execution, std::size_t n, const Body& body)
+{
+  if (execution == Execution::sequential || n < 2048) {
+    body(std::size_t{0}, n);
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024),
+                    [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
+}
+
+//! Run body(begin, end, out) over blocks of [0, n), appending what every block finds to `out`.
+template <class Body>
+void collect_blocks(Execution execution, std::size_t n, const Body& body, std::vector<FacePair>& out)
+{
+  if (execution == Execution::sequential) {
+    body(std::size_t{0}, n, out);
+    return;
+  }
+  tbb::enumerable_thread_specific<std::vector<FacePair>> found;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n),
+                    [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end(), found.local()); });
+  for (const auto& part : found)
+    out.insert(out.end(), part.begin(), part.end());
+}
+
 //! The face-pair rule of intersect.h over the triangles of a tree, with every triangle's plane
 //! prepared once: most of the work is deciding on which side of a face's plane a point lies.
 class FaceTester {
 public:
-  explicit FaceTester(const Bvh& tree) : tree_(tree) { prepare(); }
-
-  //! Recompute the planes after the tree's points moved.
-  void prepare()
+  //! The triangles of `tree` at its own points, or at `points` (3 per vertex) when given.
+  FaceTester(const Bvh& tree, Execution execution, const double* points = nullptr)
+    : tree_(tree), points_(points ? points : tree.point(0))
   {
-    const Bvh& tree = tree_;
-    plane_.resize(tree.triangle_count());
-    flat_.resize(tree.triangle_count());
-    for (int t = 0; t < tree.triangle_count(); ++t) {
-      const auto& [a, b, c] = tree.triangle(t);
-      plane_[t] = exact::PreparedPlane(tree.point(a), tree.point(b), tree.point(c));
-      flat_[t] = !plane_[t].surely_proper() && exact::projection_axis(tree.point(a), tree.point(b), tree.point(c)) < 0;
-    }
+    prepare(execution);
   }
+
+  //! Recompute the planes after the points moved.
+  void prepare(Execution execution)
+  {
+    plane_.resize(tree_.triangle_count());
+    flat_.resize(tree_.triangle_count());
+    for_blocks(execution, tree_.triangle_count(), [&](std::size_t begin, std::size_t end) {
+      for (std::size_t t = begin; t < end; ++t) {
+        const auto& [a, b, c] = tree_.triangle(static_cast<int>(t));
+        plane_[t] = exact::PreparedPlane(point(a), point(b), point(c));
+        flat_[t] = !plane_[t].surely_proper() && exact::projection_axis(point(a), point(b), point(c)) < 0;
+      }
+    });
+  }
+
+  P point(int v) const { return points_ + 3 * static_cast<std::size_t>(v); }
 
   //! Three collinear corners.
   bool degenerate(int t) const { return flat_[t]; }
@@ -179,7 +216,7 @@ public:
     if (s != exact::PreparedPlane::undecided)
       return s;
     const auto& [a, b, c] = tree_.triangle(t);
-    return side(tree_.point(a), tree_.point(b), tree_.point(c), x);
+    return side(point(a), point(b), point(c), x);
   }
 
   //! Faces s ≠ t of this tree, neither degenerate, intersect (the rule of intersect.h).
@@ -216,15 +253,15 @@ public:
   //! fail at once when one triangle lies strictly on one side of the other's plane apart from v.
   bool share_vertex(int s, int v, int a, int b, int t, int c, int d) const
   {
-    P pc = tree_.point(c), pd = tree_.point(d);
+    P pc = point(c), pd = point(d);
     const int sc = side_of(s, pc), sd = side_of(s, pd);
     if (sc * sd > 0)
       return false;
-    P pa = tree_.point(a), pb = tree_.point(b);
+    P pa = point(a), pb = point(b);
     const int sa = side_of(t, pa), sb = side_of(t, pb);
     if (sa * sb > 0)
       return false;
-    P pv = tree_.point(v);
+    P pv = point(v);
     return segment_meets_triangle(pc, pd, pv, pa, pb, sc, sd) || segment_meets_triangle(pa, pb, pv, pc, pd, sa, sb);
   }
 
@@ -232,10 +269,10 @@ public:
   //! each other: w in the plane of s, strictly on r's side of pq.
   bool share_edge(int s, int p, int q, int r, int w) const
   {
-    P pw = tree_.point(w);
+    P pw = point(w);
     if (side_of(s, pw) != 0)
       return false;
-    P pp = tree_.point(p), pq = tree_.point(q), pr = tree_.point(r);
+    P pp = point(p), pq = point(q), pr = point(r);
     const int axis = exact::projection_axis(pp, pq, pr);
     return orient2d(pp, pq, pr, axis) * orient2d(pp, pq, pw, axis) > 0;
   }
@@ -245,8 +282,8 @@ public:
   {
     const auto& f = x.tree_.triangle(s);
     const auto& g = y.tree_.triangle(t);
-    const P u[3] = {x.tree_.point(f[0]), x.tree_.point(f[1]), x.tree_.point(f[2])};
-    const P v[3] = {y.tree_.point(g[0]), y.tree_.point(g[1]), y.tree_.point(g[2])};
+    const P u[3] = {x.point(f[0]), x.point(f[1]), x.point(f[2])};
+    const P v[3] = {y.point(g[0]), y.point(g[1]), y.point(g[2])};
     int su[3], sv[3];
     for (int i = 0; i < 3; ++i)
       su[i] = y.side_of(t, u[i]);
@@ -261,6 +298,7 @@ public:
 
 private:
   const Bvh& tree_;
+  const double* points_;
   std::vector<exact::PreparedPlane> plane_;
   std::vector<char> flat_;
 };
@@ -286,13 +324,14 @@ struct Stars {
 //! Intersecting pairs of faces that share a vertex, found through the vertex stars instead of the
 //! tree: every such pair is tested once, at its shared vertex of smallest index, with the star's
 //! corners and planes hot in cache.
-void adjacent_intersections(const Bvh& tree, const FaceTester& tester, const Stars& stars, std::vector<FacePair>& out)
+void adjacent_intersections(const Bvh& tree, const FaceTester& tester, const Stars& stars, int first, int last,
+                            std::vector<FacePair>& out)
 {
   struct Corner {
     int face, a, b; // the face and its corners after v, in order
   };
   std::vector<Corner> star;
-  for (int v = 0; v < tree.vertex_count(); ++v) {
+  for (int v = first; v < last; ++v) {
     star.clear();
     for (int i = stars.offset[v]; i < stars.offset[v + 1]; ++i) {
       const int f = stars.face[i];
@@ -313,10 +352,11 @@ void adjacent_intersections(const Bvh& tree, const FaceTester& tester, const Sta
           hit = v < x.a && tester.share_edge(x.face, v, x.a, x.b, y.a);
         } else if (x.b == y.a) {
           hit = v < x.b && tester.share_edge(x.face, x.b, v, x.a, y.b);
-        } else if (x.a == y.a || x.b == y.b || x.a == y.b || x.b == y.a) {
-          // Same-direction edge: impossible in an oriented manifold, handled by the general rule.
-          const int u = x.a == y.a ? x.a : x.b;
-          hit = v < u && tester.faces(x.face, y.face);
+        } else if (x.a == y.a || x.b == y.b) {
+          // An edge used in the same direction twice: impossible in an oriented manifold, but a
+          // triangle soup may have it; the general rule decides, at the lowest shared vertex.
+          const bool lowest = (x.a != y.a || v < x.a) && (x.b != y.b || v < x.b);
+          hit = lowest && tester.faces(x.face, y.face);
         } else {
           hit = tester.share_vertex(x.face, v, x.a, x.b, y.face, y.a, y.b);
         }
@@ -325,6 +365,14 @@ void adjacent_intersections(const Bvh& tree, const FaceTester& tester, const Sta
       }
     }
   }
+}
+
+void adjacent_intersections(const Bvh& tree, const FaceTester& tester, const Stars& stars, Execution execution,
+                            std::vector<FacePair>& out)
+{
+  collect_blocks(execution, tree.vertex_count(), [&](std::size_t begin, std::size_t end, std::vector<FacePair>& found) {
+    adjacent_intersections(tree, tester, stars, static_cast<int>(begin), static_cast<int>(end), found);
+  }, out);
 }
 
 double mean_edge_length(const Mesh& mesh)
@@ -348,7 +396,7 @@ bool triangles_intersect(const std::array<Eigen::Vector3d, 3>& a, const std::arr
   Bvh::Triangles t(2, 3);
   t << 0, 1, 2, 3, 4, 5;
   const Bvh tree(x, t);
-  const FaceTester tester(tree);
+  const FaceTester tester(tree, Execution::sequential);
   if (tester.degenerate(0) || tester.degenerate(1))
     throw InvalidParameter("triangles_intersect: a triangle is degenerate (its corners are collinear)");
   return tester.faces(0, 1);
@@ -377,7 +425,7 @@ bool faces_intersect(const Mesh& mesh, Mesh::FaceHandle f, Mesh::FaceHandle g)
   for (std::size_t i = 0; i < vertices.size(); ++i)
     x.row(i) = to_eigen(mesh.point(vertices[i])).transpose();
   const Bvh tree(x, triangles);
-  const FaceTester tester(tree);
+  const FaceTester tester(tree, Execution::sequential);
   for (int t = 0; t < 2; ++t)
     if (tester.degenerate(t))
       throw InvalidParameter(fmt::format("faces_intersect: face {} is degenerate (its corners are collinear)",
@@ -385,29 +433,34 @@ bool faces_intersect(const Mesh& mesh, Mesh::FaceHandle f, Mesh::FaceHandle g)
   return tester.faces(0, 1);
 }
 
-std::vector<FacePair> self_intersections(const Mesh& mesh)
+std::vector<FacePair> self_intersections(const Mesh& mesh, const IntersectionOptions& options)
 {
   exact::prepare_exact_predicates();
   const Bvh tree(mesh);
-  const FaceTester tester(tree);
+  const FaceTester tester(tree, options.execution);
   std::vector<FacePair> pairs;
   for (int t = 0; t < tree.triangle_count(); ++t)
     if (tester.degenerate(t))
       pairs.push_back({t, t});
-  adjacent_intersections(tree, tester, Stars(tree), pairs);
-  tree.for_each_overlapping_pair([&](int s, int t) {
-    if (!tester.adjacent(s, t) && !tester.degenerate(s) && !tester.degenerate(t) && tester.faces(s, t))
-      pairs.push_back({std::min(s, t), std::max(s, t)});
-  });
+  adjacent_intersections(tree, tester, Stars(tree), options.execution, pairs);
+  // Faces sharing no vertex, through the tree; seeds split the traversal into independent parts.
+  const auto seeds = tree.traversal_seeds(options.execution == Execution::parallel ? 256 : 1);
+  collect_blocks(options.execution, seeds.size(), [&](std::size_t begin, std::size_t end, std::vector<FacePair>& found) {
+    for (std::size_t i = begin; i < end; ++i)
+      tree.for_each_overlapping_pair(seeds[i], [&](int s, int t) {
+        if (!tester.adjacent(s, t) && !tester.degenerate(s) && !tester.degenerate(t) && tester.faces(s, t))
+          found.push_back({std::min(s, t), std::max(s, t)});
+      });
+  }, pairs);
   std::sort(pairs.begin(), pairs.end());
   return pairs;
 }
 
-std::vector<FacePair> surface_intersections(const Mesh& a, const Mesh& b)
+std::vector<FacePair> surface_intersections(const Mesh& a, const Mesh& b, const IntersectionOptions& options)
 {
   exact::prepare_exact_predicates();
   const Bvh ta(a), tb(b);
-  const FaceTester xa(ta), xb(tb);
+  const FaceTester xa(ta, options.execution), xb(tb, options.execution);
   for (int t = 0; t < ta.triangle_count(); ++t)
     if (xa.degenerate(t))
       throw InvalidMesh(fmt::format("surface_intersections: face {} of the first surface is degenerate (its corners "
@@ -426,11 +479,18 @@ std::vector<FacePair> surface_intersections(const Mesh& a, const Mesh& b)
 }
 
 struct SelfIntersectionTracker::State {
-  explicit State(const Mesh& mesh, const BvhOptions& options) : bvh(mesh, options), stars(bvh), tester(bvh) {}
+  State(const Mesh& mesh, const TrackerOptions& options)
+    : bvh(mesh, options.bvh), points(bvh.point(0), bvh.point(0) + 3 * static_cast<std::size_t>(bvh.vertex_count())),
+      stars(bvh), tester(bvh, options.execution, points.data()), execution(options.execution)
+  {
+  }
 
+  //! Refit the tree to the current points and collect the pairs of faces sharing no vertex whose
+  //! boxes, grown by the margin, overlap.
   void collect_candidates()
   {
-    reference.assign(bvh.point(0), bvh.point(0) + 3 * static_cast<std::size_t>(bvh.vertex_count()));
+    bvh.refit(Eigen::Map<const VertexVectors>(points.data(), bvh.vertex_count(), 3));
+    reference = points;
     candidates.clear();
     bvh.for_each_overlapping_pair(
       [&](int s, int t) {
@@ -445,22 +505,28 @@ struct SelfIntersectionTracker::State {
   void test()
   {
     exact::prepare_exact_predicates();
-    tester.prepare();
+    tester.prepare(execution);
     pairs.clear();
     for (int t = 0; t < bvh.triangle_count(); ++t)
       if (tester.degenerate(t))
         pairs.push_back({t, t});
-    adjacent_intersections(bvh, tester, stars, pairs);
-    for (const FacePair& c : candidates)
-      if (bvh.boxes_overlap(c.first, c.second) && !tester.degenerate(c.first) && !tester.degenerate(c.second) &&
-          tester.faces(c.first, c.second))
-        pairs.push_back(c);
+    adjacent_intersections(bvh, tester, stars, execution, pairs);
+    collect_blocks(execution, candidates.size(), [&](std::size_t begin, std::size_t end, std::vector<FacePair>& found) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const FacePair& c = candidates[i];
+        if (!tester.degenerate(c.first) && !tester.degenerate(c.second) &&
+            FaceTester::triangles(tester, c.first, tester, c.second))
+          found.push_back(c);
+      }
+    }, pairs);
     std::sort(pairs.begin(), pairs.end());
   }
 
   Bvh bvh;
+  std::vector<double> points; // current positions; the tree is refitted to them when needed
   Stars stars;
   FaceTester tester;
+  Execution execution;
   double margin = 0;
   std::vector<double> reference; // positions when the candidates were collected
   std::vector<FacePair> candidates;
@@ -473,7 +539,7 @@ SelfIntersectionTracker::SelfIntersectionTracker(const Mesh& mesh, const Tracker
   if (!(options.margin > 0) || !std::isfinite(options.margin))
     throw InvalidParameter(fmt::format("SelfIntersectionTracker: margin must be positive and finite, not {}",
                                        options.margin));
-  state_ = std::make_unique<State>(mesh, options.bvh);
+  state_ = std::make_unique<State>(mesh, options);
   state_->margin = options.margin * mean_edge_length(mesh);
   state_->collect_candidates();
   state_->test();
@@ -486,13 +552,22 @@ SelfIntersectionTracker& SelfIntersectionTracker::operator=(SelfIntersectionTrac
 const std::vector<FacePair>& SelfIntersectionTracker::update(const VertexVectors& positions)
 {
   State& s = *state_;
-  s.bvh.refit(positions);
-  // The candidates cover every pair whose boxes can overlap while no coordinate has moved more
-  // than the margin; a tenth is kept back for rounding.
+  if (positions.rows() != s.bvh.vertex_count())
+    throw InvalidParameter(fmt::format("SelfIntersectionTracker::update: {} positions given for {} vertices",
+                                       positions.rows(), s.bvh.vertex_count()));
+  // While no coordinate has moved more than the margin since the candidates were collected, they
+  // still hold every pair of faces sharing no vertex whose boxes overlap (a tenth of the margin is
+  // kept back for rounding), and the tree need not even be refitted.
   double moved = 0;
-  for (int v = 0; v < s.bvh.vertex_count(); ++v)
-    for (int k = 0; k < 3; ++k)
-      moved = std::max(moved, std::abs(s.bvh.point(v)[k] - s.reference[3 * v + k]));
+  for (Eigen::Index v = 0; v < positions.rows(); ++v)
+    for (int k = 0; k < 3; ++k) {
+      const double x = positions(v, k);
+      if (!(std::abs(x) <= 1e30))
+        throw InvalidMesh(fmt::format("SelfIntersectionTracker::update: vertex {} has a coordinate that is not "
+                                      "finite or beyond ±1e30 ({})", v, x));
+      s.points[3 * v + k] = x;
+      moved = std::max(moved, std::abs(x - s.reference[3 * v + k]));
+    }
   if (!(moved <= 0.9 * s.margin))
     s.collect_candidates();
   s.test();

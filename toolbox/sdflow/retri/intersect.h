@@ -36,6 +36,14 @@ struct FacePair {
   auto operator<=>(const FacePair&) const = default;
 };
 
+//! Whether the work is spread over threads (TBB). The results are identical either way.
+enum class Execution { sequential, parallel };
+
+//! How intersections are searched.
+struct IntersectionOptions {
+  Execution execution = Execution::parallel;
+};
+
 //! Do the closed triangles a and b have a point in common? Exact. Throws InvalidParameter when
 //! either triangle is degenerate (collinear corners).
 bool triangles_intersect(const std::array<Eigen::Vector3d, 3>& a, const std::array<Eigen::Vector3d, 3>& b);
@@ -46,11 +54,11 @@ bool faces_intersect(const Mesh& mesh, Mesh::FaceHandle f, Mesh::FaceHandle g);
 
 //! All intersecting face pairs of one surface, sorted, degenerate faces as (f, f) pairs.
 //! The mesh must carry no deleted faces (garbage-collect first).
-std::vector<FacePair> self_intersections(const Mesh& mesh);
+std::vector<FacePair> self_intersections(const Mesh& mesh, const IntersectionOptions& options = {});
 
 //! All pairs (face of a, face of b) whose closed triangles have a point in common, sorted. Faces
 //! of different meshes share no vertex. Throws InvalidMesh naming a degenerate face of either mesh.
-std::vector<FacePair> surface_intersections(const Mesh& a, const Mesh& b);
+std::vector<FacePair> surface_intersections(const Mesh& a, const Mesh& b, const IntersectionOptions& options = {});
 
 //! How the self-intersection tracker keeps its candidate pairs.
 struct TrackerOptions {
@@ -60,12 +68,14 @@ struct TrackerOptions {
   //! fraction of the mean edge length; > 0.
   double margin = 0.1;
   BvhOptions bvh;
+  Execution execution = Execution::parallel;
 };
 
 //! Self-intersections of a surface whose vertices move while its connectivity stays fixed, as in a
-//! time step. `update()` refits the tree instead of rebuilding it, re-tests the faces sharing a
-//! vertex through the vertex stars kept from construction, and re-tests only the other face pairs
-//! that can have come into contact, cached with a margin (temporal coherence).
+//! time step. `update()` re-tests the faces sharing a vertex through the vertex stars kept from
+//! construction, and among the other face pairs only the candidates cached with a margin
+//! (temporal coherence); once some vertex has moved farther than the margin, it refits the tree
+//! (never rebuilds it) and collects the candidates again.
 class SelfIntersectionTracker {
 public:
   //! Build the tree and find the intersecting pairs of `mesh` (no deleted faces).
@@ -81,6 +91,7 @@ public:
 
   //! Intersecting pairs at the last check (same rule and order as self_intersections()).
   const std::vector<FacePair>& pairs() const;
+  //! The tree as last refitted (when the candidates were last collected).
   const Bvh& bvh() const;
   //! Number of cached candidate pairs of faces sharing no vertex.
   int candidate_count() const;
