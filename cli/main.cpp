@@ -40,6 +40,8 @@ int main(int argc, char** argv)
   sdflow::cli::add_plot_verb(app);
   sdflow::cli::add_run_verb(app);
   sdflow::cli::add_stats_verb(app);
+  sdflow::cli::add_intersections_verb(app);
+  sdflow::cli::add_components_verb(app);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,6 @@
+target_sources(sdflow_toolbox PRIVATE
+  sdflow/retri/predicates.cpp
+  sdflow/retri/bvh.cpp
+  sdflow/retri/intersect.cpp
+  sdflow/retri/remove_intersections.cpp
+  sdflow/retri/components.cpp)
