@@ -6,4 +6,5 @@ target_include_directories(sdflow_tests SYSTEM PRIVATE ${SDFLOW_GMPXX_INCLUDE_DI
 target_link_libraries(sdflow_tests PRIVATE ${SDFLOW_GMPXX_LIBRARY} ${SDFLOW_GMP_LIBRARY})
 target_sources(sdflow_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/exact_reference.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/test_intersect.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/test_intersect.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_surface_union.cpp)
