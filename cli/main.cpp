@@ -40,6 +40,7 @@ int main(int argc, char** argv)
   sdflow::cli::add_plot_verb(app);
   sdflow::cli::add_run_verb(app);
   sdflow::cli::add_stats_verb(app);
+  sdflow::cli::add_union_verb(app);
 
   try {
     app.parse(argc, argv);

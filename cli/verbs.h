@@ -10,5 +10,6 @@ namespace sdflow::cli {
 void add_plot_verb(CLI::App& app);
 void add_run_verb(CLI::App& app);
 void add_stats_verb(CLI::App& app);
+void add_union_verb(CLI::App& app);
 
 } // namespace sdflow::cli
