@@ -12,5 +12,6 @@ void add_run_verb(CLI::App& app);
 void add_stats_verb(CLI::App& app);
 void add_intersections_verb(CLI::App& app);
 void add_components_verb(CLI::App& app);
+void add_union_verb(CLI::App& app);
 
 } // namespace sdflow::cli
