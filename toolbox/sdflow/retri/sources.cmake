@@ -1,0 +1,2 @@
+target_sources(sdflow_toolbox PRIVATE
+  sdflow/retri/point_normals.cpp)
