@@ -1,2 +1,3 @@
 target_sources(sdflow_toolbox PRIVATE
-  sdflow/retri/point_normals.cpp)
+  sdflow/retri/point_normals.cpp
+  sdflow/retri/reconstruct.cpp)
