@@ -98,6 +98,40 @@ Mesh torus(int around, int tube, double major, double minor)
   return mesh_from(points, faces);
 }
 
+Mesh conformal_torus(int rows, double major, double minor)
+{
+  // w(v) = (2r/c) atan(k tan(v/2)), c = √(R² - r²), k = √((R - r)/(R + r)); total length W = 2πr/c.
+  const double c = std::sqrt(major * major - minor * minor), k = std::sqrt((major - minor) / (major + minor));
+  const double w_total = 2 * std::numbers::pi * minor / c;
+  rows += rows % 2;
+  // Equilateral rows are √3/2 apart, so columns = 2π / side with side = W / (rows √3/2).
+  const int columns = std::max(3, static_cast<int>(std::lround(2 * std::numbers::pi * rows * std::sqrt(3.0) / 2 / w_total)));
+  std::vector<Eigen::Vector3d> points;
+  for (int j = 0; j < rows; ++j) {
+    const double w = -w_total / 2 + w_total * j / rows;
+    const double v = 2 * std::atan(std::tan(w * c / (2 * minor)) / k);
+    for (int i = 0; i < columns; ++i) {
+      const double u = 2 * std::numbers::pi * (i + 0.5 * (j % 2)) / columns;
+      const double rho = major + minor * std::cos(v);
+      points.emplace_back(rho * std::cos(u), rho * std::sin(u), minor * std::sin(v));
+    }
+  }
+  auto id = [&](int j, int i) { return ((j + rows) % rows) * columns + (i + columns) % columns; };
+  std::vector<std::array<int, 3>> faces;
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < columns; ++i) {
+      // Counter-clockwise in (u, w), which is outward; odd rows are shifted half a column.
+      if (j % 2 == 0) {
+        faces.push_back({id(j, i), id(j, i + 1), id(j + 1, i)});
+        faces.push_back({id(j + 1, i), id(j, i + 1), id(j + 1, i + 1)});
+      } else {
+        faces.push_back({id(j, i), id(j, i + 1), id(j + 1, i + 1)});
+        faces.push_back({id(j + 1, i), id(j, i), id(j + 1, i + 1)});
+      }
+    }
+  return mesh_from(points, faces);
+}
+
 Mesh disk(int rings, double radius)
 {
   std::vector<Eigen::Vector3d> points{{0, 0, 0}};

@@ -18,6 +18,13 @@ Mesh ellipsoid(int level, double a, double b, double c);
 //! diagonal, so every vertex has valence 6.
 Mesh torus(int around, int tube, double major, double minor);
 
+//! Torus meshed on an equilateral lattice in isothermal (conformal) coordinates (u, w), with
+//! dw = r dv / (R + r cos v): triangles are nearly equilateral everywhere, and exactly similar to
+//! equilateral ones in the limit. `rows` (even) lattice rows around the tube; the number of columns
+//! is chosen so the lattice cells are as close to equilateral as the torus allows (exact for R = 2r/√3·…,
+//! e.g. R = 6, r = 3).
+Mesh conformal_torus(int rows, double major, double minor);
+
 //! Flat disk of `radius` in the plane z = 0, normal +z, meshed on `rings` concentric rings.
 Mesh disk(int rings, double radius = 1.0);
 

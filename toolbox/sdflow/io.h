@@ -34,11 +34,15 @@ struct WriteOptions {
   Encoding encoding = Encoding::ascii;
 };
 
-//! Write a mesh in the format of the file's extension, atomically, with round-trip precision.
+//! Write a mesh in the format of the file's extension, atomically, with round-trip precision:
+//! text coordinates as `{:.17g}`, binary PLY as doubles. Binary STL can only hold floats, so it
+//! rounds coordinates to single precision (the format's limit). Deleted elements are skipped and
+//! the remaining vertices numbered in order.
 void write_mesh(const Mesh& mesh, const std::filesystem::path& file, const WriteOptions& options = {});
 
 //! Run `write` on a stream to a temporary file beside `file`, then rename it onto `file`.
-//! Throws IoError if anything fails; the target is then untouched and the temporary removed.
+//! If anything fails the target is untouched and the temporary removed: stream and file-system
+//! failures throw IoError, and an exception thrown by `write` itself propagates unchanged.
 void write_atomically(const std::filesystem::path& file, const std::function<void(std::ostream&)>& write);
 
 } // namespace sdflow

@@ -3,17 +3,23 @@
 //! \brief Turning a polygon soup into a valid oriented mesh, with precise findings.
 //!
 //! Errors (throw InvalidMesh, listing every problem found with its element and line):
-//! `empty-mesh`, `non-finite-coordinate`, `face-index-out-of-range`, `face-repeated-index`,
-//! `zero-area-face`, `duplicate-vertex`, `non-manifold-edge`, `non-manifold-vertex`,
-//! `inconsistent-orientation`. Warnings (the mesh is repaired): `polygon-triangulated`,
+//! `empty-mesh`, `non-finite-coordinate`, `face-too-few-vertices`, `face-index-out-of-range`,
+//! `face-repeated-index`, `zero-area-face` (also corners at one point after merging),
+//! `duplicate-vertex`, `non-manifold-edge`, `non-manifold-vertex`, `inconsistent-orientation`. Warnings (the mesh is repaired): `polygon-triangulated`,
 //! `isolated-vertex` (removed). Information: `orientation-flipped` (a closed component had inward
 //! normals), `duplicate-vertices-merged` (STL), `has-boundary`.
+//!
+//! Messages name the source, the element (vertex or face index, 0-based in the file's order, a
+//! face being one polygon of the file) and its line when known, e.g.
+//! `bad.off:14: face 3 uses vertex 12, but there are only 8 vertices`.
 
+#include "sdflow/errors.h"
 #include "sdflow/mesh.h"
 #include "sdflow/soup.h"
 
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace sdflow {
@@ -25,6 +31,20 @@ struct Finding {
   Severity severity = Severity::info;
   std::string code;
   std::string message;
+};
+
+//! The InvalidMesh thrown by validation: what() lists the errors (capped at about 20 lines),
+//! findings() holds every one of them with its code.
+class MeshValidationError : public InvalidMesh {
+public:
+  MeshValidationError(const std::string& message, std::vector<Finding> findings)
+      : InvalidMesh(message), findings_(std::move(findings))
+  {
+  }
+  const std::vector<Finding>& findings() const { return findings_; }
+
+private:
+  std::vector<Finding> findings_;
 };
 
 //! How a soup becomes a mesh.
@@ -49,7 +69,8 @@ struct BuiltMesh {
 BuiltMesh build_mesh(const PolygonSoup& soup, std::string_view source, const BuildOptions& options = {});
 
 //! Check a mesh built in memory: finite coordinates and no zero-area triangles.
-//! Throws InvalidMesh naming the first offending vertex or face; `what` prefixes the message.
+//! Throws MeshValidationError (an InvalidMesh) naming the first offending vertex or face;
+//! `what` prefixes the message.
 void check_geometry(const Mesh& mesh, std::string_view what, double zero_area_tolerance = 1e-12);
 
 } // namespace sdflow

@@ -1,0 +1,151 @@
+//! `sdflow stats MESH [--json]`: validation findings, topology, area, volume (divergence theorem and
+//! TetGen), mean curvature deviation and mesh quality. JSON keys are documented in README.md.
+
+#include "verbs.h"
+
+#include "sdflow/io.h"
+#include "sdflow/statistics.h"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <iostream>
+#include <string>
+
+namespace sdflow::cli {
+namespace {
+
+struct StatsArguments {
+  std::string mesh;
+  bool json = false;
+  bool no_tetgen = false;
+};
+
+const char* severity_name(Severity s)
+{
+  switch (s) {
+  case Severity::info: return "info";
+  case Severity::warning: return "warning";
+  case Severity::error: return "error";
+  }
+  return "?";
+}
+
+toml::table histogram(const std::map<int, int>& counts)
+{
+  toml::table t;
+  for (auto [valence, count] : counts)
+    t.insert(std::to_string(valence), count);
+  return t;
+}
+
+toml::table to_json_table(const std::string& file, const BuiltMesh& built, const MeshStatistics& s)
+{
+  toml::array findings;
+  for (const Finding& f : built.findings)
+    findings.push_back(toml::table{{"severity", severity_name(f.severity)}, {"code", f.code}, {"message", f.message}});
+  toml::array components;
+  for (const ComponentStatistics& c : s.components) {
+    toml::table t{{"vertices", c.topology.vertices},
+                  {"edges", c.topology.edges},
+                  {"faces", c.topology.faces},
+                  {"euler_characteristic", c.topology.euler_characteristic},
+                  {"genus", c.topology.genus},
+                  {"boundary_loops", c.topology.boundary_loops},
+                  {"closed", c.topology.closed()},
+                  {"area", c.area},
+                  {"volume", c.volume}};
+    if (c.tetgen_volume) {
+      t.insert("tetgen_volume", *c.tetgen_volume);
+      t.insert("tetrahedra", c.tetrahedra);
+    }
+    components.push_back(std::move(t));
+  }
+  const MeshQuality& q = s.quality;
+  toml::table root{{"file", file},
+                   {"findings", std::move(findings)},
+                   {"vertices", s.vertices},
+                   {"edges", s.edges},
+                   {"faces", s.faces},
+                   {"component_count", static_cast<int64_t>(s.components.size())},
+                   {"components", std::move(components)},
+                   {"genus", s.genus},
+                   {"boundary_loops", s.boundary_loops},
+                   {"area", s.area},
+                   {"volume", s.volume},
+                   {"mean_curvature", s.curvature.mean},
+                   {"curvature_deviation", s.curvature.deviation},
+                   {"quality",
+                    toml::table{{"min_angle_deg", q.min_angle_deg},
+                                {"max_angle_deg", q.max_angle_deg},
+                                {"min_angle_p05_deg", q.min_angle_p05_deg},
+                                {"obtuse_triangle_fraction", q.obtuse_triangle_fraction},
+                                {"edge_length", toml::table{{"min", q.edge_min}, {"max", q.edge_max}, {"mean", q.edge_mean}, {"stddev", q.edge_stddev}}},
+                                {"valence", histogram(q.valence_histogram)},
+                                {"boundary_valence", histogram(q.boundary_valence_histogram)}}}};
+  if (s.tetgen_volume)
+    root.insert("tetgen_volume", *s.tetgen_volume);
+  if (std::isfinite(s.curvature.deviation_pct))
+    root.insert("curvature_deviation_pct", s.curvature.deviation_pct);
+  return root;
+}
+
+void print_text(const std::string& file, const BuiltMesh& built, const MeshStatistics& s)
+{
+  std::cout << fmt::format("{}\n", file);
+  for (const Finding& f : built.findings)
+    std::cout << fmt::format("  {}: [{}] {}\n", severity_name(f.severity), f.code, f.message);
+  std::cout << fmt::format("  {} vertices, {} edges, {} faces, {} component(s)\n", s.vertices, s.edges, s.faces, s.components.size());
+  for (std::size_t i = 0; i < s.components.size(); ++i) {
+    const ComponentStatistics& c = s.components[i];
+    std::cout << fmt::format("  component {}: {} faces, genus {}, {} boundary loop(s), area {:.10g}", i, c.topology.faces,
+                             c.topology.genus, c.topology.boundary_loops, c.area);
+    if (c.topology.closed())
+      std::cout << fmt::format(", volume {:.10g}", c.volume);
+    if (c.tetgen_volume)
+      std::cout << fmt::format(" (TetGen {:.10g}, {} tetrahedra)", *c.tetgen_volume, c.tetrahedra);
+    std::cout << '\n';
+  }
+  std::cout << fmt::format("  area {:.10g}\n  volume {:.10g}", s.area, s.volume);
+  if (s.tetgen_volume)
+    std::cout << fmt::format("  (TetGen {:.10g}, relative difference {:.2e})", *s.tetgen_volume,
+                             s.volume != 0 ? std::abs(*s.tetgen_volume - s.volume) / std::abs(s.volume) : 0.0);
+  std::cout << fmt::format("\n  mean curvature H̃ {:.8g}, deviation H_dev {:.6g} ({:.4g}% of |H̃|)\n", s.curvature.mean,
+                           s.curvature.deviation, s.curvature.deviation_pct);
+  const MeshQuality& q = s.quality;
+  std::cout << fmt::format("  angles {:.2f}°..{:.2f}° (5% of triangles below {:.2f}°), {:.2f}% obtuse\n", q.min_angle_deg,
+                           q.max_angle_deg, q.min_angle_p05_deg, 100 * q.obtuse_triangle_fraction);
+  std::cout << fmt::format("  edge length min {:.6g} max {:.6g} mean {:.6g} stddev {:.6g}\n", q.edge_min, q.edge_max,
+                           q.edge_mean, q.edge_stddev);
+  std::cout << "  valence";
+  for (auto [valence, count] : q.valence_histogram)
+    std::cout << fmt::format(" {}:{}", valence, count);
+  if (!q.boundary_valence_histogram.empty()) {
+    std::cout << "  boundary";
+    for (auto [valence, count] : q.boundary_valence_histogram)
+      std::cout << fmt::format(" {}:{}", valence, count);
+  }
+  std::cout << '\n';
+}
+
+} // namespace
+
+void add_stats_verb(CLI::App& app)
+{
+  auto args = std::make_shared<StatsArguments>();
+  CLI::App* verb = app.add_subcommand("stats", "Validate a mesh and report topology, area, volume, curvature and quality");
+  verb->add_option("mesh", args->mesh, "Mesh file (OFF, OBJ, PLY, STL)")->required();
+  verb->add_flag("--json", args->json, "Print a JSON object (keys documented in README.md)");
+  verb->add_flag("--no-tetgen", args->no_tetgen, "Skip the TetGen volume cross-check");
+  verb->callback([args] {
+    const BuiltMesh built = read_mesh(args->mesh);
+    const MeshStatistics s = mesh_statistics(built.mesh, {.tetgen_check = !args->no_tetgen});
+    if (args->json)
+      std::cout << toml::json_formatter{to_json_table(args->mesh, built, s)} << '\n';
+    else
+      print_text(args->mesh, built, s);
+  });
+}
+
+} // namespace sdflow::cli

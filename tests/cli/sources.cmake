@@ -1,0 +1,3 @@
+if(TARGET sdflow)
+  target_sources(sdflow_tests PRIVATE ${CMAKE_CURRENT_LIST_DIR}/test_stats.cpp)
+endif()

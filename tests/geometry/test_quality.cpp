@@ -1,0 +1,47 @@
+//! Mesh quality statistics.
+#include "sdflow/geometry/quality.h"
+#include "support/analytic_meshes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace sdflow {
+namespace {
+
+TEST(Quality, equilateral_lattice_torus_has_near_sixty_degree_angles_and_valence_six)
+{
+  const MeshQuality q = mesh_quality(analytic::conformal_torus(64, 6, 3));
+  EXPECT_GT(q.min_angle_deg, 55.0);
+  EXPECT_LT(q.max_angle_deg, 65.0);
+  EXPECT_EQ(q.obtuse_triangle_fraction, 0.0);
+  ASSERT_EQ(q.valence_histogram.size(), 1u);
+  EXPECT_EQ(q.valence_histogram.begin()->first, 6);
+  EXPECT_TRUE(q.boundary_valence_histogram.empty());
+}
+
+TEST(Quality, icosahedron_statistics_are_exact)
+{
+  const MeshQuality q = mesh_quality(analytic::icosphere(0, 1.0));
+  EXPECT_NEAR(q.min_angle_deg, 60.0, 1e-9);
+  EXPECT_NEAR(q.max_angle_deg, 60.0, 1e-9);
+  const double edge = 4.0 / std::sqrt(10 + 2 * std::sqrt(5.0)); // icosahedron inscribed in the unit sphere
+  EXPECT_NEAR(q.edge_min, edge, 1e-12);
+  EXPECT_NEAR(q.edge_max, edge, 1e-12);
+  EXPECT_NEAR(q.edge_stddev, 0.0, 1e-7);
+  EXPECT_EQ(q.valence_histogram.at(5), 12);
+}
+
+TEST(Quality, disk_reports_boundary_valences_separately)
+{
+  const MeshQuality q = mesh_quality(analytic::disk(3));
+  int boundary = 0;
+  for (auto [valence, count] : q.boundary_valence_histogram)
+    boundary += count;
+  EXPECT_EQ(boundary, 18); // outer ring of 6·3 vertices
+  EXPECT_GT(q.min_angle_p05_deg, 0.0);
+  EXPECT_LE(q.min_angle_p05_deg, 60.0);
+}
+
+} // namespace
+} // namespace sdflow

@@ -1,0 +1,2 @@
+target_sources(sdflow_toolbox PRIVATE
+  sdflow/check/tetgen_volume.cpp)
