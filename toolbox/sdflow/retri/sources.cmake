@@ -1,3 +1,4 @@
 target_sources(sdflow_toolbox PRIVATE
+  sdflow/retri/holes.cpp
   sdflow/retri/point_normals.cpp
   sdflow/retri/reconstruct.cpp)
