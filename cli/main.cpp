@@ -38,6 +38,9 @@ int main(int argc, char** argv)
   app.parse_complete_callback([&] { install_stderr_logger(verbose, quiet); });
 
   sdflow::cli::add_stats_verb(app);
+  sdflow::cli::add_normals_verb(app);
+  sdflow::cli::add_reconstruct_verb(app);
+  sdflow::cli::add_fill_holes_verb(app);
 
   try {
     app.parse(argc, argv);

@@ -1,3 +1,5 @@
 if(TARGET sdflow)
-  target_sources(sdflow_tests PRIVATE ${CMAKE_CURRENT_LIST_DIR}/test_stats.cpp)
+  target_sources(sdflow_tests PRIVATE
+    ${CMAKE_CURRENT_LIST_DIR}/test_point_verbs.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/test_stats.cpp)
 endif()

@@ -30,10 +30,11 @@ VertexVectors jet_normals(const VertexVectors& points, const NeighbourTable& nei
 //! When an oriented point counts as consistent with its neighbourhood.
 struct OrientationOptions {
   //! A neighbour agrees with point i when their oriented normals make an angle below this
-  //! (radians). Neighbouring normals of a well-sampled smooth surface differ by about the
-  //! neighbourhood radius times the curvature, far below this; across a crossing or between two
-  //! touching sheets they differ by 45° to 180°.
-  double agreement_angle = 0.7;
+  //! (radians, default 40°). Neighbouring normals of a smooth surface differ by about the
+  //! neighbourhood radius times the curvature: no point is removed while spacing × curvature
+  //! stays below about 0.3 (k = 18). Across a crossing or between two touching sheets they
+  //! differ by 45° to 180°.
+  double agreement_angle = 40 * M_PI / 180;
   //! A point is inconsistent when fewer than this fraction of its k - 1 neighbours agree.
   double min_agreement = 0.5;
 };
