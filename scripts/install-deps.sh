@@ -3,6 +3,7 @@
 # apt-get skips what is already installed. Run as root or with sudo available.
 #   scripts/install-deps.sh            toolbox, CLI, tests
 #   scripts/install-deps.sh --bench    also the benchmark peers (CGAL, Surface Evolver, hyperfine)
+#   scripts/install-deps.sh --paraview also ParaView and pvpython (large) for scripts/check-paraview.sh
 set -euo pipefail
 
 packages=(
@@ -16,6 +17,9 @@ packages=(
 )
 if [[ " $* " == *" --bench "* ]]; then
   packages+=(libcgal-dev evolver-nox hyperfine)
+fi
+if [[ " $* " == *" --paraview "* ]]; then
+  packages+=(paraview python3-paraview)
 fi
 
 missing=()

@@ -312,7 +312,7 @@ TEST(Validate, polygons_are_triangulated_with_a_warning)
   ASSERT_EQ(built.findings.size(), 1u);
   EXPECT_EQ(built.findings.front().code, "polygon-triangulated");
   EXPECT_EQ(built.findings.front().severity, Severity::warning);
-  EXPECT_NE(built.findings.front().message.find("6 faces"), std::string::npos);
+  EXPECT_NE(built.findings.front().message.find("6 face(s)"), std::string::npos);
   EXPECT_EQ(built.mesh.n_faces(), 12u);
   EXPECT_NEAR(enclosed_volume(built.mesh), 1.0, exact_tolerance);
   EXPECT_NEAR(surface_area(built.mesh), 6.0, exact_tolerance);

@@ -16,7 +16,6 @@
 #include <iterator>
 #include <numeric>
 #include <span>
-#include <tuple>
 #include <unordered_map>
 
 namespace sdflow {
@@ -225,12 +224,11 @@ std::vector<Triangle> triangulate(const PolygonSoup& soup, const std::vector<boo
   if (!polygons.empty()) {
     std::string listed;
     for (std::size_t k = 0; k < std::min(polygons.size(), max_listed_elements); ++k)
-      listed += fmt::format("{}{} with {} corners", k ? ", " : "", report.face(polygons[k]),
-                            soup.polygons[polygons[k]].size());
+      listed += fmt::format("{}{}", k ? ", " : "", polygons[k]);
     report.add(Severity::warning, "polygon-triangulated",
-               fmt::format("{}: {} faces with more than 3 corners were triangulated: {}{}",
-                           report.at_polygon(polygons.front()), polygons.size(), listed,
-                           polygons.size() > max_listed_elements ? ", ..." : ""));
+               fmt::format("{}: {} face(s) with more than 3 corners were triangulated (faces {}{}; the first has {} "
+                           "corners)", report.at_polygon(polygons.front()), polygons.size(), listed,
+                           polygons.size() > max_listed_elements ? ", ..." : "", soup.polygons[polygons.front()].size()));
   }
   return triangles;
 }
@@ -546,10 +544,13 @@ BuiltMesh build_mesh(const PolygonSoup& soup, std::string_view source, const Bui
   }
 
   std::vector<Finding> findings = report.take();
-  // The repairs changed the mesh: say so in the log as well as in the findings.
+  // Flipping is logged as DESIGN.md §1 asks; the other repairs only at debug level, since callers
+  // (the CLI, the plugin) present the findings themselves.
   for (const Finding& f : findings)
-    if (f.code != "has-boundary")
-      logger().log(f.severity == Severity::warning ? spdlog::level::warn : spdlog::level::info, f.message);
+    if (f.code == "orientation-flipped")
+      logger().info(f.message);
+    else if (f.code != "has-boundary")
+      logger().debug(f.message);
   return {std::move(mesh), std::move(findings)};
 }
 
