@@ -1,7 +1,8 @@
 //! Side by side: sdflow against Surface Evolver (`evolver-nox`, method laplacian_mean_curvature,
 //! explicit) carrying the l = 2 mode of a perturbed unit sphere to t = 0.05. Each reports the decay
 //! rate it measured (exact: (l-1)l(l+1)(l+2)/2 = 12, DESIGN.md §1), its relative error and its time,
-//! so the two can be compared at equal accuracy. The Evolver rows are skipped when `evolver-nox-d` is
+//! so the two can be compared at equal accuracy. `cpu_s` is the CPU time (the Evolver process's own for
+//! Evolver), meaningful when the machine is shared; Time is wall-clock. The Evolver rows are skipped when `evolver-nox-d` is
 //! not installed (scripts/install-deps.sh --bench).
 //!   bench_flow_decay --benchmark_counters_tabular=true
 
@@ -17,6 +18,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sys/resource.h>
+#include <unistd.h>
 #include <vector>
 
 namespace {
@@ -60,6 +63,14 @@ std::vector<Eigen::Vector3d> points_of(const Mesh& mesh)
   return points;
 }
 
+//! CPU seconds (user + system) of this process, or of its finished children.
+double cpu_seconds(int who)
+{
+  rusage usage{};
+  getrusage(who, &usage);
+  return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec + 1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
 void report(benchmark::State& state, double a0, double a1, double seconds, int vertices)
 {
   const double rate = -std::log(a1 / a0) / end_time;
@@ -76,6 +87,7 @@ void Sdflow(benchmark::State& state)
   const Mesh start = perturbed_sphere(level);
   for (auto _ : state) {
     Mesh mesh = start;
+    const double cpu_begin = cpu_seconds(RUSAGE_SELF);
     const auto begin = std::chrono::steady_clock::now();
     const sdflow::CotangentCache cache(mesh);
     sdflow::FlowSolver solver;
@@ -88,6 +100,7 @@ void Sdflow(benchmark::State& state)
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
     report(state, p2_amplitude(points_of(start)), p2_amplitude(points_of(mesh)), seconds,
            static_cast<int>(mesh.n_vertices()));
+    state.counters["cpu_s"] = cpu_seconds(RUSAGE_SELF) - cpu_begin;
   }
 }
 
@@ -122,12 +135,17 @@ void Evolver(benchmark::State& state)
         fe << ' ' << (h.edge().v0() == h.from() ? 1 : -1) * (h.edge().idx() + 1);
       fe << '\n';
     }
+    fe << "\nbodies\n1"; // the method moves along the volume gradient: the surface must bound a body
+    for (auto f : start.faces())
+      fe << ' ' << f.idx() + 1;
+    fe << '\n';
     std::ofstream commands(dir / "run.cmd");
     commands << fmt::format("quiet on\nm {}\ng {}\n", scale, iterations)
              << "foreach vertex vv do printf \"%.17g %.17g %.17g\\n\", vv.x, vv.y, vv.z >> \"final.txt\"\nq\n";
   }
   for (auto _ : state) {
     std::filesystem::remove(dir / "final.txt");
+    const double cpu_begin = cpu_seconds(RUSAGE_CHILDREN);
     const auto begin = std::chrono::steady_clock::now();
     const int status = std::system(fmt::format("cd '{}' && evolver-nox-d -x -f run.cmd sphere.fe > evolver.log 2>&1",
                                                dir.string()).c_str());
@@ -141,6 +159,7 @@ void Evolver(benchmark::State& state)
       return;
     }
     report(state, p2_amplitude(points_of(start)), p2_amplitude(final), seconds, static_cast<int>(final.size()));
+    state.counters["cpu_s"] = cpu_seconds(RUSAGE_CHILDREN) - cpu_begin;
     state.counters["iterations"] = static_cast<double>(iterations);
   }
   std::filesystem::remove_all(dir);
