@@ -1,6 +1,3 @@
-target_sources(sdflow_toolbox PRIVATE
-  sdflow/retri/predicates.cpp
-  sdflow/retri/bvh.cpp
-  sdflow/retri/intersect.cpp
-  sdflow/retri/remove_intersections.cpp
-  sdflow/retri/components.cpp)
+# Re-triangulation toolbox (DESIGN.md §3): one algorithm per file.
+file(GLOB _sdflow_retri CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/*.cpp)
+target_sources(sdflow_toolbox PRIVATE ${_sdflow_retri})

@@ -1,0 +1,170 @@
+//! The flow step's cost on geodesic spheres of 10k, 100k and 400k vertices (DESIGN.md §2):
+//! operators, assembly, CHOLMOD factorisation and solve, and a full step amortised over a run.
+//!   bench_flow --benchmark_filter=Step --benchmark_repetitions=3
+//! PaperQrStep is the paper's solver on the same spheres (slow: minutes at 10k vertices).
+//! Reported times are per step; `factorisations` and `cg_iterations` are per run.
+
+#include "flow_meshes.h"
+
+#include "sdflow/flow/scheme.h"
+#include "sdflow/flow/solver.h"
+#include "sdflow/geometry/laplacian.h"
+
+#include <benchmark/benchmark.h>
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseQR>
+
+#include <chrono>
+#include <map>
+
+namespace {
+
+using sdflow::Mesh;
+
+constexpr double perturbation = 0.05; // P2 amplitude: the surface evolves, as in a real run
+constexpr double tau = 1e-4;
+constexpr double beta = 0.5;
+
+//! k with 10k² + 2 vertices ≈ the requested count.
+const Mesh& sphere(int vertices)
+{
+  static std::map<int, Mesh> cache;
+  auto it = cache.find(vertices);
+  if (it == cache.end()) {
+    const int k = static_cast<int>(std::lround(std::sqrt((vertices - 2) / 10.0)));
+    it = cache.emplace(vertices, sdflow::bench::geodesic_sphere(k, perturbation)).first;
+  }
+  return it->second;
+}
+
+void Operators(benchmark::State& state)
+{
+  const Mesh& mesh = sphere(static_cast<int>(state.range(0)));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(sdflow::flow_operators(mesh));
+  state.counters["vertices"] = static_cast<double>(mesh.n_vertices());
+}
+
+//! The operators as the driver computes them, with the pattern of L kept between steps.
+void OperatorsCached(benchmark::State& state)
+{
+  const Mesh& mesh = sphere(static_cast<int>(state.range(0)));
+  const sdflow::CotangentCache cache(mesh);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(sdflow::flow_operators(mesh, {}, &cache));
+}
+
+void Assembly(benchmark::State& state)
+{
+  const Mesh& mesh = sphere(static_cast<int>(state.range(0)));
+  const auto op = sdflow::flow_operators(mesh);
+  const sdflow::FlowSystem system{op.laplacian, op.areas, op.held, tau * beta};
+  for (auto _ : state)
+    benchmark::DoNotOptimize(sdflow::flow_matrix(system));
+}
+
+void CholmodFactorise(benchmark::State& state)
+{
+  const Mesh& mesh = sphere(static_cast<int>(state.range(0)));
+  const auto op = sdflow::flow_operators(mesh);
+  const sdflow::FlowSystem system{op.laplacian, op.areas, op.held, tau * beta};
+  const sdflow::SparseMatrix a = sdflow::flow_matrix(system);
+  Eigen::CholmodSupernodalLLT<sdflow::SparseMatrix, Eigen::Lower> llt;
+  llt.analyzePattern(a);
+  for (auto _ : state)
+    llt.factorize(a);
+  state.counters["factor_nnz"] = llt.cholmod().lnz;
+  state.counters["factor_gflop"] = llt.cholmod().fl * 1e-9;
+  // CHOLMOD tries AMD and, when its fill is high, METIS and nested dissection (2 = AMD, 3 = METIS,
+  // 4 = NESDIS), keeping the best.
+  state.counters["ordering"] = llt.cholmod().method[llt.cholmod().selected].ordering;
+}
+
+void CholmodSolve(benchmark::State& state)
+{
+  const Mesh& mesh = sphere(static_cast<int>(state.range(0)));
+  const auto op = sdflow::flow_operators(mesh);
+  const sdflow::FlowSystem system{op.laplacian, op.areas, op.held, tau * beta};
+  Eigen::CholmodSupernodalLLT<sdflow::SparseMatrix, Eigen::Lower> llt(sdflow::flow_matrix(system));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(Eigen::VectorXd(llt.solve(op.rhs)));
+}
+
+//! `steps` full steps (operators + solve + update) on a copy of the sphere, as the driver runs them
+//! (kept pattern of L, one solver, warm-started solves); time per step.
+void run_steps(benchmark::State& state, sdflow::FactorisationPolicy policy)
+{
+  const int steps = static_cast<int>(state.range(1));
+  long factorisations = 0, iterations = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Mesh mesh = sphere(static_cast<int>(state.range(0)));
+    const sdflow::CotangentCache cache(mesh);
+    sdflow::FlowSolver solver({.policy = policy});
+    Eigen::VectorXd w;
+    factorisations = iterations = 0;
+    state.ResumeTiming();
+    const auto start = std::chrono::steady_clock::now();
+    for (int s = 0; s < steps; ++s) {
+      const auto op = sdflow::flow_operators(mesh, {}, &cache);
+      auto step = sdflow::solve_step(mesh, op, tau, beta, solver, w);
+      sdflow::set_vertex_positions(mesh, step.positions);
+      w = std::move(step.w);
+      factorisations += step.solve.factorised;
+      iterations += step.solve.iterations;
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    state.SetIterationTime(seconds / steps);
+  }
+  state.counters["factorisations"] = static_cast<double>(factorisations);
+  state.counters["cg_iterations"] = static_cast<double>(iterations);
+}
+
+void StepReuse(benchmark::State& state) { run_steps(state, sdflow::FactorisationPolicy::reuse); }
+
+//! One step solved as the paper did: SuiteSparseQR on (I + τβΔ²) w = ΔH (operators included).
+void PaperQrStep(benchmark::State& state)
+{
+  const Mesh& mesh = sphere(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    sdflow::FlowSolver solver({.kind = sdflow::SolverKind::qr});
+    const auto op = sdflow::flow_operators(mesh);
+    benchmark::DoNotOptimize(sdflow::solve_step(mesh, op, tau, beta, solver));
+  }
+}
+void StepEveryStep(benchmark::State& state) { run_steps(state, sdflow::FactorisationPolicy::every_step); }
+
+} // namespace
+
+BENCHMARK(Operators)->Arg(10'000)->Arg(100'000)->Arg(400'000)->Unit(benchmark::kMillisecond);
+BENCHMARK(OperatorsCached)->Arg(10'000)->Arg(100'000)->Arg(400'000)->Unit(benchmark::kMillisecond);
+BENCHMARK(Assembly)->Arg(10'000)->Arg(100'000)->Arg(400'000)->Unit(benchmark::kMillisecond);
+BENCHMARK(CholmodFactorise)->Arg(10'000)->Arg(100'000)->Arg(400'000)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(CholmodSolve)->Arg(10'000)->Arg(100'000)->Arg(400'000)->Unit(benchmark::kMillisecond);
+BENCHMARK(StepReuse)->Args({10'000, 100})->Args({100'000, 100})->Args({400'000, 30})
+    ->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(StepEveryStep)->Args({10'000, 20})->Args({100'000, 5})->Args({400'000, 3})
+    ->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
+//! The paper's implementation solved with Eigen's own SparseQR (COLAMD ordering): the solver the
+//! paper's program used, as a historical reference (bench only; sdflow's `--solver qr` is SPQR).
+void EigenSparseQrStep(benchmark::State& state)
+{
+  const Mesh& mesh = sphere(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    const auto op = sdflow::flow_operators(mesh);
+    const Eigen::VectorXd inverse_areas = op.areas.cwiseInverse();
+    const sdflow::SparseMatrix delta = inverse_areas.asDiagonal() * op.laplacian;
+    sdflow::SparseMatrix a = delta * delta * (tau * beta);
+    for (Eigen::Index i = 0; i < a.rows(); ++i)
+      a.coeffRef(i, i) += 1.0;
+    a.makeCompressed();
+    Eigen::SparseQR<sdflow::SparseMatrix, Eigen::COLAMDOrdering<int>> qr(a);
+    benchmark::DoNotOptimize(Eigen::VectorXd(qr.solve(Eigen::VectorXd(op.rhs.cwiseQuotient(op.areas)))));
+  }
+}
+
+BENCHMARK(PaperQrStep)->Arg(2'500)->Arg(10'000)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(EigenSparseQrStep)->Arg(2'500)->Arg(10'000)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_MAIN();

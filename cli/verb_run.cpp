@@ -1,0 +1,212 @@
+//! `sdflow run`: evolve a surface by surface diffusion flow into a run directory (flow/simulation.h).
+//!   sdflow run --input MESH --out DIR [--steps N] [--t-end T] [--tau T | --schedule FILE | --adaptive]
+//!              [--beta B] [--solver cholmod|qr] [--snapshot-every K] [--checkpoint-every K]
+//!              [--conserve-volume] [--fixed-boundary] [--quiet]
+//!   sdflow run SCENARIO.toml [flags]     (flags override the file's keys)
+//!   sdflow run --resume DIR [--steps N] [--t-end T]
+
+#include "verbs.h"
+
+#include "sdflow/errors.h"
+#include "sdflow/flow/simulation.h"
+#include "sdflow/io.h"
+#include "sdflow/log.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <unistd.h>
+
+namespace sdflow::cli {
+namespace {
+
+struct RunArguments {
+  std::string scenario, input, out, resume, schedule, solver;
+  long steps = 0, snapshot_every = 0, checkpoint_every = 0;
+  double end_time = 0, tau = 0, beta = 0;
+  bool adaptive = false, conserve_volume = false, fixed_boundary = false, quiet = false;
+  std::map<std::string, CLI::Option*> given;
+  bool has(const std::string& name) const { return given.at(name)->count() > 0; }
+};
+
+//! Progress on stderr: a bar rewritten in place on a terminal, a plain line every 10 s otherwise.
+class Progress {
+public:
+  Progress(const RunParameters& p, bool quiet) : p_(p), quiet_(quiet), tty_(::isatty(::fileno(stderr)) != 0) {}
+
+  void operator()(const StepRecord& r)
+  {
+    if (quiet_)
+      return;
+    const auto now = Clock::now();
+    if (!started_) {
+      start_ = last_ = now;
+      first_step_ = r.step - 1;
+      started_ = true;
+    }
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double rate = elapsed > 0 ? (r.step - first_step_) / elapsed : 0.0;
+    double fraction = 0;
+    if (p_.steps > 0)
+      fraction = static_cast<double>(r.step) / static_cast<double>(p_.steps);
+    if (std::isfinite(p_.end_time))
+      fraction = std::max(fraction, r.time / p_.end_time);
+    fraction = std::min(fraction, 1.0);
+    const double done_since_start = fraction - start_fraction(r);
+    const double eta = done_since_start > 0 ? elapsed * (1 - fraction) / done_since_start : 0.0;
+    const std::string text = fmt::format("step {} t={:.6g} τ={:.3g} {:.2f} steps/s ETA {}", r.step, r.time, r.tau, rate,
+                                         clock_text(eta));
+    if (tty_) {
+      constexpr int width = 30;
+      const int filled = static_cast<int>(fraction * width);
+      std::cerr << '\r' << '[' << std::string(filled, '#') << std::string(width - filled, '.') << "] "
+                << fmt::format("{:3.0f}% ", 100 * fraction) << text << "\033[K" << std::flush;
+    } else if (now - last_ >= std::chrono::seconds(10)) {
+      std::cerr << fmt::format("{:.0f}% ", 100 * fraction) << text << '\n';
+      last_ = now;
+    }
+  }
+
+  void finish() const
+  {
+    if (tty_ && started_ && !quiet_)
+      std::cerr << '\n';
+  }
+
+private:
+  using Clock = std::chrono::steady_clock;
+  double start_fraction(const StepRecord& r)
+  {
+    if (!have_start_fraction_) {
+      start_fraction_ = 0;
+      if (p_.steps > 0)
+        start_fraction_ = static_cast<double>(r.step - 1) / static_cast<double>(p_.steps);
+      if (std::isfinite(p_.end_time))
+        start_fraction_ = std::max(start_fraction_, (r.time - r.tau) / p_.end_time);
+      have_start_fraction_ = true;
+    }
+    return start_fraction_;
+  }
+  static std::string clock_text(double seconds)
+  {
+    const long s = std::lround(seconds);
+    return fmt::format("{}:{:02d}:{:02d}", s / 3600, (s / 60) % 60, s % 60);
+  }
+
+  const RunParameters& p_;
+  bool quiet_, tty_;
+  bool started_ = false, have_start_fraction_ = false;
+  long first_step_ = 0;
+  double start_fraction_ = 0;
+  Clock::time_point start_, last_;
+};
+
+void apply_flags(const RunArguments& a, RunParameters& p)
+{
+  if (a.has("--input")) p.input = a.input;
+  if (a.has("--out")) p.output_dir = a.out;
+  if (a.has("--steps")) p.steps = a.steps;
+  if (a.has("--t-end")) p.end_time = a.end_time;
+  if (a.has("--beta")) p.scheme.beta = a.beta;
+  if (a.has("--snapshot-every")) p.snapshot_every = a.snapshot_every;
+  if (a.has("--checkpoint-every")) p.checkpoint_every = a.checkpoint_every;
+  if (a.has("--conserve-volume")) p.conserve_volume = true;
+  if (a.has("--fixed-boundary")) p.scheme.boundary = BoundaryMotion::fixed;
+  if (a.has("--solver")) p.solver.kind = a.solver == "qr" ? SolverKind::qr : SolverKind::cholmod;
+  if (a.has("--tau")) {
+    p.time_step.mode = TimeStepMode::constant;
+    p.time_step.tau = a.tau;
+  } else if (a.has("--schedule")) {
+    p.time_step.mode = TimeStepMode::schedule;
+    p.time_step.schedule_file = std::filesystem::absolute(a.schedule);
+    p.time_step.schedule = read_schedule(a.schedule);
+  } else if (a.has("--adaptive")) {
+    p.time_step.mode = TimeStepMode::adaptive;
+  }
+}
+
+void run(const RunArguments& a)
+{
+  RunParameters p;
+  const bool resuming = a.has("--resume");
+  if (resuming) {
+    if (a.has("--input") || a.has("--tau") || a.has("--schedule") || a.has("--adaptive") || a.has("--beta") ||
+        a.has("--solver") || !a.scenario.empty())
+      throw InvalidParameter("--resume continues a run with its own parameters (run.toml): only --steps, --t-end, "
+                             "--snapshot-every and --checkpoint-every may be changed");
+    read_run_parameters(std::filesystem::path(a.resume) / "run.toml", p);
+    p.output_dir = a.resume;
+  } else if (!a.scenario.empty()) {
+    read_run_parameters(a.scenario, p);
+  }
+  apply_flags(a, p);
+  if (!resuming && p.input.empty())
+    throw InvalidParameter("no input mesh: give --input MESH or `input` in the scenario file");
+  if (p.output_dir.empty())
+    throw InvalidParameter("no run directory: give --out DIR or `out` in the scenario file");
+  validate_run_parameters(p);
+
+  Progress progress(p, a.quiet);
+  SimulationOptions options{.parameters = p, .progress = std::ref(progress)};
+  SimulationResult result;
+  try {
+    if (resuming) {
+      result = resume_simulation(options);
+    } else {
+      BuiltMesh built = read_mesh(p.input);
+      for (const auto& f : built.findings)
+        logger().warn("{}: {}", p.input.string(), f.message);
+      result = run_simulation(built.mesh, options);
+    }
+  } catch (...) {
+    progress.finish();
+    throw;
+  }
+  progress.finish();
+  std::cout << fmt::format("{}: {} steps, t = {:.6g}, {} vertices; {} rejected trials, {} factorisations\n",
+                           p.output_dir.string(), result.steps, result.time, result.mesh.n_vertices(),
+                           result.rejected_trials, result.factorisations);
+}
+
+} // namespace
+
+void add_run_verb(CLI::App& app)
+{
+  auto args = std::make_shared<RunArguments>();
+  CLI::App* verb = app.add_subcommand("run", "Evolve a surface by surface diffusion flow into a run directory");
+  auto& g = args->given;
+  verb->add_option("scenario", args->scenario, "Scenario TOML file (keys documented in flow/parameters.h)")
+      ->check(CLI::ExistingFile);
+  g["--input"] = verb->add_option("--input", args->input, "Initial mesh (OFF, OBJ, PLY, STL)")->check(CLI::ExistingFile);
+  g["--out"] = verb->add_option("--out", args->out, "Run directory (must not hold a run yet)");
+  g["--steps"] = verb->add_option("--steps", args->steps, "Stop after N steps")->check(CLI::PositiveNumber);
+  g["--t-end"] = verb->add_option("--t-end", args->end_time, "Stop at time T")->check(CLI::PositiveNumber);
+  g["--tau"] = verb->add_option("--tau", args->tau, "Constant time step τ")->check(CLI::PositiveNumber);
+  g["--schedule"] = verb->add_option("--schedule", args->schedule, "τ schedule (CSV first,last,tau or TOML)")
+                        ->check(CLI::ExistingFile);
+  g["--adaptive"] = verb->add_flag("--adaptive", args->adaptive, "Adaptive τ (the default)");
+  g["--tau"]->excludes(g["--schedule"])->excludes(g["--adaptive"]);
+  g["--schedule"]->excludes(g["--adaptive"]);
+  g["--beta"] = verb->add_option("--beta", args->beta, "Implicitness β (default 0.5; 0 = explicit)")
+                    ->check(CLI::NonNegativeNumber);
+  g["--solver"] = verb->add_option("--solver", args->solver, "Linear solver: cholmod (default) or qr (paper's, slow)")
+                      ->check(CLI::IsMember({"cholmod", "qr"}));
+  g["--snapshot-every"] = verb->add_option("--snapshot-every", args->snapshot_every,
+                                           "Snapshot every K steps (0: first and last only; default 10)")
+                              ->check(CLI::NonNegativeNumber);
+  g["--checkpoint-every"] = verb->add_option("--checkpoint-every", args->checkpoint_every,
+                                             "Checkpoint every K steps (default 10)")
+                                ->check(CLI::PositiveNumber);
+  g["--conserve-volume"] = verb->add_flag("--conserve-volume", args->conserve_volume,
+                                          "Restore each closed component's volume after every step");
+  g["--fixed-boundary"] = verb->add_flag("--fixed-boundary", args->fixed_boundary, "Hold boundary vertices in place");
+  g["--resume"] = verb->add_option("--resume", args->resume, "Continue the run in DIR from its checkpoint")
+                      ->check(CLI::ExistingDirectory);
+  verb->add_flag("--quiet", args->quiet, "No progress output");
+  verb->callback([args] { run(*args); });
+}
+
+} // namespace sdflow::cli

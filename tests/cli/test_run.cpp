@@ -1,0 +1,128 @@
+//! `sdflow run` and `sdflow plot` end to end: a run and its figures, exit codes, and a run killed
+//! with SIGKILL that leaves complete files and resumes to the uninterrupted result bit for bit.
+#include "sdflow/flow/checkpoint.h"
+#include "sdflow/flow/simulation.h"
+#include "sdflow/io.h"
+#include "io/temp_dir.h"
+#include "support/analytic_meshes.h"
+#include "support/run_command.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <fstream>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+namespace sdflow {
+namespace {
+
+namespace fs = std::filesystem;
+
+long count_lines(const fs::path& file)
+{
+  std::ifstream in(file);
+  long n = 0;
+  for (std::string line; std::getline(in, line);)
+    ++n;
+  return n;
+}
+
+TEST(RunCommand, runs_a_scenario_with_flag_overrides_and_plots_it)
+{
+  test::TempDir dir;
+  write_mesh(analytic::ellipsoid(2, 5, 4, 3), dir / "e.ply", {.encoding = Encoding::binary});
+  test::write_file(dir / "s.toml", "input = \"e.ply\"\nout = \"run\"\nsteps = 100\ntau = 0.1\n");
+  const auto r = analytic::run_sdflow("run " + (dir / "s.toml").string() + " --steps 5 --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(count_lines(dir / "run/metrics.csv"), 7) << "header + rows 0..5: --steps overrides the file";
+  const auto p = analytic::run_sdflow("plot " + (dir / "run").string());
+  ASSERT_EQ(p.exit_code, 0) << p.output;
+  for (const char* png : {"area_volume.png", "curvature_deviation.png"})
+    EXPECT_GT(fs::file_size(dir / "run/plots" / png), 1000u) << png;
+}
+
+TEST(PlotCommand, topology_events_are_marked_and_a_bad_table_is_refused)
+{
+  test::TempDir dir;
+  fs::create_directories(dir / "run");
+  test::write_file(dir / "run/metrics.csv", std::string(metrics_header) + "\n"
+                   "0,0,0,100,196,1,0,10,2,-1,5,0,0,\n"
+                   "1,0.5,0.5,100,196,1,0,9.5,2,-1,4,0,0,rejected\n"
+                   "2,1,0.5,120,236,2,0,9,2,-1,3,0,0,rejected+split\n");
+  const auto r = analytic::run_sdflow("plot " + (dir / "run").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string script = test::read_file(dir / "run/plots/plots.gnuplot");
+  EXPECT_NE(script.find("set arrow from 1,graph 0"), std::string::npos) << script;
+  EXPECT_NE(script.find("set label 'split'"), std::string::npos) << script;
+  EXPECT_EQ(script.find("set arrow from 0.5,"), std::string::npos) << "rejections are not topology events";
+  test::write_file(dir / "run/metrics.csv", "step,time\n");
+  EXPECT_EQ(analytic::run_sdflow("plot " + (dir / "run").string()).exit_code, 2);
+}
+
+TEST(RunCommand, unstable_explicit_run_exits_3_and_bad_input_exits_2)
+{
+  test::TempDir dir;
+  write_mesh(analytic::ellipsoid(3, 5, 4, 3), dir / "e.ply", {.encoding = Encoding::binary});
+  const auto unstable = analytic::run_sdflow("run --input " + (dir / "e.ply").string() + " --out " +
+                                             (dir / "x").string() + " --beta 0 --tau 0.5 --steps 50 --quiet");
+  EXPECT_EQ(unstable.exit_code, 3) << unstable.output;
+  EXPECT_NE(unstable.output.find("unstable"), std::string::npos) << unstable.output;
+  const auto no_out = analytic::run_sdflow("run --input " + (dir / "e.ply").string() + " --steps 5");
+  EXPECT_EQ(no_out.exit_code, 2) << no_out.output;
+  const auto no_stop = analytic::run_sdflow("run --input " + (dir / "e.ply").string() + " --out " + (dir / "y").string());
+  EXPECT_EQ(no_stop.exit_code, 2) << no_stop.output;
+}
+
+TEST(RunCommand, killed_run_leaves_complete_files_and_resumes_bit_for_bit)
+{
+  test::TempDir dir;
+  write_mesh(analytic::ellipsoid(4, 5, 4, 3), dir / "e.ply", {.encoding = Encoding::binary});
+  const std::string common = " --input " + (dir / "e.ply").string() + " --steps 40 --checkpoint-every 6 "
+                                                                        "--snapshot-every 5 --quiet";
+  const auto whole = analytic::run_sdflow("run --out " + (dir / "whole").string() + common);
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const std::string command = std::string(SDFLOW_CLI_PATH) + " run --out " + (dir / "killed").string() + common +
+                                " > /dev/null 2>&1";
+    execl("/bin/sh", "sh", "-c", ("exec " + command).c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Kill it once a third of the rows are out, at whatever it is doing then.
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (count_lines(dir / "killed/metrics.csv") < 15 && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  kill(child, SIGKILL);
+  int status = 0;
+  waitpid(child, &status, 0);
+
+  // Every file left behind is complete.
+  const Checkpoint checkpoint = read_checkpoint(dir / "killed/checkpoint.bin");
+  EXPECT_GT(checkpoint.step, 0);
+  std::ifstream metrics(dir / "killed/metrics.csv");
+  std::string line;
+  std::getline(metrics, line);
+  EXPECT_EQ(line, metrics_header);
+  while (std::getline(metrics, line))
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 13) << line;
+  for (const auto& entry : fs::directory_iterator(dir / "killed/snapshots")) {
+    if (entry.path().extension() == ".ply") {
+      EXPECT_NO_THROW(read_mesh(entry.path())) << entry.path();
+    } else if (entry.path().extension() == ".vtp") {
+      EXPECT_NE(test::read_file(entry.path()).find("</VTKFile>"), std::string::npos) << entry.path();
+    }
+  }
+  EXPECT_NE(test::read_file(dir / "killed/series.pvd").find("</VTKFile>"), std::string::npos);
+
+  const auto resumed = analytic::run_sdflow("run --resume " + (dir / "killed").string() + " --quiet");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_EQ(test::read_file(dir / "killed/metrics.csv"), test::read_file(dir / "whole/metrics.csv"));
+}
+
+} // namespace
+} // namespace sdflow

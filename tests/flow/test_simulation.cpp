@@ -1,0 +1,228 @@
+//! The run driver (simulation.h): run directory, stability, conservation, resumption, the hook.
+#include "sdflow/errors.h"
+#include "sdflow/flow/checkpoint.h"
+#include "sdflow/flow/simulation.h"
+#include "sdflow/io.h"
+#include "io/temp_dir.h"
+#include "support/analytic_meshes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace sdflow {
+namespace {
+
+namespace fs = std::filesystem;
+
+//! metrics.csv as rows of fields (header excluded).
+std::vector<std::vector<std::string>> read_metrics(const fs::path& file)
+{
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, metrics_header);
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> fields;
+    std::stringstream ss(line);
+    for (std::string f; std::getline(ss, f, ',');)
+      fields.push_back(f);
+    if (line.back() == ',')
+      fields.emplace_back();
+    EXPECT_EQ(fields.size(), 14u) << line;
+    rows.push_back(fields);
+  }
+  return rows;
+}
+
+double column(const std::vector<std::string>& row, int c) { return std::stod(row[c]); }
+constexpr int time_col = 1, area_col = 7, volume_col = 8, deviation_col = 10, event_col = 13;
+
+RunParameters constant_tau(const fs::path& out, double tau, long steps, double beta = 0.5)
+{
+  RunParameters p;
+  p.output_dir = out;
+  p.steps = steps;
+  p.time_step.mode = TimeStepMode::constant;
+  p.time_step.tau = tau;
+  p.scheme.beta = beta;
+  return p;
+}
+
+TEST(Simulation, run_directory_holds_metrics_snapshots_series_parameters_and_events)
+{
+  test::TempDir dir;
+  RunParameters p = constant_tau(dir / "run", 0.05, 6);
+  p.snapshot_every = 3;
+  run_simulation(analytic::ellipsoid(2, 5, 4, 3), {.parameters = p});
+
+  const auto rows = read_metrics(dir / "run/metrics.csv");
+  ASSERT_EQ(rows.size(), 7u);
+  EXPECT_EQ(rows[0][0], "0");
+  EXPECT_DOUBLE_EQ(column(rows[6], time_col), 6 * 0.05);
+  for (const char* name : {"step_000000", "step_000003", "step_000006"}) {
+    SCOPED_TRACE(name);
+    const BuiltMesh snapshot = read_mesh(dir / "run/snapshots" / (std::string(name) + ".ply"));
+    EXPECT_EQ(snapshot.mesh.n_vertices(), 162u);
+    const std::string vtp = test::read_file(dir / "run/snapshots" / (std::string(name) + ".vtp"));
+    for (const char* field : {"Name=\"H\"", "Name=\"N\"", "Name=\"w\"", "</VTKFile>"})
+      EXPECT_NE(vtp.find(field), std::string::npos) << field;
+  }
+  const std::string pvd = test::read_file(dir / "run/series.pvd");
+  EXPECT_NE(pvd.find("timestep=\"0.15000000000000002\" group=\"\" part=\"0\" file=\"snapshots/step_000003.vtp\""),
+            std::string::npos) << pvd;
+  RunParameters back;
+  read_run_parameters(dir / "run/run.toml", back);
+  EXPECT_EQ(back.steps, 6);
+  EXPECT_EQ(back.time_step.mode, TimeStepMode::constant);
+  EXPECT_EQ(back.time_step.tau, 0.05);
+  EXPECT_EQ(back.snapshot_every, 3);
+  EXPECT_FALSE(test::read_file(dir / "run/events.log").empty());
+  EXPECT_THROW(run_simulation(analytic::icosphere(1), {.parameters = p}), InvalidParameter)
+      << "an existing run must not be overwritten";
+}
+
+TEST(Simulation, ellipsoid_relaxes_toward_a_sphere_without_area_increase)
+{
+  // Paper §4.5: ellipsoid 5, 4, 3 with β = 1/2 and τ = 0.5.
+  constexpr double area_round_off = 1e-12;
+  constexpr double volume_drift_bound = 0.01; // relative, over the run
+  test::TempDir dir;
+  run_simulation(analytic::ellipsoid(3, 5, 4, 3), {.parameters = constant_tau(dir / "run", 0.5, 40)});
+  const auto rows = read_metrics(dir / "run/metrics.csv");
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_LE(column(rows[i], area_col), column(rows[i - 1], area_col) * (1 + area_round_off));
+  }
+  const double drift = std::abs(column(rows.back(), volume_col) / column(rows[0], volume_col) - 1);
+  ::testing::Test::RecordProperty("volume_drift", std::to_string(drift));
+  EXPECT_LT(drift, volume_drift_bound);
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    EXPECT_LT(column(rows[i], deviation_col), column(rows[i - 1], deviation_col));
+  // The l = 2 relaxation time R⁴/12 is about 20 here: by t = 20 the deviation falls by about e.
+  EXPECT_LT(column(rows.back(), deviation_col), 0.5 * column(rows[0], deviation_col))
+      << "the curvature should approach a constant";
+}
+
+TEST(Simulation, conserve_volume_keeps_the_volume_to_round_off)
+{
+  constexpr double conserved = 1e-10;
+  test::TempDir dir;
+  RunParameters p = constant_tau(dir / "run", 0.5, 20);
+  p.conserve_volume = true;
+  run_simulation(analytic::ellipsoid(3, 5, 4, 3), {.parameters = p});
+  const auto rows = read_metrics(dir / "run/metrics.csv");
+  const double v0 = column(rows[0], volume_col);
+  for (const auto& row : rows)
+    EXPECT_LT(std::abs(column(row, volume_col) / v0 - 1), conserved);
+}
+
+TEST(Simulation, explicit_scheme_at_large_tau_stops_as_unstable)
+{
+  // Paper §4.5 / Fig. 24: β = 0 and τ = 0.5 explodes within a few steps.
+  test::TempDir dir;
+  try {
+    run_simulation(analytic::ellipsoid(3, 5, 4, 3), {.parameters = constant_tau(dir / "run", 0.5, 100, 0.0)});
+    FAIL() << "the explicit scheme was not detected as unstable";
+  } catch (const SolverFailure& e) {
+    EXPECT_NE(std::string(e.what()).find("unstable"), std::string::npos) << e.what();
+  }
+  const auto rows = read_metrics(dir / "run/metrics.csv");
+  EXPECT_LT(rows.size(), 20u);
+  EXPECT_NE(test::read_file(dir / "run/events.log").find("stopped"), std::string::npos);
+}
+
+TEST(Simulation, quarter_beta_grows_waves_and_breaks_down_at_large_tau)
+{
+  // Paper §4.5 / Fig. 25: with β = 1/4 and τ = 0.5 waves appear and grow; β = 1/2 relaxes (above).
+  // On 2562 vertices the curvature deviation doubles, then triangles turn over near step 58.
+  test::TempDir dir;
+  EXPECT_THROW(run_simulation(analytic::ellipsoid(4, 5, 4, 3), {.parameters = constant_tau(dir / "run", 0.5, 100, 0.25)}),
+               SolverFailure);
+  const auto rows = read_metrics(dir / "run/metrics.csv");
+  EXPECT_GT(column(rows.back(), deviation_col), 1.5 * column(rows[0], deviation_col));
+}
+
+TEST(Simulation, adaptive_tau_grows_from_a_safe_start)
+{
+  test::TempDir dir;
+  RunParameters p;
+  p.output_dir = dir / "run";
+  p.steps = 30;
+  run_simulation(analytic::ellipsoid(3, 5, 4, 3), {.parameters = p});
+  const auto rows = read_metrics(dir / "run/metrics.csv");
+  constexpr int tau_col = 2;
+  EXPECT_GT(column(rows.back(), tau_col), 4 * column(rows[1], tau_col));
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    EXPECT_LE(column(rows[i], area_col), column(rows[i - 1], area_col) * (1 + 1e-12));
+}
+
+TEST(Simulation, resumed_run_reproduces_the_uninterrupted_metrics_bit_for_bit)
+{
+  test::TempDir dir;
+  const Mesh start = analytic::ellipsoid(3, 5, 4, 3);
+  RunParameters p;
+  p.steps = 14;
+  p.checkpoint_every = 4;
+  p.snapshot_every = 5;
+  p.output_dir = dir / "whole";
+  run_simulation(start, {.parameters = p});
+
+  // The "killed" run: it gets to step 10, but its checkpoint is put back to the one of step 8,
+  // as if the process had died at step 10 with rows past the checkpoint already flushed.
+  p.output_dir = dir / "killed";
+  p.steps = 10;
+  auto keep_step_8 = [&](const StepRecord& r) {
+    if (r.step == 8)
+      fs::copy_file(dir / "killed/checkpoint.bin", dir / "step8.bin");
+  };
+  run_simulation(start, {.parameters = p, .progress = keep_step_8});
+  fs::copy_file(dir / "step8.bin", dir / "killed/checkpoint.bin", fs::copy_options::overwrite_existing);
+  EXPECT_EQ(read_checkpoint(dir / "killed/checkpoint.bin").step, 8);
+
+  p.steps = 14;
+  resume_simulation({.parameters = p});
+  EXPECT_EQ(test::read_file(dir / "killed/metrics.csv"), test::read_file(dir / "whole/metrics.csv"));
+  EXPECT_EQ(test::read_file(dir / "killed/series.pvd"), test::read_file(dir / "whole/series.pvd"));
+}
+
+TEST(Simulation, corrupt_checkpoint_is_refused)
+{
+  test::TempDir dir;
+  run_simulation(analytic::icosphere(1), {.parameters = constant_tau(dir / "run", 1e-3, 2)});
+  std::string bytes = test::read_file(dir / "run/checkpoint.bin");
+  test::write_file(dir / "run/checkpoint.bin", bytes.substr(0, bytes.size() / 2));
+  EXPECT_THROW(read_checkpoint(dir / "run/checkpoint.bin"), IoError);
+  bytes[bytes.size() / 2] ^= 0x40;
+  test::write_file(dir / "run/checkpoint.bin", bytes);
+  EXPECT_THROW(read_checkpoint(dir / "run/checkpoint.bin"), IoError);
+}
+
+TEST(Simulation, retriangulation_hook_events_reach_the_metrics_and_new_connectivity_is_used)
+{
+  test::TempDir dir;
+  RetriangulationHook split_an_edge_every_third_step = [](Mesh& mesh, const RetriangulationContext& c) {
+    RetriangulationReport report;
+    if (c.step % 3 != 0)
+      return report;
+    const auto e = *mesh.edges().begin();
+    mesh.split(e, (mesh.point(e.v0()) + mesh.point(e.v1())) / 2);
+    report.remeshed = true;
+    report.detail = "one edge split";
+    return report;
+  };
+  run_simulation(analytic::ellipsoid(2, 5, 4, 3),
+                 {.parameters = constant_tau(dir / "run", 0.05, 6), .retriangulate = split_an_edge_every_third_step});
+  const auto rows = read_metrics(dir / "run/metrics.csv");
+  ASSERT_EQ(rows.size(), 7u);
+  EXPECT_EQ(rows[3][event_col], "remeshed");
+  EXPECT_EQ(rows[4][event_col], "");
+  EXPECT_EQ(rows[6][event_col], "remeshed");
+  EXPECT_EQ(rows[6][3], "164") << "vertices after two splits";
+}
+
+} // namespace
+} // namespace sdflow

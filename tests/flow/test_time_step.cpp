@@ -1,0 +1,107 @@
+//! Time-step control (time_step.h): schedules and the adaptive controller's rule.
+#include "sdflow/errors.h"
+#include "sdflow/flow/time_step.h"
+#include "io/temp_dir.h"
+
+#include <gtest/gtest.h>
+
+namespace sdflow {
+namespace {
+
+TEST(TauSchedule, table_ranges_map_steps_to_tau_and_the_last_tau_continues)
+{
+  // The paper's Table 1, which starts at step 0.
+  const TauSchedule table({{0, 50, 0.01}, {51, 100, 0.02}, {101, 150, 0.05}, {151, 1000, 0.1}});
+  EXPECT_EQ(table.tau_for_step(1), 0.01);
+  EXPECT_EQ(table.tau_for_step(50), 0.01);
+  EXPECT_EQ(table.tau_for_step(51), 0.02);
+  EXPECT_EQ(table.tau_for_step(1000), 0.1);
+  EXPECT_EQ(table.tau_for_step(5000), 0.1);
+}
+
+TEST(TauSchedule, gaps_overlaps_and_bad_tau_are_rejected)
+{
+  EXPECT_THROW(TauSchedule({{1, 10, 0.1}, {12, 20, 0.2}}), InvalidParameter);
+  EXPECT_THROW(TauSchedule({{1, 10, 0.1}, {10, 20, 0.2}}), InvalidParameter);
+  EXPECT_THROW(TauSchedule({{1, 10, -0.1}}), InvalidParameter);
+  EXPECT_THROW(TauSchedule({{5, 1, 0.1}}), InvalidParameter);
+  EXPECT_THROW(TauSchedule(std::vector<ScheduleEntry>{}), InvalidParameter);
+}
+
+TEST(TauSchedule, csv_and_toml_files_read_alike_and_errors_name_the_line)
+{
+  test::TempDir dir;
+  test::write_file(dir / "t.csv", "first_step,last_step,tau\n# Table 2\n1,30,0.001\n31,60,0.002\n");
+  test::write_file(dir / "t.toml", "schedule = [[1, 30, 0.001], [31, 60, 0.002]]\n");
+  test::write_file(dir / "bad.csv", "1,30,0.001\n31,sixty,0.002\n");
+  const TauSchedule csv = read_schedule(dir / "t.csv"), toml = read_schedule(dir / "t.toml");
+  ASSERT_EQ(csv.entries().size(), 2u);
+  for (long step : {1L, 30L, 31L, 60L})
+    EXPECT_EQ(csv.tau_for_step(step), toml.tau_for_step(step));
+  try {
+    read_schedule(dir / "bad.csv");
+    FAIL() << "a malformed line was accepted";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.csv:2"), std::string::npos) << e.what();
+  }
+}
+
+TEST(TimeStepController, adaptive_tau_grows_when_calm_and_shrinks_on_rejection)
+{
+  TimeStepOptions options;
+  options.adaptive.initial_tau = 1e-3;
+  TimeStepController controller(options);
+  const double tau = controller.propose(1, 0.0, 1.0);
+  EXPECT_EQ(tau, 1e-3);
+  StepCheck calm;
+  calm.displacement_ratio = 1e-6;
+  EXPECT_TRUE(controller.judge(1, tau, calm));
+  const double grown = controller.propose(2, 0.0, 1.0);
+  EXPECT_DOUBLE_EQ(grown, tau * options.adaptive.growth);
+
+  StepCheck inverted;
+  inverted.inverted_triangles = 3;
+  EXPECT_FALSE(controller.judge(2, grown, inverted));
+  EXPECT_DOUBLE_EQ(controller.propose(2, 0.0, 1.0), grown * options.adaptive.shrink);
+  EXPECT_EQ(controller.propose(2, 0.0, 1e-5), 1e-5) << "the last step must land on the end time";
+}
+
+TEST(TimeStepController, displacement_bound_predicts_the_next_tau)
+{
+  TimeStepOptions options;
+  options.adaptive.initial_tau = 1.0;
+  TimeStepController controller(options);
+  StepCheck big;
+  big.displacement_ratio = 4 * options.adaptive.max_displacement;
+  big.displacement_exceeded = true;
+  EXPECT_FALSE(controller.judge(1, 1.0, big));
+  EXPECT_DOUBLE_EQ(controller.propose(1, 0.0, 10.0), options.adaptive.safety / 4);
+}
+
+TEST(TimeStepController, endless_rejections_stop_with_solver_failure)
+{
+  TimeStepOptions options;
+  options.adaptive.initial_tau = 1.0;
+  TimeStepController controller(options);
+  StepCheck nan;
+  nan.non_finite = true;
+  EXPECT_THROW(
+      {
+        for (int i = 0; i < 1000; ++i)
+          controller.judge(1, controller.propose(1, 0.0, 10.0), nan);
+      },
+      SolverFailure);
+}
+
+TEST(TimeStepController, constant_tau_stops_at_the_first_unstable_step)
+{
+  TimeStepOptions options{.mode = TimeStepMode::constant, .tau = 0.5};
+  TimeStepController controller(options);
+  StepCheck inverted;
+  inverted.inverted_triangles = 1;
+  EXPECT_THROW(controller.judge(3, 0.5, inverted), SolverFailure);
+  EXPECT_THROW(TimeStepController({.mode = TimeStepMode::constant, .tau = 0}), InvalidParameter);
+}
+
+} // namespace
+} // namespace sdflow

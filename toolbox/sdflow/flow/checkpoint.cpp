@@ -1,0 +1,190 @@
+#include "sdflow/flow/checkpoint.h"
+
+#include "sdflow/errors.h"
+#include "sdflow/io.h"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+namespace sdflow {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "checkpoints are written on little-endian machines");
+
+constexpr char magic[8] = {'S', 'D', 'F', 'L', 'O', 'W', 'C', 'K'};
+constexpr std::uint32_t version = 1;
+
+std::uint64_t fnv1a(const char* data, std::size_t size)
+{
+  std::uint64_t hash = 14695981039346656037ull;
+  for (std::size_t i = 0; i < size; ++i) {
+    hash ^= static_cast<unsigned char>(data[i]);
+    hash *= 1099511628211ull;
+  }
+  return hash;
+}
+
+class Writer {
+public:
+  template <typename T>
+  void put(const T& value)
+  {
+    static_assert(std::is_trivially_copyable_v<T>);
+    bytes_.append(reinterpret_cast<const char*>(&value), sizeof(T));
+  }
+  void put_doubles(const double* data, std::size_t count)
+  {
+    put<std::uint64_t>(count);
+    bytes_.append(reinterpret_cast<const char*>(data), count * sizeof(double));
+  }
+  void put_string(const std::string& s)
+  {
+    put<std::uint64_t>(s.size());
+    bytes_ += s;
+  }
+  std::string& bytes() { return bytes_; }
+
+private:
+  std::string bytes_;
+};
+
+class Reader {
+public:
+  Reader(const std::string& bytes, const std::filesystem::path& file) : bytes_(bytes), file_(file) {}
+  template <typename T>
+  T get()
+  {
+    T value;
+    take(&value, sizeof(T));
+    return value;
+  }
+  std::vector<double> get_doubles()
+  {
+    const auto count = get<std::uint64_t>();
+    if (count > (bytes_.size() - at_) / sizeof(double))
+      truncated();
+    std::vector<double> values(count);
+    take(values.data(), count * sizeof(double));
+    return values;
+  }
+  std::string get_string()
+  {
+    const auto size = get<std::uint64_t>();
+    if (size > bytes_.size() - at_)
+      truncated();
+    std::string s = bytes_.substr(at_, size);
+    at_ += size;
+    return s;
+  }
+
+private:
+  void take(void* out, std::size_t size)
+  {
+    if (size > bytes_.size() - at_)
+      truncated();
+    std::memcpy(out, bytes_.data() + at_, size);
+    at_ += size;
+  }
+  [[noreturn]] void truncated() const
+  {
+    throw IoError(fmt::format("{}: checkpoint is truncated or corrupt", file_.string()));
+  }
+  const std::string& bytes_;
+  const std::filesystem::path& file_;
+  std::size_t at_ = 0;
+};
+
+VertexVectors to_vectors(const std::vector<double>& values, const std::filesystem::path& file)
+{
+  if (values.size() % 3 != 0)
+    throw IoError(fmt::format("{}: checkpoint holds a vertex array of {} numbers", file.string(), values.size()));
+  VertexVectors v(values.size() / 3, 3);
+  std::copy(values.begin(), values.end(), v.data());
+  return v;
+}
+
+} // namespace
+
+void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file)
+{
+  Writer w;
+  w.bytes().append(magic, sizeof magic);
+  w.put(version);
+  w.put<std::int64_t>(c.step);
+  w.put(c.time);
+  w.put_doubles(c.positions.data(), static_cast<std::size_t>(c.positions.size()));
+  w.put<std::uint64_t>(static_cast<std::uint64_t>(c.triangles.rows()));
+  w.bytes().append(reinterpret_cast<const char*>(c.triangles.data()), c.triangles.size() * sizeof(int));
+  w.put_doubles(c.previous_w.data(), static_cast<std::size_t>(c.previous_w.size()));
+  w.put(c.time_step.next_tau);
+  w.put<std::int32_t>(c.time_step.rejections);
+  w.put<std::int64_t>(c.solver.solves_since_factorisation);
+  w.put<std::int64_t>(c.solver.iterations_since_factorisation);
+  w.put<std::int32_t>(c.solver.last_iterations);
+  w.put<std::uint8_t>(c.has_anchor);
+  w.put_doubles(c.anchor_positions.data(), static_cast<std::size_t>(c.anchor_positions.size()));
+  w.put(c.anchor_tau_beta);
+  w.put<std::uint64_t>(c.snapshots.size());
+  for (const auto& s : c.snapshots) {
+    w.put(s.time);
+    w.put_string(s.file.generic_string());
+  }
+  w.put(fnv1a(w.bytes().data(), w.bytes().size()));
+  write_atomically(file, [&](std::ostream& out) { out.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size())); });
+}
+
+Checkpoint read_checkpoint(const std::filesystem::path& file)
+{
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+    throw IoError(fmt::format("{}: cannot open the checkpoint", file.string()));
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.size() < sizeof magic + sizeof(std::uint64_t) || std::memcmp(bytes.data(), magic, sizeof magic) != 0)
+    throw IoError(fmt::format("{}: not an sdflow checkpoint", file.string()));
+  std::uint64_t stored = 0;
+  std::memcpy(&stored, bytes.data() + bytes.size() - sizeof stored, sizeof stored);
+  if (stored != fnv1a(bytes.data(), bytes.size() - sizeof stored))
+    throw IoError(fmt::format("{}: checkpoint fails its checksum (truncated or corrupt)", file.string()));
+
+  Reader r(bytes, file);
+  r.get<std::array<char, sizeof magic>>();
+  if (const auto v = r.get<std::uint32_t>(); v != version)
+    throw IoError(fmt::format("{}: checkpoint version {} (this sdflow reads version {})", file.string(), v, version));
+  Checkpoint c;
+  c.step = r.get<std::int64_t>();
+  c.time = r.get<double>();
+  c.positions = to_vectors(r.get_doubles(), file);
+  const auto triangle_count = r.get<std::uint64_t>();
+  if (triangle_count > bytes.size() / (3 * sizeof(int)))
+    throw IoError(fmt::format("{}: checkpoint is truncated or corrupt", file.string()));
+  c.triangles.resize(static_cast<Eigen::Index>(triangle_count), 3);
+  for (Eigen::Index i = 0; i < c.triangles.size(); ++i)
+    c.triangles.data()[i] = r.get<int>();
+  const std::vector<double> w = r.get_doubles();
+  c.previous_w = Eigen::Map<const Eigen::VectorXd>(w.data(), static_cast<Eigen::Index>(w.size()));
+  c.time_step.next_tau = r.get<double>();
+  c.time_step.rejections = r.get<std::int32_t>();
+  c.solver.solves_since_factorisation = r.get<std::int64_t>();
+  c.solver.iterations_since_factorisation = r.get<std::int64_t>();
+  c.solver.last_iterations = r.get<std::int32_t>();
+  c.has_anchor = r.get<std::uint8_t>() != 0;
+  c.anchor_positions = to_vectors(r.get_doubles(), file);
+  c.anchor_tau_beta = r.get<double>();
+  const auto snapshot_count = r.get<std::uint64_t>();
+  for (std::uint64_t i = 0; i < snapshot_count; ++i) {
+    SeriesEntry s;
+    s.time = r.get<double>();
+    s.file = r.get_string();
+    c.snapshots.push_back(std::move(s));
+  }
+  return c;
+}
+
+} // namespace sdflow

@@ -1,0 +1,74 @@
+#pragma once
+//! \file parameters.h
+//! \brief The parameters of a run, as read from a scenario file and written, fully resolved, to the
+//! run directory's `run.toml` (which `--resume` reads back).
+//!
+//! Scenario keys (all optional; a CLI flag of the same name overrides them):
+//! ```toml
+//! input = "ellipsoid.off"      # relative paths are relative to the scenario file
+//! out = "runs/ellipsoid"
+//! steps = 200                  # stop after this many steps (0: no limit)
+//! t_end = 10.0                 # stop at this time (absent: no limit)
+//! time_step = "adaptive"       # "constant" (needs tau), "schedule" (needs schedule) or "adaptive"
+//! tau = 0.01                   # implies time_step = "constant" when time_step is absent
+//! schedule = "tables.csv"      # or inline: [[1, 50, 0.01], [51, 100, 0.02]]; implies "schedule"
+//! beta = 0.5
+//! solver = "cholmod"           # or "qr"
+//! factorisation = "reuse"      # or "every_step"
+//! snapshot_every = 10
+//! checkpoint_every = 10
+//! conserve_volume = false
+//! fixed_boundary = false
+//! [adaptive]                   # see time_step.h for the rule
+//! initial_tau = 0.0            # 0: automatic
+//! max_displacement = 0.05
+//! growth = 1.25
+//! shrink = 0.5
+//! safety = 0.8
+//! max_volume_change = 1e-3
+//! min_tau = 1e-14
+//! max_tau = 1e300
+//! max_rejections = 25
+//! [reference_sphere]           # for the d1/d2 columns
+//! centre = [0.0, 0.0, 0.0]
+//! radius = 1.0
+//! ```
+
+#include "sdflow/flow/scheme.h"
+#include "sdflow/flow/solver.h"
+#include "sdflow/flow/time_step.h"
+
+#include <Eigen/Core>
+
+#include <filesystem>
+#include <limits>
+
+namespace sdflow {
+
+struct RunParameters {
+  std::filesystem::path input;       //!< the initial mesh
+  std::filesystem::path output_dir;  //!< the run directory
+  long steps = 0;                    //!< step limit, 0 for none
+  double end_time = std::numeric_limits<double>::infinity(); //!< time limit
+  TimeStepOptions time_step;
+  SchemeOptions scheme;
+  SolverOptions solver;
+  bool conserve_volume = false;
+  long snapshot_every = 10;          //!< 0: snapshots of the first and last surface only
+  long checkpoint_every = 10;        //!< ≥ 1
+  Eigen::Vector3d reference_centre = Eigen::Vector3d::Zero();
+  double reference_radius = 1.0;
+};
+
+//! Read a scenario or run.toml into `parameters`, overwriting only the keys present. Relative
+//! paths are resolved against the file's folder. Throws IoError (file, line) on a syntax error,
+//! InvalidParameter on an unknown key or a value of the wrong type or range.
+void read_run_parameters(const std::filesystem::path& file, RunParameters& parameters);
+
+//! Check ranges and consistency (a stop condition, τ for the chosen mode...); throws InvalidParameter.
+void validate_run_parameters(const RunParameters& parameters);
+
+//! The fully resolved parameters as TOML (the schedule inline, absolute paths).
+std::string run_parameters_toml(const RunParameters& parameters);
+
+} // namespace sdflow

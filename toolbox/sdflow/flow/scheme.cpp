@@ -1,0 +1,61 @@
+#include "sdflow/flow/scheme.h"
+
+#include "sdflow/errors.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace sdflow {
+
+FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options, const CotangentCache* cache)
+{
+  if (!(options.beta >= 0) || !std::isfinite(options.beta))
+    throw InvalidParameter(fmt::format("flow step: β must be finite and ≥ 0, got {}", options.beta));
+  if (mesh.n_vertices() == 0 || mesh.n_faces() == 0)
+    throw InvalidMesh("flow step: the mesh has no triangles");
+  FlowOperators op;
+  op.normals = vertex_normals(mesh, options.normals);
+  op.curvature = mean_curvature(mesh, op.normals, options.curvature);
+  if (cache) {
+    cache->assemble(mesh, op.laplacian, op.areas);
+  } else {
+    op.laplacian = cotangent_laplacian(mesh);
+    op.areas = mixed_voronoi_areas(mesh);
+  }
+  for (Eigen::Index i = 0; i < op.areas.size(); ++i)
+    if (!(op.areas[i] > 0))
+      throw InvalidMesh(fmt::format("flow step: vertex {} has no area (isolated or degenerate star)", i));
+  op.rhs = op.laplacian * op.curvature;
+  if (options.boundary == BoundaryMotion::fixed) {
+    bool any = false;
+    op.held.assign(mesh.n_vertices(), false);
+    for (auto v : mesh.vertices())
+      if (mesh.is_boundary(v))
+        op.held[v.idx()] = any = true;
+    if (!any)
+      op.held.clear();
+  }
+  return op;
+}
+
+StepResult solve_step(const Mesh& mesh, const FlowOperators& op, double tau, double beta, FlowSolver& solver,
+                      const Eigen::VectorXd& guess)
+{
+  if (!(tau > 0) || !std::isfinite(tau))
+    throw InvalidParameter(fmt::format("flow step: τ must be finite and positive, got {}", tau));
+  StepResult result;
+  const FlowSystem system{op.laplacian, op.areas, op.held, tau * beta};
+  result.w = solver.solve(system, op.rhs, guess, &result.solve);
+  result.positions = vertex_positions(mesh);
+  result.positions -= (tau * result.w).asDiagonal() * op.normals;
+  return result;
+}
+
+StepResult flow_step(const Mesh& mesh, double tau, const SchemeOptions& options, const SolverOptions& solver_options)
+{
+  FlowSolver solver(solver_options);
+  return solve_step(mesh, flow_operators(mesh, options), tau, options.beta, solver);
+}
+
+} // namespace sdflow

@@ -1,0 +1,417 @@
+#include "sdflow/flow/simulation.h"
+
+#include "sdflow/errors.h"
+#include "sdflow/flow/checkpoint.h"
+#include "sdflow/flow/scheme.h"
+#include "sdflow/flow/volume.h"
+#include "sdflow/geometry/laplacian.h"
+#include "sdflow/geometry/measures.h"
+#include "sdflow/geometry/topology.h"
+#include "sdflow/io.h"
+#include "sdflow/io_vtk.h"
+#include "sdflow/log.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+namespace sdflow {
+namespace {
+
+using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+using Clock = std::chrono::steady_clock;
+
+constexpr auto flush_interval = std::chrono::seconds(2);
+constexpr double end_time_tolerance = 1e-12; // relative: the last step is clipped to land on t_end
+
+//! The mesh rebuilt from its arrays, so that a run and its resumption from a checkpoint (which
+//! stores the arrays) traverse identical halfedge structures and round identically.
+Mesh canonical(const Mesh& mesh) { return make_mesh(vertex_positions(mesh), face_indices(mesh)); }
+
+//! Mean length of the edges at each vertex: the local scale of the displacement bound.
+Eigen::VectorXd mean_edge_lengths(const Mesh& mesh)
+{
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(mesh.n_vertices());
+  Eigen::VectorXd count = Eigen::VectorXd::Zero(mesh.n_vertices());
+  for (auto e : mesh.edges()) {
+    const double length = mesh.calc_edge_length(e);
+    const int a = e.v0().idx(), b = e.v1().idx();
+    sum[a] += length;
+    sum[b] += length;
+    count[a] += 1;
+    count[b] += 1;
+  }
+  return sum.cwiseQuotient(count.cwiseMax(1.0));
+}
+
+//! Does the topology of the surface stay the same? Cached per connectivity.
+struct Topology {
+  std::vector<int> face_component;
+  int count = 0;
+  std::vector<bool> closed;
+  int genus = 0;
+};
+
+Topology topology_of(const Mesh& mesh)
+{
+  Topology t;
+  t.face_component = face_component_ids(mesh, &t.count);
+  for (const auto& c : component_topology(mesh)) {
+    t.closed.push_back(c.closed());
+    t.genus += c.genus;
+  }
+  return t;
+}
+
+std::string join_events(const std::vector<std::string>& events)
+{
+  std::string s;
+  for (const auto& e : events)
+    s += (s.empty() ? "" : "+") + e;
+  return s;
+}
+
+long leading_step(const std::string& line, const std::string& prefix)
+{
+  if (line.compare(0, prefix.size(), prefix) != 0)
+    return -1;
+  long step = -1;
+  std::istringstream(line.substr(prefix.size())) >> step;
+  return step;
+}
+
+//! The lines of `file` whose leading step number (after `prefix`) is at most `last_step`.
+std::string read_truncated(const std::filesystem::path& file, const std::string& prefix, long last_step,
+                           bool keep_first_line)
+{
+  std::ifstream in(file);
+  std::string text, line;
+  for (bool first = true; std::getline(in, line); first = false) {
+    if ((first && keep_first_line) || (leading_step(line, prefix) >= 0 && leading_step(line, prefix) <= last_step))
+      text += line + '\n';
+  }
+  return text;
+}
+
+class Runner {
+public:
+  explicit Runner(const SimulationOptions& options)
+      : options_(options), p_(options.parameters), dir_(p_.output_dir), solver_(p_.solver),
+        controller_(p_.time_step)
+  {
+    validate_run_parameters(p_);
+    if (dir_.empty())
+      throw InvalidParameter("no output directory given for the run");
+  }
+
+  void start(const Mesh& initial)
+  {
+    if (std::filesystem::exists(dir_ / "metrics.csv") || std::filesystem::exists(dir_ / "checkpoint.bin"))
+      throw InvalidParameter(fmt::format("{} already holds a run: resume it or choose another output directory",
+                                         dir_.string()));
+    std::filesystem::create_directories(dir_ / "snapshots");
+    mesh_ = canonical(initial);
+    renew_connectivity();
+    last_w_ = Eigen::VectorXd::Zero(mesh_.n_vertices());
+    metrics_ = std::string(metrics_header) + '\n';
+    write_atomically(dir_ / "run.toml", [&](std::ostream& out) { out << run_parameters_toml(p_); });
+    log_event(fmt::format("start: {} vertices, {} faces, {} components", mesh_.n_vertices(), mesh_.n_faces(),
+                          topology_.count));
+    op_ = flow_operators(mesh_, p_.scheme, &*cache_);
+    append_metrics(0, {});
+    snapshot();
+    save();
+  }
+
+  void resume()
+  {
+    const Checkpoint c = read_checkpoint(dir_ / "checkpoint.bin");
+    step_ = c.step;
+    time_ = c.time;
+    mesh_ = make_mesh(c.positions, c.triangles);
+    renew_connectivity();
+    previous_w_ = c.previous_w;
+    last_w_ = c.previous_w.size() == static_cast<Eigen::Index>(mesh_.n_vertices())
+                  ? c.previous_w
+                  : Eigen::VectorXd::Zero(mesh_.n_vertices());
+    controller_ = TimeStepController(p_.time_step, c.time_step);
+    snapshots_ = c.snapshots;
+    if (c.has_anchor) {
+      // Refactorise the anchor's system: the preconditioner is then the one the uninterrupted run
+      // would be using, so the CG iterates (and every later decision) are identical.
+      Mesh anchor = make_mesh(c.anchor_positions, c.triangles);
+      const FlowOperators anchor_op = flow_operators(anchor, p_.scheme, &*cache_);
+      solver_.restore(FlowSystem{anchor_op.laplacian, anchor_op.areas, anchor_op.held, c.anchor_tau_beta}, c.solver);
+      has_anchor_ = true;
+      anchor_positions_ = c.anchor_positions;
+      anchor_tau_beta_ = c.anchor_tau_beta;
+    }
+    metrics_ = read_truncated(dir_ / "metrics.csv", "", step_, true);
+    events_ = read_truncated(dir_ / "events.log", "step ", step_, false);
+    write_atomically(dir_ / "run.toml", [&](std::ostream& out) { out << run_parameters_toml(p_); });
+    log_event(fmt::format("resumed from the checkpoint at t = {}", time_));
+    op_ = flow_operators(mesh_, p_.scheme, &*cache_);
+  }
+
+  SimulationResult run()
+  {
+    try {
+      while (!finished())
+        advance();
+    } catch (const SolverFailure& e) {
+      log_event(fmt::format("stopped: {}", e.what()));
+      flush();
+      throw;
+    }
+    log_event(fmt::format("finished at t = {}", time_));
+    flush();
+    result_.mesh = mesh_;
+    result_.steps = step_;
+    result_.time = time_;
+    return result_;
+  }
+
+private:
+  bool finished() const
+  {
+    return (p_.steps > 0 && step_ >= p_.steps) ||
+           (std::isfinite(p_.end_time) && time_ >= p_.end_time * (1 - end_time_tolerance));
+  }
+
+  void renew_connectivity()
+  {
+    triangles_ = face_indices(mesh_);
+    topology_ = topology_of(mesh_);
+    cache_.emplace(mesh_);
+  }
+
+  double automatic_tau(const Eigen::VectorXd& edge_lengths) const
+  {
+    // The explicit velocity ΔH bounds the semi-implicit one (the inverse of I + τβΔ² is a
+    // contraction), so this τ meets the displacement bound on the first step.
+    const Eigen::VectorXd speed = op_.rhs.cwiseQuotient(op_.areas).cwiseAbs();
+    double tau = std::numeric_limits<double>::infinity();
+    for (Eigen::Index v = 0; v < speed.size(); ++v)
+      if (speed[v] > 0 && (op_.held.empty() || !op_.held[v]))
+        tau = std::min(tau, edge_lengths[v] / speed[v]);
+    const AdaptiveOptions& a = p_.time_step.adaptive;
+    if (std::isinf(tau)) // a surface at rest: the scale of the bi-Laplacian's time step, h⁴
+      return std::pow(edge_lengths.mean(), 4);
+    return a.safety * a.max_displacement * tau;
+  }
+
+  StepCheck check(const VertexVectors& next, const Eigen::VectorXd& w, double tau,
+                  const Eigen::VectorXd& edge_lengths, const std::vector<double>& volumes) const
+  {
+    StepCheck c;
+    if (!next.allFinite()) {
+      c.non_finite = true;
+      return c;
+    }
+    c.displacement_ratio = (tau * w.cwiseAbs()).cwiseQuotient(edge_lengths).maxCoeff();
+    const VertexVectors& now = positions_;
+    for (Eigen::Index f = 0; f < triangles_.rows(); ++f) {
+      const auto normal = [&](const VertexVectors& x) {
+        const Eigen::Vector3d a = x.row(triangles_(f, 0)), b = x.row(triangles_(f, 1)), d = x.row(triangles_(f, 2));
+        return Eigen::Vector3d((b - a).cross(d - a));
+      };
+      if (normal(now).dot(normal(next)) <= 0)
+        ++c.inverted_triangles;
+    }
+    const std::vector<double> after = component_volumes(next, triangles_, topology_.face_component, topology_.count);
+    for (int k = 0; k < topology_.count; ++k)
+      if (topology_.closed[k] && volumes[k] != 0)
+        c.volume_change = std::max(c.volume_change, std::abs(after[k] - volumes[k]) / std::abs(volumes[k]));
+    if (p_.time_step.mode == TimeStepMode::adaptive) {
+      c.displacement_exceeded = c.displacement_ratio > p_.time_step.adaptive.max_displacement;
+      c.volume_exceeded = c.volume_change > p_.time_step.adaptive.max_volume_change;
+    }
+    return c;
+  }
+
+  void advance()
+  {
+    const long next_step = step_ + 1;
+    positions_ = vertex_positions(mesh_);
+    const Eigen::VectorXd edge_lengths = mean_edge_lengths(mesh_);
+    const std::vector<double> volumes =
+        component_volumes(positions_, triangles_, topology_.face_component, topology_.count);
+    const bool need_automatic_tau = p_.time_step.mode == TimeStepMode::adaptive &&
+                                    controller_.state().next_tau == 0 && p_.time_step.adaptive.initial_tau == 0;
+    const double automatic = need_automatic_tau ? automatic_tau(edge_lengths) : 0.0;
+    const double time_left = std::isfinite(p_.end_time) ? p_.end_time - time_ : std::numeric_limits<double>::infinity();
+
+    int rejections = 0;
+    StepRecord record;
+    StepResult trial;
+    double tau = 0;
+    for (;;) {
+      tau = controller_.propose(next_step, automatic, time_left);
+      trial = solve_step(mesh_, op_, tau, p_.scheme.beta, solver_, previous_w_);
+      record.cg_iterations += trial.solve.iterations;
+      if (trial.solve.factorised) {
+        ++result_.factorisations;
+        record.factorised = true;
+        has_anchor_ = p_.solver.kind == SolverKind::cholmod;
+        anchor_positions_ = positions_;
+        anchor_tau_beta_ = tau * p_.scheme.beta;
+        logger().debug("step {}: factorised (τ = {})", next_step, tau);
+      }
+      const StepCheck c = check(trial.positions, trial.w, tau, edge_lengths, volumes);
+      if (controller_.judge(next_step, tau, c))
+        break;
+      ++rejections;
+      ++result_.rejected_trials;
+      log_event(fmt::format("rejected τ = {}: {}", tau, c.describe()), next_step);
+    }
+
+    set_vertex_positions(mesh_, trial.positions);
+    if (p_.conserve_volume) {
+      const VolumeRestoration restored = restore_volumes(mesh_, volumes);
+      set_vertex_positions(mesh_, restored.positions);
+    }
+    step_ = next_step;
+    time_ += tau;
+    previous_w_ = trial.w;
+    last_w_ = trial.w;
+
+    std::vector<std::string> events;
+    if (rejections > 0)
+      events.emplace_back("rejected");
+    if (options_.retriangulate) {
+      const RetriangulationReport report = options_.retriangulate(mesh_, {step_, time_});
+      if (report.changed()) {
+        mesh_ = canonical(mesh_);
+        renew_connectivity();
+        solver_.forget_factorisation();
+        has_anchor_ = false;
+        previous_w_.resize(0);
+        last_w_ = Eigen::VectorXd::Zero(mesh_.n_vertices());
+        for (const auto& [flag, name] : {std::pair{report.remeshed, "remeshed"}, std::pair{report.surgery, "surgery"},
+                                         std::pair{report.split, "split"}, std::pair{report.merged, "merged"}})
+          if (flag)
+            events.emplace_back(name);
+        log_event(fmt::format("re-triangulated ({}): {}", join_events(events), report.detail));
+      }
+    }
+    op_ = flow_operators(mesh_, p_.scheme, &*cache_);
+    record.event = join_events(events);
+    append_metrics(tau, record.event);
+
+    const bool last = finished();
+    if (last || (p_.snapshot_every > 0 && step_ % p_.snapshot_every == 0))
+      snapshot();
+    if (last || step_ % p_.checkpoint_every == 0)
+      save();
+    else if (Clock::now() - last_flush_ > flush_interval)
+      flush();
+
+    record.step = step_;
+    record.time = time_;
+    record.tau = tau;
+    record.rejections = rejections;
+    if (options_.progress)
+      options_.progress(record);
+  }
+
+  void append_metrics(double tau, const std::string& event)
+  {
+    const CurvatureDeviation h = curvature_deviation(op_.curvature, op_.areas);
+    const SphereDeviation d = sphere_deviation(mesh_, op_.areas, p_.reference_centre, p_.reference_radius);
+    const double area = surface_area(mesh_);
+    const double volume = enclosed_volume(mesh_);
+    metrics_ += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", step_, time_, tau, mesh_.n_vertices(),
+                            mesh_.n_faces(), topology_.count, topology_.genus, area, volume, h.mean, h.deviation_pct,
+                            d.d1, d.d2, event);
+  }
+
+  void snapshot()
+  {
+    const std::string name = fmt::format("step_{:06d}", step_);
+    write_mesh(mesh_, dir_ / "snapshots" / (name + ".ply"), {.encoding = Encoding::binary});
+    write_vtp(mesh_, {{"H", op_.curvature}, {"N", op_.normals}, {"w", last_w_}},
+              dir_ / "snapshots" / (name + ".vtp"));
+    const std::filesystem::path file = std::filesystem::path("snapshots") / (name + ".vtp");
+    if (snapshots_.empty() || snapshots_.back().file != file)
+      snapshots_.push_back({time_, file});
+    write_pvd(snapshots_, dir_ / "series.pvd");
+  }
+
+  void flush()
+  {
+    write_atomically(dir_ / "metrics.csv", [&](std::ostream& out) { out << metrics_; });
+    write_atomically(dir_ / "events.log", [&](std::ostream& out) { out << events_; });
+    last_flush_ = Clock::now();
+  }
+
+  //! Flush the logs first: a checkpoint must never be ahead of metrics.csv.
+  void save()
+  {
+    flush();
+    Checkpoint c;
+    c.step = step_;
+    c.time = time_;
+    c.positions = vertex_positions(mesh_);
+    c.triangles = triangles_;
+    c.previous_w = previous_w_;
+    c.time_step = controller_.state();
+    c.solver = solver_.state();
+    c.has_anchor = has_anchor_;
+    if (has_anchor_)
+      c.anchor_positions = anchor_positions_;
+    c.anchor_tau_beta = anchor_tau_beta_;
+    c.snapshots = snapshots_;
+    write_checkpoint(c, dir_ / "checkpoint.bin");
+  }
+
+  void log_event(const std::string& message, long step = -1)
+  {
+    const std::string line = fmt::format("step {} t={}: {}", step < 0 ? step_ : step, time_, message);
+    logger().info("{}", line);
+    events_ += line + '\n';
+  }
+
+  const SimulationOptions& options_;
+  RunParameters p_;
+  std::filesystem::path dir_;
+  FlowSolver solver_;
+  TimeStepController controller_;
+  Mesh mesh_;
+  Triangles triangles_;
+  Topology topology_;
+  std::optional<CotangentCache> cache_;
+  FlowOperators op_;
+  VertexVectors positions_;
+  long step_ = 0;
+  double time_ = 0;
+  Eigen::VectorXd previous_w_, last_w_;
+  bool has_anchor_ = false;
+  VertexVectors anchor_positions_;
+  double anchor_tau_beta_ = 0;
+  std::vector<SeriesEntry> snapshots_;
+  std::string metrics_, events_;
+  Clock::time_point last_flush_ = Clock::now();
+  SimulationResult result_;
+};
+
+} // namespace
+
+SimulationResult run_simulation(const Mesh& initial, const SimulationOptions& options)
+{
+  Runner runner(options);
+  runner.start(initial);
+  return runner.run();
+}
+
+SimulationResult resume_simulation(const SimulationOptions& options)
+{
+  Runner runner(options);
+  runner.resume();
+  return runner.run();
+}
+
+} // namespace sdflow

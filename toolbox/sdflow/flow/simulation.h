@@ -1,0 +1,86 @@
+#pragma once
+//! \file simulation.h
+//! \brief The run driver: steps the flow (scheme.h) under a time-step controller (time_step.h),
+//! calls a re-triangulation hook between steps, and writes the run directory:
+//! ```
+//! DIR/metrics.csv        one row per accepted step (row 0 = the initial surface)
+//! DIR/snapshots/step_NNNNNN.ply, .vtp   surfaces; the .vtp carry per-vertex H, N and w
+//! DIR/series.pvd         ParaView time series of the .vtp files
+//! DIR/run.toml           the fully resolved parameters
+//! DIR/events.log         start, rejections, re-triangulations, resumption, the end or the failure
+//! DIR/checkpoint.bin     the state to resume from (checkpoint.h)
+//! ```
+//! Every file is replaced atomically. metrics.csv and events.log are rewritten at each snapshot and
+//! checkpoint, at the end, and at most every two seconds otherwise, so a killed run leaves complete
+//! files that may lag the computation; `resume_simulation` truncates them to the checkpoint.
+
+#include "sdflow/flow/parameters.h"
+#include "sdflow/mesh.h"
+
+#include <functional>
+#include <string>
+
+namespace sdflow {
+
+//! The columns of metrics.csv, in order.
+inline constexpr const char* metrics_header =
+    "step,time,tau,vertices,faces,components,genus,area,volume,mean_curvature,curvature_deviation_pct,d1,d2,event";
+
+//! Where a re-triangulation hook is called: after step `step` reached `time`.
+struct RetriangulationContext {
+  long step = 0;
+  double time = 0;
+};
+
+//! What a re-triangulation hook did to the mesh (each flag becomes an event of the step's row).
+struct RetriangulationReport {
+  bool remeshed = false; //!< triangulation improved (same topology)
+  bool surgery = false;  //!< self-intersections removed and the surface rebuilt
+  bool split = false;    //!< a component broke into several
+  bool merged = false;   //!< components were joined
+  std::string detail;    //!< one line for events.log
+  bool changed() const { return remeshed || surgery || split || merged; }
+};
+
+//! Called between steps; may change the mesh in place (positions and connectivity), returning what
+//! it did. It must leave a valid mesh (no deleted elements, outward-oriented closed components) and
+//! be deterministic for resumed runs to match uninterrupted ones.
+using RetriangulationHook = std::function<RetriangulationReport(Mesh&, const RetriangulationContext&)>;
+
+//! One accepted step, for progress reporting.
+struct StepRecord {
+  long step = 0;
+  double time = 0;
+  double tau = 0;
+  int rejections = 0;
+  int cg_iterations = 0;
+  bool factorised = false;
+  std::string event;
+};
+
+struct SimulationOptions {
+  RunParameters parameters;
+  RetriangulationHook retriangulate;             //!< optional
+  std::function<void(const StepRecord&)> progress; //!< optional, called after every accepted step
+};
+
+struct SimulationResult {
+  Mesh mesh;               //!< the final surface
+  long steps = 0;          //!< the index of the last step
+  double time = 0;
+  long rejected_trials = 0; //!< over this call
+  long factorisations = 0;  //!< over this call
+};
+
+//! Run the flow from `initial` into `options.parameters.output_dir`, which must not already hold a
+//! run (metrics.csv or checkpoint.bin). Throws InvalidParameter on bad parameters, InvalidMesh on
+//! a mesh the scheme cannot use, SolverFailure when the run becomes unstable (the files written so
+//! far stay complete), IoError when an output cannot be written.
+SimulationResult run_simulation(const Mesh& initial, const SimulationOptions& options);
+
+//! Continue the run in `options.parameters.output_dir` from its checkpoint, exactly as if it had
+//! not stopped (the parameters should be those of its run.toml; the step and time limits may be
+//! raised). Throws IoError if there is no readable checkpoint.
+SimulationResult resume_simulation(const SimulationOptions& options);
+
+} // namespace sdflow

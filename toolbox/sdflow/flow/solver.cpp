@@ -1,0 +1,277 @@
+#include "sdflow/flow/solver.h"
+
+#include "sdflow/errors.h"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/SPQRSupport>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sdflow {
+namespace {
+
+bool is_held(const std::vector<bool>& held, Eigen::Index i) { return !held.empty() && held[i]; }
+
+void check_system(const FlowSystem& s, const Eigen::VectorXd& rhs)
+{
+  const Eigen::Index n = s.laplacian.rows();
+  if (s.laplacian.cols() != n || s.areas.size() != n || rhs.size() != n ||
+      (!s.held.empty() && static_cast<Eigen::Index>(s.held.size()) != n))
+    throw InvalidParameter(fmt::format("flow solver: inconsistent sizes (L {}x{}, areas {}, rhs {}, held {})",
+                                       s.laplacian.rows(), s.laplacian.cols(), s.areas.size(), rhs.size(),
+                                       s.held.size()));
+  if (!(s.tau_beta >= 0) || !std::isfinite(s.tau_beta))
+    throw InvalidParameter(fmt::format("flow solver: τβ must be finite and non-negative, got {}", s.tau_beta));
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (!(s.areas[i] > 0))
+      throw SolverFailure(fmt::format("flow solver: vertex {} has area {} (degenerate star)", i, s.areas[i]));
+}
+
+//! A w for the SPD form, without assembling L M⁻¹ L: two products with L.
+Eigen::VectorXd apply_flow_matrix(const FlowSystem& s, const Eigen::VectorXd& x)
+{
+  Eigen::VectorXd free_x = x;
+  for (Eigen::Index i = 0; i < x.size(); ++i)
+    if (is_held(s.held, i))
+      free_x[i] = 0;
+  const Eigen::VectorXd lx = s.laplacian * free_x;
+  Eigen::VectorXd y = s.tau_beta * (s.laplacian * lx.cwiseQuotient(s.areas));
+  for (Eigen::Index i = 0; i < x.size(); ++i)
+    y[i] = is_held(s.held, i) ? s.areas[i] * x[i] : y[i] + s.areas[i] * x[i];
+  return y;
+}
+
+Eigen::VectorXd held_rhs(const FlowSystem& s, const Eigen::VectorXd& rhs)
+{
+  Eigen::VectorXd b = rhs;
+  for (Eigen::Index i = 0; i < b.size(); ++i)
+    if (is_held(s.held, i))
+      b[i] = 0;
+  return b;
+}
+
+void check_finite(const Eigen::VectorXd& w, const char* what)
+{
+  if (!w.allFinite())
+    throw SolverFailure(fmt::format("flow solver: {} produced a non-finite solution", what));
+}
+
+} // namespace
+
+SparseMatrix flow_matrix(const FlowSystem& s)
+{
+  const Eigen::VectorXd inverse_areas = s.areas.cwiseInverse();
+  const SparseMatrix scaled = inverse_areas.asDiagonal() * s.laplacian;
+  SparseMatrix a = s.laplacian * scaled;
+  // Entries of held rows and columns are zeroed rather than pruned so that the sparsity pattern,
+  // hence CHOLMOD's symbolic analysis, does not depend on which vertices are held.
+  for (Eigen::Index j = 0; j < a.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(a, j); it; ++it) {
+      const bool held = is_held(s.held, it.row()) || is_held(s.held, it.col());
+      it.valueRef() = held ? 0.0 : s.tau_beta * it.value();
+      if (it.row() == it.col())
+        it.valueRef() += s.areas[it.row()];
+    }
+  return a;
+}
+
+struct FlowSolver::Impl {
+  SolverOptions options;
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> cholesky;
+  bool analysed = false, factorised = false;
+  // The pattern of M + τβ L M⁻¹ L is determined by L's, so L's pattern identifies the analysis.
+  std::vector<int> laplacian_outer, laplacian_inner;
+  double factorisation_cost = 0; // in CG iterations
+  SolverState state;
+
+  bool same_pattern(const SparseMatrix& l) const
+  {
+    return analysed && laplacian_outer.size() == static_cast<std::size_t>(l.outerSize() + 1) &&
+           std::equal(laplacian_outer.begin(), laplacian_outer.end(), l.outerIndexPtr()) &&
+           laplacian_inner.size() == static_cast<std::size_t>(l.nonZeros()) &&
+           std::equal(laplacian_inner.begin(), laplacian_inner.end(), l.innerIndexPtr());
+  }
+
+  //! Symbolic analysis when L's pattern is new, then the numeric factorisation.
+  void factorise(const FlowSystem& s, SolveReport& report)
+  {
+    const SparseMatrix a = flow_matrix(s);
+    if (!same_pattern(s.laplacian)) {
+      cholesky.analyzePattern(a);
+      if (cholesky.info() != Eigen::Success)
+        throw SolverFailure(fmt::format("CHOLMOD symbolic analysis failed on a {}x{} system", a.rows(), a.cols()));
+      laplacian_outer.assign(s.laplacian.outerIndexPtr(), s.laplacian.outerIndexPtr() + s.laplacian.outerSize() + 1);
+      laplacian_inner.assign(s.laplacian.innerIndexPtr(), s.laplacian.innerIndexPtr() + s.laplacian.nonZeros());
+      analysed = true;
+      report.analysed = true;
+      const cholmod_common& common = cholesky.cholmod();
+      const double solve_flops = 4.0 * std::max(1.0, common.lnz);
+      factorisation_cost = options.factorisation_cost_scale * common.fl / solve_flops;
+    }
+    factorised = false;
+    cholesky.factorize(a);
+    if (cholesky.info() != Eigen::Success)
+      throw SolverFailure(fmt::format("CHOLMOD factorisation failed on a {}x{} system (not positive definite "
+                                      "to working precision: degenerate triangles?)", a.rows(), a.cols()));
+    factorised = true;
+    report.factorised = true;
+    state = {};
+  }
+
+  bool refactor_due() const
+  {
+    if (!factorised || options.policy == FactorisationPolicy::every_step)
+      return true;
+    if (state.solves_since_factorisation == 0)
+      return false;
+    const double mean_cost = (factorisation_cost + static_cast<double>(state.iterations_since_factorisation)) /
+                             static_cast<double>(state.solves_since_factorisation);
+    return state.last_iterations > mean_cost;
+  }
+
+  //! Preconditioned conjugate gradients with the current factor; false if not converged.
+  bool pcg(const FlowSystem& s, const Eigen::VectorXd& b, Eigen::VectorXd& x, SolveReport& report) const
+  {
+    const double b_norm = b.norm();
+    Eigen::VectorXd r = b - apply_flow_matrix(s, x);
+    const double target = options.cg_tolerance * b_norm;
+    double r_norm = r.norm();
+    report.iterations = 0;
+    if (r_norm <= target) {
+      report.relative_residual = r_norm / b_norm;
+      return true;
+    }
+    Eigen::VectorXd z = cholesky.solve(r);
+    Eigen::VectorXd p = z;
+    double rz = r.dot(z);
+    for (int k = 1; k <= options.max_cg_iterations; ++k) {
+      const Eigen::VectorXd ap = apply_flow_matrix(s, p);
+      const double alpha = rz / p.dot(ap);
+      x += alpha * p;
+      r -= alpha * ap;
+      r_norm = r.norm();
+      report.iterations = k;
+      if (!std::isfinite(r_norm))
+        return false;
+      if (r_norm <= target) {
+        report.relative_residual = r_norm / b_norm;
+        return true;
+      }
+      z = cholesky.solve(r);
+      const double rz_next = r.dot(z);
+      p = z + (rz_next / rz) * p;
+      rz = rz_next;
+    }
+    return false;
+  }
+
+  Eigen::VectorXd solve_cholmod(const FlowSystem& s, const Eigen::VectorXd& rhs, const Eigen::VectorXd& guess,
+                                SolveReport& report)
+  {
+    const Eigen::VectorXd b = held_rhs(s, rhs);
+    const double b_norm = b.norm();
+    if (b_norm == 0)
+      return Eigen::VectorXd::Zero(b.size());
+    if (s.tau_beta == 0) // the explicit scheme: A = M is diagonal
+      return b.cwiseQuotient(s.areas);
+
+    if (!same_pattern(s.laplacian) || refactor_due()) {
+      factorise(s, report);
+    } else {
+      Eigen::VectorXd x = guess.size() == b.size() ? guess : Eigen::VectorXd::Zero(b.size());
+      if (pcg(s, b, x, report)) {
+        ++state.solves_since_factorisation;
+        state.iterations_since_factorisation += report.iterations;
+        state.last_iterations = report.iterations;
+        return x;
+      }
+      factorise(s, report);
+    }
+    Eigen::VectorXd w = cholesky.solve(b);
+    check_finite(w, "CHOLMOD");
+    report.iterations = 0;
+    report.relative_residual = (b - apply_flow_matrix(s, w)).norm() / b_norm;
+    state.solves_since_factorisation = 1;
+    state.iterations_since_factorisation = 0;
+    state.last_iterations = 0;
+    return w;
+  }
+
+  Eigen::VectorXd solve_qr(const FlowSystem& s, const Eigen::VectorXd& rhs, SolveReport& report) const
+  {
+    // The paper's operator I + τβ Δ², Δ = M⁻¹ L, non-symmetric unless all areas are equal.
+    const Eigen::VectorXd inverse_areas = s.areas.cwiseInverse();
+    const SparseMatrix delta = inverse_areas.asDiagonal() * s.laplacian;
+    SparseMatrix a = delta * delta;
+    for (Eigen::Index j = 0; j < a.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(a, j); it; ++it) {
+        it.valueRef() = is_held(s.held, it.row()) ? 0.0 : s.tau_beta * it.value();
+        if (it.row() == it.col())
+          it.valueRef() += 1.0;
+      }
+    Eigen::VectorXd b = held_rhs(s, rhs).cwiseQuotient(s.areas);
+    Eigen::SPQR<SparseMatrix> qr;
+    qr.compute(a);
+    if (qr.info() != Eigen::Success)
+      throw SolverFailure(fmt::format("SuiteSparseQR factorisation failed on a {}x{} system", a.rows(), a.cols()));
+    Eigen::VectorXd w = qr.solve(b);
+    if (qr.info() != Eigen::Success)
+      throw SolverFailure("SuiteSparseQR solve failed");
+    check_finite(w, "SuiteSparseQR");
+    report.factorised = true;
+    const double b_norm = b.norm();
+    report.relative_residual = b_norm > 0 ? (b - a * w).norm() / b_norm : 0.0;
+    return w;
+  }
+};
+
+FlowSolver::FlowSolver(const SolverOptions& options) : impl_(std::make_unique<Impl>())
+{
+  if (!(options.cg_tolerance > 0) || options.max_cg_iterations < 1 || !(options.factorisation_cost_scale >= 0))
+    throw InvalidParameter(fmt::format("flow solver: need cg_tolerance > 0 (got {}), max_cg_iterations ≥ 1 "
+                                       "(got {}), factorisation_cost_scale ≥ 0 (got {})", options.cg_tolerance,
+                                       options.max_cg_iterations, options.factorisation_cost_scale));
+  impl_->options = options;
+}
+
+FlowSolver::~FlowSolver() = default;
+FlowSolver::FlowSolver(FlowSolver&&) noexcept = default;
+FlowSolver& FlowSolver::operator=(FlowSolver&&) noexcept = default;
+
+Eigen::VectorXd FlowSolver::solve(const FlowSystem& system, const Eigen::VectorXd& rhs, const Eigen::VectorXd& guess,
+                                  SolveReport* report)
+{
+  check_system(system, rhs);
+  SolveReport local;
+  Eigen::VectorXd w;
+  if (impl_->options.kind == SolverKind::qr) {
+    w = impl_->solve_qr(system, rhs, local);
+  } else {
+    w = impl_->solve_cholmod(system, rhs, guess, local);
+  }
+  check_finite(w, "the linear solve");
+  if (report)
+    *report = local;
+  return w;
+}
+
+void FlowSolver::forget_factorisation() { impl_->factorised = false; }
+
+SolverState FlowSolver::state() const { return impl_->state; }
+
+void FlowSolver::restore(const FlowSystem& anchor, const SolverState& state)
+{
+  if (impl_->options.kind != SolverKind::cholmod || anchor.tau_beta == 0) {
+    impl_->state = state;
+    return;
+  }
+  SolveReport report;
+  impl_->factorise(anchor, report);
+  impl_->state = state;
+}
+
+const SolverOptions& FlowSolver::options() const { return impl_->options; }
+
+} // namespace sdflow

@@ -1,0 +1,106 @@
+#pragma once
+//! \file solver.h
+//! \brief Linear solves of the semi-implicit step (DESIGN.md §2): the SPD system
+//! (M + τβ L M⁻¹ L) w = L H by CHOLMOD supernodal Cholesky (Chen, Davis, Hager, Rajamanickam 2008),
+//! optionally reused across steps as a conjugate-gradient preconditioner, or the paper's sparse QR
+//! (SuiteSparseQR, Davis 2011) on the non-symmetric form (I + τβΔ²) w = ΔH as a reference.
+
+#include "sdflow/geometry/laplacian.h"
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <vector>
+
+namespace sdflow {
+
+//! One step's linear system, by reference to the operators of the current surface.
+//! Held vertices (fixed boundary) get w = 0: their rows and columns are replaced by M_ii.
+struct FlowSystem {
+  const SparseMatrix& laplacian;  //!< L, symmetric (#V by #V)
+  const Eigen::VectorXd& areas;   //!< diagonal of M, all positive
+  const std::vector<bool>& held;  //!< held[v]: w_v = 0; empty means no vertex is held
+  double tau_beta = 0;            //!< τβ ≥ 0 (0 is the explicit scheme, w = M⁻¹ L H)
+};
+
+enum class SolverKind {
+  cholmod, //!< SPD form by supernodal Cholesky (default)
+  qr       //!< the paper's sparse QR on the non-symmetric form (reference; slow)
+};
+
+//! When the Cholesky factor is recomputed (the symbolic analysis is always kept while the sparsity
+//! pattern is unchanged).
+enum class FactorisationPolicy {
+  every_step, //!< factorise every solve and solve directly
+  reuse       //!< keep a factor as preconditioner for CG; refactor by the amortised-cost rule (default)
+};
+
+struct SolverOptions {
+  SolverKind kind = SolverKind::cholmod;
+  FactorisationPolicy policy = FactorisationPolicy::reuse;
+  //! CG stops when |r|₂ ≤ tolerance |b|₂ (reuse policy only).
+  double cg_tolerance = 1e-10;
+  //! CG iterations before giving up on a stale factor and refactorising.
+  int max_cg_iterations = 40;
+  //! Cost of one numeric factorisation measured in CG iterations, per unit of the flop ratio
+  //! (factorisation flops / one solve's flops) that CHOLMOD reports: the flop ratio overestimates
+  //! the time ratio because factorisation runs dense BLAS-3 kernels much faster than the
+  //! memory-bound triangular solves. Calibrated on this machine (bench_flow_solver).
+  double factorisation_cost_scale = 0.12;
+};
+
+//! What one solve did.
+struct SolveReport {
+  bool analysed = false;   //!< a new symbolic analysis was made (first solve or new pattern)
+  bool factorised = false; //!< a numeric factorisation was made
+  int iterations = 0;      //!< preconditioned CG iterations (0 for a direct solve)
+  double relative_residual = 0; //!< |b - A w|₂ / |b|₂ of the returned solution
+};
+
+//! The solver's between-step state, so that a resumed run makes the same decisions.
+struct SolverState {
+  long solves_since_factorisation = 0;
+  long iterations_since_factorisation = 0;
+  int last_iterations = 0;
+};
+
+//! Solves the step's system, keeping CHOLMOD's symbolic analysis while the sparsity pattern is
+//! unchanged and, with FactorisationPolicy::reuse, a recent numeric factor as preconditioner.
+//! Reuse rule (deterministic, so runs are reproducible): with C the factorisation's cost in CG
+//! iterations, refactor before a solve when the last solve's iterations exceed the mean cost per
+//! solve since the last factorisation, (C + Σ iterations) / solves — the point where keeping the
+//! old factor stops lowering the average cost — or when CG fails to converge.
+class FlowSolver {
+public:
+  explicit FlowSolver(const SolverOptions& options = {});
+  ~FlowSolver();
+  FlowSolver(FlowSolver&&) noexcept;
+  FlowSolver& operator=(FlowSolver&&) noexcept;
+
+  //! Solve (M + τβ L M⁻¹ L) w = rhs (rhs = L H) or, with the QR solver, (I + τβΔ²) w = M⁻¹ rhs.
+  //! `guess` (empty or #V) starts CG. Throws SolverFailure if a factorisation fails or the
+  //! result is not finite, InvalidParameter on inconsistent sizes or a negative τβ.
+  Eigen::VectorXd solve(const FlowSystem& system, const Eigen::VectorXd& rhs,
+                        const Eigen::VectorXd& guess = {}, SolveReport* report = nullptr);
+
+  //! Drop the numeric factor so the next solve factorises (e.g. after connectivity changed).
+  void forget_factorisation();
+
+  //! Counters of the reuse rule, for checkpoints.
+  SolverState state() const;
+
+  //! Factorise `anchor` (the system of the last factorisation) and set the counters, so that
+  //! the solver continues exactly as before a checkpoint.
+  void restore(const FlowSystem& anchor, const SolverState& state);
+
+  const SolverOptions& options() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+//! The assembled SPD matrix M + τβ L M⁻¹ L (held rows and columns replaced by M_ii).
+SparseMatrix flow_matrix(const FlowSystem& system);
+
+} // namespace sdflow

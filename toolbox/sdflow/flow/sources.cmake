@@ -1,0 +1,9 @@
+target_sources(sdflow_toolbox PRIVATE
+  sdflow/flow/checkpoint.cpp
+  sdflow/flow/cotangent_cache.cpp
+  sdflow/flow/parameters.cpp
+  sdflow/flow/scheme.cpp
+  sdflow/flow/simulation.cpp
+  sdflow/flow/solver.cpp
+  sdflow/flow/time_step.cpp
+  sdflow/flow/volume.cpp)

@@ -1,0 +1,216 @@
+#include "sdflow/flow/time_step.h"
+
+#include "sdflow/errors.h"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace sdflow {
+namespace {
+
+std::string trim(const std::string& s)
+{
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string::npos)
+    return {};
+  return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
+}
+
+template <typename T>
+bool parse_number(const std::string& text, T& value)
+{
+  const std::string t = trim(text);
+  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
+  return ec == std::errc() && end == t.data() + t.size();
+}
+
+TauSchedule read_csv_schedule(const std::filesystem::path& file, std::istream& in)
+{
+  std::vector<ScheduleEntry> entries;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    line = trim(line.substr(0, line.find('#')));
+    if (line.empty())
+      continue;
+    std::vector<std::string> fields;
+    std::stringstream ss(line);
+    for (std::string field; std::getline(ss, field, ',');)
+      fields.push_back(field);
+    ScheduleEntry e;
+    const bool ok = fields.size() == 3 && parse_number(fields[0], e.first_step) &&
+                    parse_number(fields[1], e.last_step) && parse_number(fields[2], e.tau);
+    if (!ok) {
+      if (entries.empty() && !std::isdigit(static_cast<unsigned char>(line[0])))
+        continue; // a header line
+      throw IoError(fmt::format("{}:{}: expected `first_step,last_step,tau`, got `{}`", file.string(), number, line));
+    }
+    entries.push_back(e);
+  }
+  return TauSchedule(std::move(entries));
+}
+
+TauSchedule read_toml_schedule(const std::filesystem::path& file)
+{
+  toml::table table;
+  try {
+    table = toml::parse_file(file.string());
+  } catch (const toml::parse_error& e) {
+    throw IoError(fmt::format("{}:{}: {}", file.string(), e.source().begin.line, e.description()));
+  }
+  const toml::array* rows = table["schedule"].as_array();
+  if (!rows)
+    throw IoError(fmt::format("{}: no `schedule = [[first, last, tau], ...]` array", file.string()));
+  std::vector<ScheduleEntry> entries;
+  for (std::size_t i = 0; i < rows->size(); ++i) {
+    const toml::array* row = rows->get(i)->as_array();
+    const auto first = row && row->size() == 3 ? row->get(0)->value<long>() : std::nullopt;
+    const auto last = row && row->size() == 3 ? row->get(1)->value<long>() : std::nullopt;
+    const auto tau = row && row->size() == 3 ? row->get(2)->value<double>() : std::nullopt;
+    if (!first || !last || !tau)
+      throw IoError(fmt::format("{}: schedule entry {} is not [first_step, last_step, tau]", file.string(), i + 1));
+    entries.push_back({*first, *last, *tau});
+  }
+  return TauSchedule(std::move(entries));
+}
+
+} // namespace
+
+TauSchedule::TauSchedule(std::vector<ScheduleEntry> entries) : entries_(std::move(entries))
+{
+  if (entries_.empty())
+    throw InvalidParameter("τ schedule: no entries");
+  for (auto& e : entries_)
+    if (e.first_step == 0)
+      e.first_step = 1; // the paper's tables count from step 0
+  std::sort(entries_.begin(), entries_.end(),
+            [](const ScheduleEntry& a, const ScheduleEntry& b) { return a.first_step < b.first_step; });
+  long expected = 1;
+  for (const auto& e : entries_) {
+    if (e.last_step < e.first_step)
+      throw InvalidParameter(fmt::format("τ schedule: range {}-{} is reversed", e.first_step, e.last_step));
+    if (!(e.tau > 0) || !std::isfinite(e.tau))
+      throw InvalidParameter(fmt::format("τ schedule: steps {}-{} have τ = {} (must be positive)", e.first_step,
+                                         e.last_step, e.tau));
+    if (e.first_step != expected)
+      throw InvalidParameter(fmt::format("τ schedule: {} at step {} (range {}-{} should start at {})",
+                                         e.first_step < expected ? "overlap" : "gap", e.first_step, e.first_step,
+                                         e.last_step, expected));
+    expected = e.last_step + 1;
+  }
+}
+
+double TauSchedule::tau_for_step(long step) const
+{
+  if (entries_.empty())
+    throw InvalidParameter("τ schedule: empty");
+  const auto it = std::lower_bound(entries_.begin(), entries_.end(), step,
+                                   [](const ScheduleEntry& e, long s) { return e.last_step < s; });
+  return it == entries_.end() ? entries_.back().tau : it->tau;
+}
+
+TauSchedule read_schedule(const std::filesystem::path& file)
+{
+  std::ifstream in(file);
+  if (!in)
+    throw IoError(fmt::format("{}: cannot open the τ schedule", file.string()));
+  if (file.extension() == ".toml")
+    return read_toml_schedule(file);
+  return read_csv_schedule(file, in);
+}
+
+std::string StepCheck::describe() const
+{
+  std::vector<std::string> parts;
+  if (non_finite)
+    parts.emplace_back("non-finite positions");
+  if (inverted_triangles > 0)
+    parts.push_back(fmt::format("{} triangles turned over", inverted_triangles));
+  if (displacement_exceeded)
+    parts.push_back(fmt::format("normal displacement {:.3g} of the local edge length", displacement_ratio));
+  if (volume_exceeded)
+    parts.push_back(fmt::format("relative volume change {:.3g}", volume_change));
+  if (parts.empty())
+    return "accepted";
+  std::string text = parts.front();
+  for (std::size_t i = 1; i < parts.size(); ++i)
+    text += ", " + parts[i];
+  return text;
+}
+
+TimeStepController::TimeStepController(const TimeStepOptions& options, TimeStepState state)
+    : options_(options), state_(state)
+{
+  const AdaptiveOptions& a = options_.adaptive;
+  switch (options_.mode) {
+  case TimeStepMode::constant:
+    if (!(options_.tau > 0) || !std::isfinite(options_.tau))
+      throw InvalidParameter(fmt::format("constant τ must be positive and finite, got {}", options_.tau));
+    break;
+  case TimeStepMode::schedule:
+    if (options_.schedule.entries().empty())
+      throw InvalidParameter("τ schedule mode without a schedule");
+    break;
+  case TimeStepMode::adaptive:
+    if (!(a.max_displacement > 0) || !(a.safety > 0 && a.safety <= 1) || !(a.growth >= 1) ||
+        !(a.shrink > 0 && a.shrink < 1) || !(a.max_volume_change > 0) || !(a.min_tau > 0) ||
+        !(a.max_tau >= a.min_tau) || a.max_rejections < 1 || !(a.initial_tau >= 0))
+      throw InvalidParameter(fmt::format(
+          "adaptive τ: need max_displacement > 0 ({}), 0 < safety ≤ 1 ({}), growth ≥ 1 ({}), 0 < shrink < 1 ({}), "
+          "max_volume_change > 0 ({}), 0 < min_tau ≤ max_tau ({}, {}), max_rejections ≥ 1 ({}), initial_tau ≥ 0 ({})",
+          a.max_displacement, a.safety, a.growth, a.shrink, a.max_volume_change, a.min_tau, a.max_tau,
+          a.max_rejections, a.initial_tau));
+    break;
+  }
+}
+
+double TimeStepController::propose(long step, double automatic_tau, double time_left)
+{
+  double tau = 0;
+  switch (options_.mode) {
+  case TimeStepMode::constant: tau = options_.tau; break;
+  case TimeStepMode::schedule: tau = options_.schedule.tau_for_step(step); break;
+  case TimeStepMode::adaptive:
+    if (state_.next_tau == 0)
+      state_.next_tau = options_.adaptive.initial_tau > 0 ? options_.adaptive.initial_tau : automatic_tau;
+    if (!(state_.next_tau > 0) || !std::isfinite(state_.next_tau))
+      throw InvalidParameter(fmt::format("adaptive τ: no usable initial τ (got {})", state_.next_tau));
+    tau = std::clamp(state_.next_tau, options_.adaptive.min_tau, options_.adaptive.max_tau);
+    break;
+  }
+  return std::min(tau, time_left);
+}
+
+bool TimeStepController::judge(long step, double tau, const StepCheck& check)
+{
+  if (options_.mode != TimeStepMode::adaptive) {
+    if (check.non_finite || check.inverted_triangles > 0)
+      throw SolverFailure(fmt::format("step {} with τ = {:g} is unstable: {}. Use a smaller τ, β ≥ 1/2, or "
+                                      "adaptive time steps", step, tau, check.describe()));
+    return true;
+  }
+  const AdaptiveOptions& a = options_.adaptive;
+  if (!check.failed()) {
+    state_.rejections = 0;
+    const double predicted = check.displacement_ratio > 0 ? a.safety * a.max_displacement / check.displacement_ratio
+                                                          : a.growth;
+    state_.next_tau = std::min(a.max_tau, tau * std::min(a.growth, predicted));
+    return true;
+  }
+  ++state_.rejections;
+  double factor = a.shrink;
+  if (check.displacement_exceeded && check.displacement_ratio > 0)
+    factor = std::min(factor, a.safety * a.max_displacement / check.displacement_ratio);
+  state_.next_tau = tau * factor;
+  if (state_.rejections > a.max_rejections || state_.next_tau < a.min_tau)
+    throw SolverFailure(fmt::format("step {}: unstable, no acceptable τ after {} rejections (last τ = {:g}: {})",
+                                    step, state_.rejections, tau, check.describe()));
+  return false;
+}
+
+} // namespace sdflow

@@ -1,0 +1,113 @@
+#pragma once
+//! \file time_step.h
+//! \brief Time-step control: constant τ, step-range schedules like the paper's Tables 1–3, and
+//! automatic adaptive τ (the default).
+//!
+//! Adaptive rule (after each solve, before accepting the step):
+//! - d = max_v τ|w_v| / h_v, the normal displacement relative to the mean length h_v of the edges
+//!   at v. The step is rejected if d > max_displacement, and the next τ is scaled by
+//!   min(growth, safety · max_displacement / d), at least by `shrink` on a rejection.
+//!   So τ grows by at most `growth` per step while the surface is calm.
+//! - A step is also rejected when a triangle turns over (its normal reverses), a position is not
+//!   finite, or a closed component's enclosed volume changes by more than `max_volume_change`
+//!   (relative): τ is then multiplied by `shrink`.
+//! - After `max_rejections` rejections in a row, or when τ would fall below `min_tau`, the run stops
+//!   with SolverFailure: the flow cannot be continued stably from this surface.
+//! With constant τ or a schedule, any of these failures stops the run at once (SolverFailure).
+
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace sdflow {
+
+enum class TimeStepMode { constant, schedule, adaptive };
+
+//! Steps first..last (1-based, inclusive) use τ.
+struct ScheduleEntry {
+  long first_step = 1;
+  long last_step = 1;
+  double tau = 0;
+};
+
+//! A τ table sorted by step, covering 1..last without gaps or overlaps; steps past the last entry
+//! keep its τ.
+class TauSchedule {
+public:
+  TauSchedule() = default;
+  //! Throws InvalidParameter on an empty table, gaps, overlaps, reversed ranges or τ ≤ 0.
+  explicit TauSchedule(std::vector<ScheduleEntry> entries);
+  double tau_for_step(long step) const;
+  const std::vector<ScheduleEntry>& entries() const { return entries_; }
+
+private:
+  std::vector<ScheduleEntry> entries_;
+};
+
+//! Read a schedule file: CSV lines `first_step,last_step,tau` (a header line and `#` comments
+//! allowed), or TOML (`.toml`) with `schedule = [[first, last, tau], ...]`. The paper's tables
+//! start at step 0; step 0 is read as step 1. Throws IoError (file, line) or InvalidParameter.
+TauSchedule read_schedule(const std::filesystem::path& file);
+
+struct AdaptiveOptions {
+  double initial_tau = 0;          //!< 0: automatic, from the explicit velocity ΔH and the edge lengths
+  double max_displacement = 0.05;  //!< bound on max τ|w|/h per step
+  double safety = 0.8;             //!< aim below the bound when predicting the next τ
+  double growth = 1.25;            //!< largest growth factor of τ per accepted step
+  double shrink = 0.5;             //!< factor applied to τ on a rejection
+  double max_volume_change = 1e-3; //!< relative change of a closed component's volume per step
+  double min_tau = 1e-14;          //!< below this τ the run is declared unstable
+  double max_tau = std::numeric_limits<double>::infinity();
+  int max_rejections = 25;         //!< rejections in a row before the run is declared unstable
+};
+
+struct TimeStepOptions {
+  TimeStepMode mode = TimeStepMode::adaptive;
+  double tau = 0;                  //!< the constant τ (mode constant)
+  TauSchedule schedule;            //!< mode schedule
+  std::filesystem::path schedule_file; //!< where the schedule came from (recorded in run.toml)
+  AdaptiveOptions adaptive;
+};
+
+//! Why a trial step was not accepted.
+struct StepCheck {
+  double displacement_ratio = 0;   //!< max τ|w|/h
+  int inverted_triangles = 0;
+  bool non_finite = false;
+  double volume_change = 0;        //!< largest relative volume change of a closed component
+  bool displacement_exceeded = false;
+  bool volume_exceeded = false;
+  bool failed() const { return non_finite || inverted_triangles > 0 || displacement_exceeded || volume_exceeded; }
+  std::string describe() const;
+};
+
+//! The state of the time-step controller between steps (saved in checkpoints).
+struct TimeStepState {
+  double next_tau = 0;   //!< adaptive: τ to try next (0 before the first step)
+  int rejections = 0;    //!< rejections in a row
+};
+
+//! Decides τ for each trial and whether to accept it.
+class TimeStepController {
+public:
+  explicit TimeStepController(const TimeStepOptions& options, TimeStepState state = {});
+
+  //! τ for the trial of step `step` (1-based); `automatic_tau` is used by the adaptive mode
+  //! before its first step when no initial τ was given. Never past `time_left` (> 0).
+  double propose(long step, double automatic_tau, double time_left);
+
+  //! Record the check of the last proposed τ. Returns true if the step is accepted. On a rejection
+  //! in adaptive mode the next proposal is smaller; throws SolverFailure when the run is unstable
+  //! (any failure in constant or schedule mode, too many rejections or τ < min_tau in adaptive mode).
+  bool judge(long step, double tau, const StepCheck& check);
+
+  const TimeStepState& state() const { return state_; }
+  const TimeStepOptions& options() const { return options_; }
+
+private:
+  TimeStepOptions options_;
+  TimeStepState state_;
+};
+
+} // namespace sdflow

@@ -1,0 +1,96 @@
+#include "sdflow/flow/volume.h"
+
+#include "sdflow/errors.h"
+#include "sdflow/geometry/normals.h"
+#include "sdflow/geometry/topology.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace sdflow {
+namespace {
+
+using Faces = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+//! Signed volume of each component, and the derivative of each volume when every vertex moves
+//! along `direction` at unit speed: Σ_f (b×c·d_a + c×a·d_b + a×b·d_c)/6.
+void volumes_and_rates(const VertexVectors& x, const VertexVectors& direction, const Faces& faces,
+                       const std::vector<int>& component, std::vector<double>& volume, std::vector<double>& rate)
+{
+  std::fill(volume.begin(), volume.end(), 0.0);
+  std::fill(rate.begin(), rate.end(), 0.0);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const Eigen::Vector3d a = x.row(faces(f, 0)), b = x.row(faces(f, 1)), c = x.row(faces(f, 2));
+    const int k = component[f];
+    volume[k] += a.dot(b.cross(c)) / 6.0;
+    rate[k] += (b.cross(c).dot(direction.row(faces(f, 0))) + c.cross(a).dot(direction.row(faces(f, 1))) +
+                a.cross(b).dot(direction.row(faces(f, 2)))) / 6.0;
+  }
+}
+
+} // namespace
+
+std::vector<double> component_volumes(const VertexVectors& positions, const Faces& triangles,
+                                      const std::vector<int>& face_component, int count)
+{
+  std::vector<double> volume(count, 0.0);
+  for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
+    const Eigen::Vector3d a = positions.row(triangles(f, 0)), b = positions.row(triangles(f, 1)),
+                          c = positions.row(triangles(f, 2));
+    volume[face_component[f]] += a.dot(b.cross(c)) / 6.0;
+  }
+  return volume;
+}
+
+VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& target_volumes)
+{
+  int count = 0;
+  const std::vector<int> component = face_component_ids(mesh, &count);
+  if (static_cast<int>(target_volumes.size()) != count)
+    throw InvalidParameter(fmt::format("restore_volumes: {} target volumes for {} components", target_volumes.size(),
+                                       count));
+  const std::vector<ComponentTopology> topology = component_topology(mesh);
+  const VertexVectors normals = vertex_normals(mesh);
+  const Faces faces = face_indices(mesh);
+  std::vector<int> vertex_component(mesh.n_vertices(), -1);
+  for (auto f : mesh.faces())
+    for (auto v : f.vertices())
+      vertex_component[v.idx()] = component[f.idx()];
+
+  VolumeRestoration result;
+  result.positions = vertex_positions(mesh);
+  result.offsets.assign(count, 0.0);
+  const VertexVectors start = result.positions;
+  std::vector<double> volume(count), rate(count);
+  constexpr int max_newton_iterations = 20;
+  constexpr double round_off = 4 * std::numeric_limits<double>::epsilon();
+  for (int iteration = 0; iteration < max_newton_iterations; ++iteration) {
+    volumes_and_rates(result.positions, normals, faces, component, volume, rate);
+    bool converged = true;
+    for (int k = 0; k < count; ++k) {
+      if (!topology[k].closed())
+        continue;
+      const double error = volume[k] - target_volumes[k];
+      if (std::abs(error) <= round_off * std::abs(target_volumes[k]))
+        continue;
+      if (!(std::abs(rate[k]) > 0))
+        throw SolverFailure(fmt::format("restore_volumes: component {} has no volume gradient along its normals", k));
+      converged = false;
+      result.offsets[k] -= error / rate[k];
+    }
+    if (converged)
+      break;
+    for (Eigen::Index v = 0; v < result.positions.rows(); ++v)
+      if (vertex_component[v] >= 0)
+        result.positions.row(v) = start.row(v) + result.offsets[vertex_component[v]] * normals.row(v);
+  }
+  volumes_and_rates(result.positions, normals, faces, component, volume, rate);
+  for (int k = 0; k < count; ++k)
+    if (topology[k].closed())
+      result.max_relative_error =
+          std::max(result.max_relative_error, std::abs(volume[k] - target_volumes[k]) / std::abs(target_volumes[k]));
+  return result;
+}
+
+} // namespace sdflow
