@@ -186,11 +186,21 @@ public:
   {
     plane_.resize(tree_.triangle_count());
     flat_.resize(tree_.triangle_count());
+    ball_.resize(tree_.triangle_count());
     for_blocks(execution, tree_.triangle_count(), [&](std::size_t begin, std::size_t end) {
       for (std::size_t t = begin; t < end; ++t) {
         const auto& [a, b, c] = tree_.triangle(static_cast<int>(t));
         plane_[t] = exact::PreparedPlane(point(a), point(b), point(c));
         flat_[t] = !plane_[t].surely_proper() && exact::projection_axis(point(a), point(b), point(c)) < 0;
+        Ball& ball = ball_[t];
+        double r2 = 0;
+        for (int k = 0; k < 3; ++k)
+          ball.centre[k] = (point(a)[k] + point(b)[k] + point(c)[k]) / 3.0;
+        for (P corner : {point(a), point(b), point(c)}) {
+          const double dx = corner[0] - ball.centre[0], dy = corner[1] - ball.centre[1], dz = corner[2] - ball.centre[2];
+          r2 = std::max(r2, dx * dx + dy * dy + dz * dz);
+        }
+        ball.radius = std::sqrt(r2);
       }
     });
   }
@@ -199,6 +209,17 @@ public:
 
   //! Three collinear corners.
   bool degenerate(int t) const { return flat_[t]; }
+
+  //! The balls around faces s and t are certainly apart, so the faces are. A cheap filter: the
+  //! relative slack of 1e-9 dwarfs the rounding of the centres, radii and distance.
+  bool surely_apart(int s, int t) const
+  {
+    const Ball& a = ball_[s];
+    const Ball& b = ball_[t];
+    const double dx = a.centre[0] - b.centre[0], dy = a.centre[1] - b.centre[1], dz = a.centre[2] - b.centre[2];
+    const double reach = (a.radius + b.radius) * (1 + 1e-9);
+    return dx * dx + dy * dy + dz * dz > reach * reach;
+  }
 
   //! Faces s and t share a vertex.
   bool adjacent(int s, int t) const
@@ -297,17 +318,27 @@ public:
   }
 
 private:
+  struct Ball {
+    double centre[3];
+    double radius;
+  };
+
   const Bvh& tree_;
   const double* points_;
   std::vector<exact::PreparedPlane> plane_;
+  std::vector<Ball> ball_;
   std::vector<char> flat_;
 };
 
-//! The triangles around each vertex (compressed rows).
+//! The triangles around each vertex v (compressed rows), each with its two corners after v.
 struct Stars {
-  std::vector<int> offset, face;
+  struct Corner {
+    int face, a, b;
+  };
+  std::vector<int> offset;
+  std::vector<Corner> corner;
 
-  explicit Stars(const Bvh& tree) : offset(tree.vertex_count() + 1, 0), face(3 * tree.triangle_count())
+  explicit Stars(const Bvh& tree) : offset(tree.vertex_count() + 1, 0), corner(3 * tree.triangle_count())
   {
     for (int t = 0; t < tree.triangle_count(); ++t)
       for (int v : tree.triangle(t))
@@ -315,36 +346,31 @@ struct Stars {
     for (std::size_t v = 1; v < offset.size(); ++v)
       offset[v] += offset[v - 1];
     std::vector<int> next(offset.begin(), offset.end() - 1);
-    for (int t = 0; t < tree.triangle_count(); ++t)
-      for (int v : tree.triangle(t))
-        face[next[v]++] = t;
+    for (int t = 0; t < tree.triangle_count(); ++t) {
+      const auto& c = tree.triangle(t);
+      for (int k = 0; k < 3; ++k)
+        corner[next[c[k]]++] = {t, c[(k + 1) % 3], c[(k + 2) % 3]};
+    }
   }
 };
 
 //! Intersecting pairs of faces that share a vertex, found through the vertex stars instead of the
 //! tree: every such pair is tested once, at its shared vertex of smallest index, with the star's
 //! corners and planes hot in cache.
-void adjacent_intersections(const Bvh& tree, const FaceTester& tester, const Stars& stars, int first, int last,
+void adjacent_intersections(const FaceTester& tester, const Stars& stars, int first, int last,
                             std::vector<FacePair>& out)
 {
-  struct Corner {
-    int face, a, b; // the face and its corners after v, in order
-  };
-  std::vector<Corner> star;
+  using Corner = Stars::Corner;
   for (int v = first; v < last; ++v) {
-    star.clear();
-    for (int i = stars.offset[v]; i < stars.offset[v + 1]; ++i) {
-      const int f = stars.face[i];
-      if (tester.degenerate(f))
+    const int begin = stars.offset[v], end = stars.offset[v + 1];
+    for (int i = begin; i < end; ++i) {
+      const Corner& x = stars.corner[i];
+      if (tester.degenerate(x.face))
         continue;
-      const auto& t = tree.triangle(f);
-      const int k = t[0] == v ? 0 : (t[1] == v ? 1 : 2);
-      star.push_back({f, t[(k + 1) % 3], t[(k + 2) % 3]});
-    }
-    for (std::size_t i = 0; i < star.size(); ++i) {
-      const Corner& x = star[i];
-      for (std::size_t j = i + 1; j < star.size(); ++j) {
-        const Corner& y = star[j];
+      for (int j = i + 1; j < end; ++j) {
+        const Corner& y = stars.corner[j];
+        if (tester.degenerate(y.face))
+          continue;
         bool hit;
         if (x.a == y.b && x.b == y.a) {
           hit = v < x.a && v < x.b; // a doubled face, counted once
@@ -371,7 +397,7 @@ void adjacent_intersections(const Bvh& tree, const FaceTester& tester, const Sta
                             std::vector<FacePair>& out)
 {
   collect_blocks(execution, tree.vertex_count(), [&](std::size_t begin, std::size_t end, std::vector<FacePair>& found) {
-    adjacent_intersections(tree, tester, stars, static_cast<int>(begin), static_cast<int>(end), found);
+    adjacent_intersections(tester, stars, static_cast<int>(begin), static_cast<int>(end), found);
   }, out);
 }
 
@@ -514,7 +540,7 @@ struct SelfIntersectionTracker::State {
     collect_blocks(execution, candidates.size(), [&](std::size_t begin, std::size_t end, std::vector<FacePair>& found) {
       for (std::size_t i = begin; i < end; ++i) {
         const FacePair& c = candidates[i];
-        if (!tester.degenerate(c.first) && !tester.degenerate(c.second) &&
+        if (!tester.surely_apart(c.first, c.second) && !tester.degenerate(c.first) && !tester.degenerate(c.second) &&
             FaceTester::triangles(tester, c.first, tester, c.second))
           found.push_back(c);
       }
