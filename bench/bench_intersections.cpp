@@ -1,5 +1,6 @@
-//! BVH build, self-intersection check and refit-based re-check on the 100k-vertex sphere
-//! (bench/cube_sphere.h). The CGAL side-by-side run is peer_cgal_intersections.cpp.
+//! BVH build, refit and closest-point queries, self-intersection check and tracker re-check on
+//! the 100k-vertex sphere (bench/cube_sphere.h), all on one thread so that CPU times compare. The
+//! CGAL side-by-side run (and the threaded variants) is peer_cgal_intersections.cpp.
 #include "cube_sphere.h"
 
 #include "sdflow/retri/bvh.h"
@@ -58,7 +59,7 @@ void self_intersection_check(benchmark::State& state, const Mesh& mesh)
 {
   std::size_t pairs = 0;
   for (auto _ : state)
-    pairs = self_intersections(mesh).size();
+    pairs = self_intersections(mesh, {.execution = Execution::sequential}).size();
   state.counters["pairs"] = static_cast<double>(pairs);
 }
 
@@ -69,7 +70,7 @@ void BM_SelfIntersections_PushedThrough(benchmark::State& state) { self_intersec
 //! cached candidates stay valid, only the tree is refitted and the pairs re-tested.
 void BM_TrackerUpdate_SmoothStep(benchmark::State& state)
 {
-  SelfIntersectionTracker tracker(sphere());
+  SelfIntersectionTracker tracker(sphere(), {.execution = Execution::sequential});
   const VertexVectors a = bench::smooth_step(sphere(), 2e-4), b = bench::smooth_step(sphere(), -2e-4);
   bool flip = false;
   for (auto _ : state)
@@ -82,7 +83,7 @@ void BM_TrackerUpdate_SmoothStep(benchmark::State& state)
 //! edge): adjacent faces turn nearly coplanar at random, the hard case.
 void BM_TrackerUpdate_NoisyStep(benchmark::State& state)
 {
-  SelfIntersectionTracker tracker(sphere());
+  SelfIntersectionTracker tracker(sphere(), {.execution = Execution::sequential});
   const VertexVectors a = bench::jiggled(sphere(), 1e-4, 4), b = bench::jiggled(sphere(), 1e-4, 5);
   bool flip = false;
   for (auto _ : state)
@@ -94,7 +95,7 @@ void BM_TrackerUpdate_NoisyStep(benchmark::State& state)
 //! Re-check after a step larger than the margin: refit, new candidates, test.
 void BM_TrackerUpdate_LargeStep(benchmark::State& state)
 {
-  SelfIntersectionTracker tracker(sphere());
+  SelfIntersectionTracker tracker(sphere(), {.execution = Execution::sequential});
   VertexVectors a = vertex_positions(sphere()), b = a * 1.02;
   bool flip = false;
   for (auto _ : state)
