@@ -3,7 +3,6 @@
 #include "sdflow/errors.h"
 #include "sdflow/log.h"
 
-#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
