@@ -59,16 +59,6 @@ struct DelaunayFacets {
         return v;
     return -1;
   }
-
-  //! The facet with vertices {a, b, c}, or -1.
-  int find(int a, int b, int c) const
-  {
-    const auto [first, last] = around(a, b);
-    for (auto it = first; it != last; ++it)
-      if (third_vertex(it->second, a, b) == c)
-        return it->second;
-    return -1;
-  }
 };
 
 //! True when every point lies exactly in the plane of three of them (`frame`, the farthest
@@ -324,11 +314,7 @@ private:
   {
     return (point(b) - point(a)).cross(point(c) - point(a)).normalized();
   }
-  Eigen::Vector3d triangle_normal(int t) const
-  {
-    const auto& [a, b, c] = triangles_[t];
-    return unit_normal(a, b, c);
-  }
+  const Eigen::Vector3d& triangle_normal(int t) const { return triangle_normals_[t]; }
   bool agrees_with_points(const Eigen::Vector3d& normal, int a, int b, int c) const
   {
     return normal.allFinite() && normal.dot(n_.row(a)) >= cos_normal_ && normal.dot(n_.row(b)) >= cos_normal_ &&
@@ -348,6 +334,7 @@ private:
   {
     const int t = static_cast<int>(triangles_.size());
     triangles_.push_back({a, b, c});
+    triangle_normals_.push_back(unit_normal(a, b, c));
     facet_of_.push_back(facet);
     const std::array<int, 3> v = {a, b, c};
     for (int e = 0; e < 3; ++e) {
@@ -365,6 +352,7 @@ private:
       unused_points_ += --triangle_count_[v[e]] == 0;
     }
     triangles_.pop_back();
+    triangle_normals_.pop_back();
     facet_of_.pop_back();
   }
 
@@ -382,7 +370,7 @@ private:
     const Slot* s = slot(x, y);
     const int surface = s->in;
     const int surface_facet = facet_of_[surface];
-    const Eigen::Vector3d surface_normal = triangle_normal(surface);
+    const Eigen::Vector3d& surface_normal = triangle_normal(surface);
     double best_radius = infinity;
     int best_v = -1, best_facet = -1;
     Eigen::Vector3d best_normal;
@@ -574,6 +562,7 @@ private:
   std::vector<std::vector<Slot>> around_;
   std::vector<int> triangle_count_;
   std::vector<std::array<int, 3>> triangles_;
+  std::vector<Eigen::Vector3d> triangle_normals_;
   std::vector<int> facet_of_;
   std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> queue_;
   std::unordered_map<std::uint64_t, std::vector<int>> excluded_;
