@@ -233,6 +233,25 @@ TEST(Reconstruct, separate_surfaces_become_separate_components)
     EXPECT_TRUE(c.closed());
 }
 
+TEST(Reconstruct, duplicate_points_are_left_unused)
+{
+  const Mesh sphere = analytic::icosphere(3, 1.0);
+  const VertexVectors points = vertex_positions(sphere);
+  const Eigen::Index n = points.rows();
+  VertexVectors doubled(n + 50, 3);
+  doubled << points, points.topRows(50);
+  const VertexVectors normals = doubled.rowwise().normalized();
+  const Reconstruction r = reconstruct_surface(doubled, normals);
+  ASSERT_EQ(r.unused.size(), 50u);
+  for (std::size_t i = 0; i < 50; ++i)
+    EXPECT_EQ(r.unused[i], n + static_cast<Eigen::Index>(i));
+  const auto topology = component_topology(r.mesh);
+  ASSERT_EQ(topology.size(), 1u);
+  EXPECT_TRUE(topology[0].closed());
+  EXPECT_EQ(topology[0].genus, 0);
+  EXPECT_EQ(checks::self_intersecting_pairs(r.mesh), 0);
+}
+
 TEST(Reconstruct, bad_input_is_rejected_with_a_clear_error)
 {
   const auto s = samples::sphere(200, 1.0, 71);

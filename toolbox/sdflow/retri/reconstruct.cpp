@@ -139,22 +139,40 @@ DelaunayFacets delaunay_facets(const VertexVectors& x, double perturbation)
   std::array<int, 3> frame{};
   const bool planar = all_coplanar(x, frame);
   const double diagonal = (hi - lo).norm();
+  // Exact duplicates would be pulled apart by the perturbation and both used: keep the first.
+  std::vector<int> order(n);
+  for (int i = 0; i < n; ++i)
+    order[i] = i;
+  const auto lexicographic = [&](int i, int j) {
+    return std::lexicographical_compare(x.row(i).data(), x.row(i).data() + 3, x.row(j).data(), x.row(j).data() + 3);
+  };
+  std::sort(order.begin(), order.end(), [&](int i, int j) { return lexicographic(i, j) || (!lexicographic(j, i) && i < j); });
+  std::vector<char> duplicate(n, 0);
+  for (int k = 1; k < n; ++k)
+    duplicate[order[k]] = x.row(order[k]) == x.row(order[k - 1]);
+  std::vector<int> kept; // TetGen's point index -> input index; the apex, if any, maps to n
+  for (int i = 0; i < n; ++i)
+    if (!duplicate[i])
+      kept.push_back(i);
+  const auto m = static_cast<int>(kept.size());
+
   tetgenio in, out;
   // A planar set has no tetrahedra: one extra apex above the plane makes every facet in the plane
   // a facet of a tetrahedron; facets through the apex are never candidates.
-  in.numberofpoints = n + (planar ? 1 : 0);
+  in.numberofpoints = m + (planar ? 1 : 0);
   in.pointlist = new REAL[3 * static_cast<std::size_t>(in.numberofpoints)];
   std::mt19937 rng(20040701);
   std::uniform_real_distribution<double> jitter(-1.0, 1.0);
   const double amplitude = planar ? 0.0 : perturbation * diagonal;
-  for (int i = 0; i < n; ++i)
+  for (int i = 0; i < m; ++i)
     for (int d = 0; d < 3; ++d)
-      in.pointlist[3 * i + d] = x(i, d) + (amplitude > 0 ? amplitude * jitter(rng) : 0.0);
+      in.pointlist[3 * i + d] = x(kept[i], d) + (amplitude > 0 ? amplitude * jitter(rng) : 0.0);
   if (planar) {
     const Eigen::Vector3d a = x.row(frame[0]).transpose(), b = x.row(frame[1]).transpose(), c = x.row(frame[2]).transpose();
     const Eigen::Vector3d apex = 0.5 * (lo + hi) + diagonal * (b - a).cross(c - a).normalized();
     for (int d = 0; d < 3; ++d)
-      in.pointlist[3 * n + d] = apex[d];
+      in.pointlist[3 * m + d] = apex[d];
+    kept.push_back(n);
   }
   char switches[] = "zQn"; // zero-based indices, quiet, neighbours
   try {
@@ -177,12 +195,13 @@ DelaunayFacets delaunay_facets(const VertexVectors& x, double perturbation)
       const int other = neighbour[4 * t + i];
       if (other >= 0 && other < t)
         continue;
-      const std::array<int, 3> f = {tet[4 * t + (i + 1) % 4], tet[4 * t + (i + 2) % 4], tet[4 * t + (i + 3) % 4]};
-      std::array<int, 2> q = {tet[4 * t + i], -1};
+      const std::array<int, 3> f = {kept[tet[4 * t + (i + 1) % 4]], kept[tet[4 * t + (i + 2) % 4]],
+                                    kept[tet[4 * t + (i + 3) % 4]]};
+      std::array<int, 2> q = {kept[tet[4 * t + i]], -1};
       if (other >= 0)
         for (int j = 0; j < 4; ++j)
           if (neighbour[4 * other + j] == t)
-            q[1] = tet[4 * other + j];
+            q[1] = kept[tet[4 * other + j]];
       dt.vertices.push_back(f);
       apex.push_back(q);
     }
@@ -193,7 +212,7 @@ DelaunayFacets delaunay_facets(const VertexVectors& x, double perturbation)
   if (planar) {
     xa.conservativeResize(n + 1, 3);
     for (int d = 0; d < 3; ++d)
-      xa(n, d) = in.pointlist[3 * n + d];
+      xa(n, d) = in.pointlist[3 * m + d];
   }
   dt.radius.resize(facets);
   tbb::parallel_for(tbb::blocked_range<int>(0, facets, 4096), [&](const tbb::blocked_range<int>& range) {
