@@ -153,6 +153,46 @@ TEST(Reconstruct, hemisphere_keeps_its_rim)
   EXPECT_EQ(faces_facing_inward(r.mesh, [](const Eigen::Vector3d& p) { return p; }), 0);
 }
 
+// A grid on the faces of a cube: every face is a plane full of cocircular squares, the worst case
+// for the perturbed tetrahedralisation (flat tetrahedra whose facets overlap in exact arithmetic),
+// and the edges are 90° creases.
+TEST(Reconstruct, cube_grid_closes_without_intersections_at_any_perturbation)
+{
+  constexpr int m = 12;
+  std::vector<Eigen::Vector3d> p, n;
+  for (int i = 0; i <= m; ++i)
+    for (int j = 0; j <= m; ++j)
+      for (int k = 0; k <= m; ++k) {
+        if (i != 0 && i != m && j != 0 && j != m && k != 0 && k != m)
+          continue;
+        const Eigen::Vector3d x(-1 + 2.0 * i / m, -1 + 2.0 * j / m, -1 + 2.0 * k / m);
+        Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+        for (int d = 0; d < 3; ++d)
+          if (std::abs(x[d]) == 1)
+            normal[d] = x[d];
+        p.push_back(x);
+        n.push_back(normal.normalized());
+      }
+  VertexVectors points(p.size(), 3), normals(p.size(), 3);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    points.row(static_cast<Eigen::Index>(i)) = p[i].transpose();
+    normals.row(static_cast<Eigen::Index>(i)) = n[i].transpose();
+  }
+  for (double perturbation : {0.0, 1e-9, 1e-6}) {
+    SCOPED_TRACE(perturbation);
+    ReconstructionOptions options;
+    options.delaunay_perturbation = perturbation;
+    const Reconstruction r = reconstruct_surface(points, normals, options);
+    const auto topology = component_topology(r.mesh);
+    ASSERT_EQ(topology.size(), 1u);
+    EXPECT_EQ(topology[0].genus, 0);
+    EXPECT_TRUE(topology[0].closed());
+    EXPECT_TRUE(r.unused.empty());
+    EXPECT_EQ(r.mesh.n_faces(), 12u * m * m); // 6 faces of m² squares, two triangles each
+    EXPECT_EQ(checks::self_intersecting_pairs(r.mesh), 0);
+  }
+}
+
 TEST(Reconstruct, random_samples_with_estimated_normals_close_up)
 {
   struct Case {
@@ -191,6 +231,25 @@ TEST(Reconstruct, separate_surfaces_become_separate_components)
   EXPECT_EQ(genera, (std::multiset<int>{0, 1}));
   for (const auto& c : topology)
     EXPECT_TRUE(c.closed());
+}
+
+TEST(Reconstruct, duplicate_points_are_left_unused)
+{
+  const Mesh sphere = analytic::icosphere(3, 1.0);
+  const VertexVectors points = vertex_positions(sphere);
+  const Eigen::Index n = points.rows();
+  VertexVectors doubled(n + 50, 3);
+  doubled << points, points.topRows(50);
+  const VertexVectors normals = doubled.rowwise().normalized();
+  const Reconstruction r = reconstruct_surface(doubled, normals);
+  ASSERT_EQ(r.unused.size(), 50u);
+  for (std::size_t i = 0; i < 50; ++i)
+    EXPECT_EQ(r.unused[i], n + static_cast<Eigen::Index>(i));
+  const auto topology = component_topology(r.mesh);
+  ASSERT_EQ(topology.size(), 1u);
+  EXPECT_TRUE(topology[0].closed());
+  EXPECT_EQ(topology[0].genus, 0);
+  EXPECT_EQ(checks::self_intersecting_pairs(r.mesh), 0);
 }
 
 TEST(Reconstruct, bad_input_is_rejected_with_a_clear_error)

@@ -3,7 +3,6 @@
 #include "sdflow/errors.h"
 #include "sdflow/log.h"
 
-#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -58,16 +57,6 @@ struct DelaunayFacets {
     for (int v : vertices[f])
       if (v != a && v != b)
         return v;
-    return -1;
-  }
-
-  //! The facet with vertices {a, b, c}, or -1.
-  int find(int a, int b, int c) const
-  {
-    const auto [first, last] = around(a, b);
-    for (auto it = first; it != last; ++it)
-      if (third_vertex(it->second, a, b) == c)
-        return it->second;
     return -1;
   }
 };
@@ -150,22 +139,40 @@ DelaunayFacets delaunay_facets(const VertexVectors& x, double perturbation)
   std::array<int, 3> frame{};
   const bool planar = all_coplanar(x, frame);
   const double diagonal = (hi - lo).norm();
+  // Exact duplicates would be pulled apart by the perturbation and both used: keep the first.
+  std::vector<int> order(n);
+  for (int i = 0; i < n; ++i)
+    order[i] = i;
+  const auto lexicographic = [&](int i, int j) {
+    return std::lexicographical_compare(x.row(i).data(), x.row(i).data() + 3, x.row(j).data(), x.row(j).data() + 3);
+  };
+  std::sort(order.begin(), order.end(), [&](int i, int j) { return lexicographic(i, j) || (!lexicographic(j, i) && i < j); });
+  std::vector<char> duplicate(n, 0);
+  for (int k = 1; k < n; ++k)
+    duplicate[order[k]] = x.row(order[k]) == x.row(order[k - 1]);
+  std::vector<int> kept; // TetGen's point index -> input index; the apex, if any, maps to n
+  for (int i = 0; i < n; ++i)
+    if (!duplicate[i])
+      kept.push_back(i);
+  const auto m = static_cast<int>(kept.size());
+
   tetgenio in, out;
   // A planar set has no tetrahedra: one extra apex above the plane makes every facet in the plane
   // a facet of a tetrahedron; facets through the apex are never candidates.
-  in.numberofpoints = n + (planar ? 1 : 0);
+  in.numberofpoints = m + (planar ? 1 : 0);
   in.pointlist = new REAL[3 * static_cast<std::size_t>(in.numberofpoints)];
   std::mt19937 rng(20040701);
   std::uniform_real_distribution<double> jitter(-1.0, 1.0);
   const double amplitude = planar ? 0.0 : perturbation * diagonal;
-  for (int i = 0; i < n; ++i)
+  for (int i = 0; i < m; ++i)
     for (int d = 0; d < 3; ++d)
-      in.pointlist[3 * i + d] = x(i, d) + (amplitude > 0 ? amplitude * jitter(rng) : 0.0);
+      in.pointlist[3 * i + d] = x(kept[i], d) + (amplitude > 0 ? amplitude * jitter(rng) : 0.0);
   if (planar) {
     const Eigen::Vector3d a = x.row(frame[0]).transpose(), b = x.row(frame[1]).transpose(), c = x.row(frame[2]).transpose();
     const Eigen::Vector3d apex = 0.5 * (lo + hi) + diagonal * (b - a).cross(c - a).normalized();
     for (int d = 0; d < 3; ++d)
-      in.pointlist[3 * n + d] = apex[d];
+      in.pointlist[3 * m + d] = apex[d];
+    kept.push_back(n);
   }
   char switches[] = "zQn"; // zero-based indices, quiet, neighbours
   try {
@@ -188,12 +195,13 @@ DelaunayFacets delaunay_facets(const VertexVectors& x, double perturbation)
       const int other = neighbour[4 * t + i];
       if (other >= 0 && other < t)
         continue;
-      const std::array<int, 3> f = {tet[4 * t + (i + 1) % 4], tet[4 * t + (i + 2) % 4], tet[4 * t + (i + 3) % 4]};
-      std::array<int, 2> q = {tet[4 * t + i], -1};
+      const std::array<int, 3> f = {kept[tet[4 * t + (i + 1) % 4]], kept[tet[4 * t + (i + 2) % 4]],
+                                    kept[tet[4 * t + (i + 3) % 4]]};
+      std::array<int, 2> q = {kept[tet[4 * t + i]], -1};
       if (other >= 0)
         for (int j = 0; j < 4; ++j)
           if (neighbour[4 * other + j] == t)
-            q[1] = tet[4 * other + j];
+            q[1] = kept[tet[4 * other + j]];
       dt.vertices.push_back(f);
       apex.push_back(q);
     }
@@ -204,7 +212,7 @@ DelaunayFacets delaunay_facets(const VertexVectors& x, double perturbation)
   if (planar) {
     xa.conservativeResize(n + 1, 3);
     for (int d = 0; d < 3; ++d)
-      xa(n, d) = in.pointlist[3 * n + d];
+      xa(n, d) = in.pointlist[3 * m + d];
   }
   dt.radius.resize(facets);
   tbb::parallel_for(tbb::blocked_range<int>(0, facets, 4096), [&](const tbb::blocked_range<int>& range) {
@@ -325,11 +333,7 @@ private:
   {
     return (point(b) - point(a)).cross(point(c) - point(a)).normalized();
   }
-  Eigen::Vector3d triangle_normal(int t) const
-  {
-    const auto& [a, b, c] = triangles_[t];
-    return unit_normal(a, b, c);
-  }
+  const Eigen::Vector3d& triangle_normal(int t) const { return triangle_normals_[t]; }
   bool agrees_with_points(const Eigen::Vector3d& normal, int a, int b, int c) const
   {
     return normal.allFinite() && normal.dot(n_.row(a)) >= cos_normal_ && normal.dot(n_.row(b)) >= cos_normal_ &&
@@ -349,6 +353,7 @@ private:
   {
     const int t = static_cast<int>(triangles_.size());
     triangles_.push_back({a, b, c});
+    triangle_normals_.push_back(unit_normal(a, b, c));
     facet_of_.push_back(facet);
     const std::array<int, 3> v = {a, b, c};
     for (int e = 0; e < 3; ++e) {
@@ -366,6 +371,7 @@ private:
       unused_points_ += --triangle_count_[v[e]] == 0;
     }
     triangles_.pop_back();
+    triangle_normals_.pop_back();
     facet_of_.pop_back();
   }
 
@@ -383,7 +389,7 @@ private:
     const Slot* s = slot(x, y);
     const int surface = s->in;
     const int surface_facet = facet_of_[surface];
-    const Eigen::Vector3d surface_normal = triangle_normal(surface);
+    const Eigen::Vector3d& surface_normal = triangle_normal(surface);
     double best_radius = infinity;
     int best_v = -1, best_facet = -1;
     Eigen::Vector3d best_normal;
@@ -575,6 +581,7 @@ private:
   std::vector<std::vector<Slot>> around_;
   std::vector<int> triangle_count_;
   std::vector<std::array<int, 3>> triangles_;
+  std::vector<Eigen::Vector3d> triangle_normals_;
   std::vector<int> facet_of_;
   std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> queue_;
   std::unordered_map<std::uint64_t, std::vector<int>> excluded_;

@@ -32,11 +32,15 @@ struct ReconstructionOptions {
   //! Largest angle (radians) between a triangle's normal and the normal of each of its points.
   double max_normal_deviation = M_PI / 3;
   //! The Delaunay tetrahedralisation is computed on points moved by up to this fraction of the
-  //! bounding-box diagonal (a fixed pseudo-random pattern). Points sampled on a sphere are
-  //! cospherical to rounding error, which forces TetGen's exact arithmetic on almost every
-  //! insphere test (about 5 to 10 times slower); the perturbation removes that degeneracy while
-  //! the geometry of the result stays the input's. 0 uses the points as they are.
-  double delaunay_perturbation = 1e-9;
+  //! bounding-box diagonal (a fixed pseudo-random pattern); radii, angles and the result use the
+  //! points as given. Sampled surfaces are full of degeneracies: a sphere's points are cospherical
+  //! to rounding error, a geodesic or grid sampling puts whole families of points in common
+  //! planes. Exactly, these force TetGen's exact arithmetic on most tests (5 to 10 times slower);
+  //! at 1e-9 they survive as near-degeneracies that multiply the slivers (3.5 times more
+  //! tetrahedra on a deformed geodesic sphere than at 1e-6). A perturbation of 1e-6 is 3e-4 of
+  //! the spacing of 100k points; only facets within that distance of coplanar could differ from
+  //! the exact tetrahedralisation. 0 uses the points as they are.
+  double delaunay_perturbation = 1e-6;
 };
 
 //! A reconstructed surface and how it relates to the input points.
