@@ -38,7 +38,9 @@ int main(int argc, char** argv)
   app.parse_complete_callback([&] { install_stderr_logger(verbose, quiet); });
 
   sdflow::cli::add_plot_verb(app);
+  sdflow::cli::add_remesh_verb(app);
   sdflow::cli::add_run_verb(app);
+  sdflow::cli::add_shape_verb(app);
   sdflow::cli::add_stats_verb(app);
 
   try {

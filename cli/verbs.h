@@ -8,7 +8,9 @@
 namespace sdflow::cli {
 
 void add_plot_verb(CLI::App& app);
+void add_remesh_verb(CLI::App& app);
 void add_run_verb(CLI::App& app);
+void add_shape_verb(CLI::App& app);
 void add_stats_verb(CLI::App& app);
 
 } // namespace sdflow::cli
