@@ -41,7 +41,9 @@ int main(int argc, char** argv)
   sdflow::cli::add_normals_verb(app);
   sdflow::cli::add_plot_verb(app);
   sdflow::cli::add_reconstruct_verb(app);
+  sdflow::cli::add_remesh_verb(app);
   sdflow::cli::add_run_verb(app);
+  sdflow::cli::add_shape_verb(app);
   sdflow::cli::add_stats_verb(app);
   sdflow::cli::add_intersections_verb(app);
   sdflow::cli::add_components_verb(app);

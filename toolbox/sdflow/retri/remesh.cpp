@@ -85,8 +85,7 @@ public:
       split_long_edges();
       collapse_short_edges();
       flip_edges();
-      for (int step = 0; step < options_.relaxation_steps; ++step)
-        relax_and_project();
+      relax_and_project();
       mesh_.garbage_collection();
       logger().debug("remesh iteration {}: {} vertices, {} faces", iteration + 1, mesh_.n_vertices(), mesh_.n_faces());
     }
@@ -293,71 +292,75 @@ private:
     }
   }
 
+  //! Tangential relaxation sweeps, each followed by projection; then the moves of the corners
+  //! of any triangle that turned over since the first sweep are undone.
   void relax_and_project()
   {
+    if (options_.relaxation_steps == 0)
+      return;
     const std::size_t n = mesh_.n_vertices();
-    std::vector<Eigen::Vector3d> old_position(n);
+    std::vector<Eigen::Vector3d> start(n);
     for (auto v : mesh_.vertices())
-      old_position[v.idx()] = point(mesh_, v);
-    std::vector<Eigen::Vector3d> old_normal(mesh_.n_faces(), Eigen::Vector3d::Zero());
+      start[v.idx()] = point(mesh_, v);
+    std::vector<Eigen::Vector3d> start_normal(mesh_.n_faces());
     for (auto f : mesh_.faces())
-      old_normal[f.idx()] = face_area_normal(mesh_, f);
+      start_normal[f.idx()] = face_area_normal(mesh_, f);
 
-    std::vector<Eigen::Vector3d> new_position = old_position;
-    for (auto v : mesh_.vertices()) {
-      if (locked_[v])
-        continue;
-      const Eigen::Vector3d& p = old_position[v.idx()];
-      if (mesh_.is_boundary(v)) {
-        // Slide along the boundary toward the midpoint of the two boundary neighbours.
-        const auto out = mesh_.halfedge_handle(v);
-        const auto in = mesh_.prev_halfedge_handle(out);
-        const Eigen::Vector3d q =
-            0.5 * (old_position[mesh_.to_vertex_handle(out).idx()] + old_position[mesh_.from_vertex_handle(in).idx()]);
-        new_position[v.idx()] = project_boundary_(q);
-        continue;
+    std::vector<Eigen::Vector3d> current = start, next = start, face_normal = start_normal;
+    for (int step = 0; step < options_.relaxation_steps; ++step) {
+      if (step > 0)
+        for (auto f : mesh_.faces())
+          face_normal[f.idx()] = face_area_normal(mesh_, f);
+      for (auto v : mesh_.vertices()) {
+        if (locked_[v])
+          continue;
+        if (mesh_.is_boundary(v)) {
+          // Slide along the boundary toward the midpoint of the two boundary neighbours.
+          const auto out = mesh_.halfedge_handle(v);
+          const auto in = mesh_.prev_halfedge_handle(out);
+          next[v.idx()] = project_boundary_(
+              0.5 * (current[mesh_.to_vertex_handle(out).idx()] + current[mesh_.from_vertex_handle(in).idx()]));
+          continue;
+        }
+        // Tangential move toward the (sizing-weighted) centroid of the neighbours.
+        Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+        double weight = 0;
+        for (auto w : mesh_.vv_range(v)) {
+          const double omega = options_.sizing ? target_[w] : 1.0;
+          centroid += omega * current[w.idx()];
+          weight += omega;
+        }
+        if (!(weight > 0))
+          continue;
+        centroid /= weight;
+        Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+        for (auto f : mesh_.vf_range(v))
+          normal += face_normal[f.idx()];
+        const double nn = normal.norm();
+        Eigen::Vector3d q = centroid;
+        if (nn > 0) {
+          normal /= nn;
+          q = centroid + normal * normal.dot(current[v.idx()] - centroid);
+        }
+        next[v.idx()] = project_(q);
       }
-      // Tangential move toward the (sizing-weighted) centroid of the neighbours.
-      Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-      double weight = 0;
-      for (auto w : mesh_.vv_range(v)) {
-        const double omega = options_.sizing ? target_[w] : 1.0;
-        centroid += omega * old_position[w.idx()];
-        weight += omega;
-      }
-      if (!(weight > 0))
-        continue;
-      centroid /= weight;
-      Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-      for (auto f : mesh_.vf_range(v))
-        normal += old_normal[f.idx()];
-      const double nn = normal.norm();
-      Eigen::Vector3d q = centroid;
-      if (nn > 0) {
-        normal /= nn;
-        q = centroid + normal * normal.dot(p - centroid);
-      }
-      new_position[v.idx()] = project_(q);
+      current = next;
+      for (auto v : mesh_.vertices())
+        mesh_.set_point(v, to_point(current[v.idx()]));
     }
-    for (auto v : mesh_.vertices())
-      mesh_.set_point(v, to_point(new_position[v.idx()]));
 
     // Undo the moves of the corners of any triangle that turned over; repeat, since undoing one
     // vertex can turn a triangle of its neighbours.
-    std::vector<char> moved(n, 1);
     for (int round = 0; round < 10; ++round) {
       bool reverted = false;
       for (auto f : mesh_.faces()) {
-        const Eigen::Vector3d& before = old_normal[f.idx()];
-        bool touched = false;
-        for (auto u : mesh_.fv_range(f))
-          touched |= moved[u.idx()] != 0;
-        if (!touched || before.squaredNorm() == 0 || face_area_normal(mesh_, f).dot(before) > 0)
+        const Eigen::Vector3d& before = start_normal[f.idx()];
+        if (before.squaredNorm() == 0 || face_area_normal(mesh_, f).dot(before) > 0)
           continue;
         for (auto u : mesh_.fv_range(f)) {
-          if (moved[u.idx()] && new_position[u.idx()] != old_position[u.idx()]) {
-            mesh_.set_point(u, to_point(old_position[u.idx()]));
-            new_position[u.idx()] = old_position[u.idx()];
+          if (current[u.idx()] != start[u.idx()]) {
+            current[u.idx()] = start[u.idx()];
+            mesh_.set_point(u, to_point(start[u.idx()]));
             ++statistics_.relaxation_reverts;
             reverted = true;
           }

@@ -36,7 +36,7 @@ struct RemeshOptions {
   //! Split / collapse / flip / relax / project rounds.
   int iterations = 10;
   //! Tangential relaxation sweeps (each followed by projection) per iteration.
-  int relaxation_steps = 1;
+  int relaxation_steps = 3;
   //! Closest point on the surface. Empty: the input mesh itself, through StarProjection
   //! (closest point among the triangles around the nearest input vertices).
   PointProjection project;

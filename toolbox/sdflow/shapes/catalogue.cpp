@@ -189,7 +189,7 @@ ImplicitSurface dumbbell(const DumbbellParameters& parameters)
   };
   const double half = profile->half_length(), R = parameters.radius;
   s.box = padded_box(Eigen::Vector3d(-half, -R, -R), Eigen::Vector3d(half, R, R), 0.1 * R);
-  s.feature_size = parameters.neck_width / 2;
+  s.feature_size = parameters.neck_width; // the isthmus diameter; the octree refines around it
   return s;
 }
 

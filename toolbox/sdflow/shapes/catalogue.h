@@ -8,8 +8,9 @@
 //! the plane) take the minimum of the pieces' distances; a positive `blend` replaces the minimum
 //! by the C¹ quadratic smooth minimum min(a, b) − k h²/4, h = max(k − |a − b|, 0)/k (Quílez), which
 //! rounds the creases where pieces meet within a band of width ~k and moves the surface outward
-//! by at most k/4 there. The default k = 0.2 (at most 0.05 off the paper's sharp union, against
-//! neck radii of 0.5 to 1) is what makes the narrow slots beside the contact necks meshable: with
+//! by at most k/4 where two pieces meet, k/2 where three do (a neck between two spheres). The
+//! default k = 0.2 (at most 0.1 off the paper's sharp union, against neck radii of 0.5 to 1,
+//! and only in the creases) is what makes the narrow slots beside the contact necks meshable: with
 //! k = 0 (the paper's pieces meeting at sharp creases, still available) slots narrower than the
 //! edge length occasionally leave sliver triangles. Either way the mesher puts every vertex on
 //! the zero set of the function defined here.

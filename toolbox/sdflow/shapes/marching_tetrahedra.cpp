@@ -171,8 +171,12 @@ public:
       for (int c = 0; c < 8; ++c)
         used_.insert(id(corner(origin, c, size)));
     }
+    // Leaves in lattice scanline order, so vertices and triangles come out spatially coherent
+    // (the remesher's memory accesses follow them).
+    std::vector<Id> order(leaves_.begin(), leaves_.end());
+    std::sort(order.begin(), order.end());
     TetMarcher marcher;
-    for (Id key : leaves_) {
+    for (Id key : order) {
       const auto [origin, level] = decode(key);
       tetrahedralise(origin, level, marcher);
     }
