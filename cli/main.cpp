@@ -37,11 +37,17 @@ int main(int argc, char** argv)
   app.add_flag("-q,--quiet", quiet, "Log errors only");
   app.parse_complete_callback([&] { install_stderr_logger(verbose, quiet); });
 
+  sdflow::cli::add_fill_holes_verb(app);
+  sdflow::cli::add_normals_verb(app);
   sdflow::cli::add_plot_verb(app);
+  sdflow::cli::add_reconstruct_verb(app);
   sdflow::cli::add_remesh_verb(app);
   sdflow::cli::add_run_verb(app);
   sdflow::cli::add_shape_verb(app);
   sdflow::cli::add_stats_verb(app);
+  sdflow::cli::add_intersections_verb(app);
+  sdflow::cli::add_components_verb(app);
+  sdflow::cli::add_union_verb(app);
 
   try {
     app.parse(argc, argv);

@@ -17,7 +17,7 @@ packages=(
   libopenmesh-dev libeigen3-dev
   libsuitesparse-dev libmetis-dev libopenblas-dev
   libtet1.5-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libgmp-dev
   libnanoflann-dev libcli11-dev libtomlplusplus-dev libspdlog-dev libfmt-dev libmuparser-dev libtbb-dev
   gnuplot-nox
 )

@@ -1,6 +1,7 @@
 //! Stanford PLY (Turk 1994): a text header declaring elements and their scalar or list properties,
 //! then the data in ascii (one element per line), binary_little_endian or binary_big_endian.
-//! Points come from the x, y, z properties of "vertex" (any scalar type; other properties skipped),
+//! Points come from the x, y, z properties of "vertex" (any scalar type), normals from its nx, ny,
+//! nz when all three are declared (other properties skipped),
 //! polygons from the "vertex_indices" (or "vertex_index") list of "face"; other elements skipped.
 
 #include "sdflow/io_formats.h"
@@ -144,6 +145,7 @@ Header read_header(std::string_view bytes, const std::filesystem::path& file)
 struct Roles {
   int vertex_element = -1;
   std::array<int, 3> xyz = {-1, -1, -1};
+  std::array<int, 3> normal = {-1, -1, -1}; //!< all -1 unless nx, ny and nz are all declared
   int face_element = -1;
   int face_list = -1;
 };
@@ -151,6 +153,7 @@ struct Roles {
 Roles find_roles(const Header& header, const std::filesystem::path& file)
 {
   static constexpr std::array<std::string_view, 3> axes = {"x", "y", "z"};
+  static constexpr std::array<std::string_view, 3> normal_axes = {"nx", "ny", "nz"};
   Roles roles;
   for (std::size_t e = 0; e < header.elements.size(); ++e) {
     const Element& element = header.elements[e];
@@ -158,11 +161,17 @@ Roles find_roles(const Header& header, const std::filesystem::path& file)
       roles.vertex_element = static_cast<int>(e);
       for (std::size_t p = 0; p < element.properties.size(); ++p)
         for (int k = 0; k < 3; ++k)
-          if (element.properties[p].name == axes[k] && !element.properties[p].list)
-            roles.xyz[k] = static_cast<int>(p);
+          if (!element.properties[p].list) {
+            if (element.properties[p].name == axes[k])
+              roles.xyz[k] = static_cast<int>(p);
+            if (element.properties[p].name == normal_axes[k])
+              roles.normal[k] = static_cast<int>(p);
+          }
       for (int k = 0; k < 3; ++k)
         if (roles.xyz[k] < 0)
           fail(file, 0, fmt::format("the 'vertex' element has no scalar property '{}'", axes[k]));
+      if (std::count(roles.normal.begin(), roles.normal.end(), -1) != 0)
+        roles.normal = {-1, -1, -1};
     } else if (element.name == "face" && roles.face_element < 0) {
       roles.face_element = static_cast<int>(e);
       for (std::size_t p = 0; p < element.properties.size(); ++p)
@@ -333,16 +342,19 @@ PolygonSoup read_data(const Header& header, const Roles& roles, Values& values)
     const bool is_face = static_cast<int>(e) == roles.face_element;
     for (long long i = 0; i < element.count; ++i) {
       values.begin(element, i);
-      Eigen::Vector3d point = Eigen::Vector3d::Zero();
+      Eigen::Vector3d point = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::Zero();
       std::vector<long long> polygon;
       for (std::size_t p = 0; p < element.properties.size(); ++p) {
         const Property& property = element.properties[p];
         if (!property.list) {
           const double v = values.value(property.type, property.name);
           if (is_vertex)
-            for (int k = 0; k < 3; ++k)
+            for (int k = 0; k < 3; ++k) {
               if (roles.xyz[k] == static_cast<int>(p))
                 point[k] = v;
+              if (roles.normal[k] == static_cast<int>(p))
+                normal[k] = v;
+            }
           continue;
         }
         const long long length =
@@ -367,6 +379,8 @@ PolygonSoup read_data(const Header& header, const Roles& roles, Values& values)
       values.end();
       if (is_vertex) {
         soup.points.push_back(point);
+        if (roles.normal[0] >= 0)
+          soup.normals.push_back(normal);
         soup.point_lines.push_back(values.where());
       } else if (is_face) {
         soup.polygons.push_back(std::move(polygon));

@@ -12,8 +12,11 @@ namespace sdflow {
 //! Points and polygons exactly as read; indices are 0-based but not yet checked.
 //! `point_lines` / `polygon_lines` give the 1-based line of each element in a text file (0 in a
 //! binary file, where messages name the element's index instead).
+//! `normals` holds one normal per point when the file gives them (PLY vertex properties nx, ny,
+//! nz, as point clouds carry them), and is empty otherwise.
 struct PolygonSoup {
   std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector3d> normals;
   std::vector<std::vector<long long>> polygons;
   std::vector<std::size_t> point_lines;
   std::vector<std::size_t> polygon_lines;
