@@ -10,8 +10,8 @@
 //! reduce to one equation in u,
 //!   2 ρ_t (ρ_t − ρ₀) = (c − u) u,      then  k = (ρ_t − ρ₀) / t²,
 //! which has a root in (0, R) whenever ρ₀ < R < c; it is found by bisection. With the paper's
-//! R = 6, width 1 and the default centre separation 2c = 18 (not stated in the paper): t ≈ 4.07,
-//! ρ_t ≈ 3.41, k ≈ 0.176; the dumbbell spans |x| ≤ 15.
+//! R = 6, width 1 and the default centre separation 2c = 18 (not stated in the paper): t ≈ 4.08,
+//! ρ_t ≈ 3.43, k ≈ 0.176; the dumbbell spans |x| ≤ 15.
 
 namespace sdflow::shapes {
 
