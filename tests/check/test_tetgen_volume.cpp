@@ -11,15 +11,6 @@ namespace {
 
 constexpr double kAgreement = 1e-9; // relative, as issue 2 requires
 
-Mesh disjoint_union(const Mesh& a, const Mesh& b)
-{
-  VertexVectors x(a.n_vertices() + b.n_vertices(), 3);
-  x << vertex_positions(a), vertex_positions(b);
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> t(a.n_faces() + b.n_faces(), 3);
-  t << face_indices(a), (face_indices(b).array() + static_cast<int>(a.n_vertices())).matrix();
-  return make_mesh(x, t);
-}
-
 TEST(TetgenVolume, agrees_with_divergence_volume_on_closed_surfaces)
 {
   for (const Mesh& mesh : {analytic::icosphere(3, 2.0), analytic::ellipsoid(3, 5, 4, 3),
@@ -35,8 +26,8 @@ TEST(TetgenVolume, agrees_with_divergence_volume_on_closed_surfaces)
 
 TEST(TetgenVolume, checks_each_closed_component_and_skips_open_ones)
 {
-  const Mesh spheres = disjoint_union(analytic::icosphere(2, 1.0), analytic::icosphere(2, 3.0, Eigen::Vector3d(10, 0, 0)));
-  const Mesh with_disk = disjoint_union(spheres, analytic::disk(3));
+  const Mesh spheres = analytic::disjoint_union(analytic::icosphere(2, 1.0), analytic::icosphere(2, 3.0, Eigen::Vector3d(10, 0, 0)));
+  const Mesh with_disk = analytic::disjoint_union(spheres, analytic::disk(3));
   const auto checks = tetgen_volume_check(with_disk);
   ASSERT_EQ(checks.size(), 2u);
   EXPECT_EQ(checks[0].component, 0);

@@ -92,11 +92,7 @@ TEST(Measures, volume_is_translation_invariant_and_signed)
 TEST(Measures, component_volumes_separate_bodies)
 {
   const Mesh a = analytic::icosphere(2, 1.0), b = analytic::icosphere(2, 2.0, Eigen::Vector3d(10, 0, 0));
-  VertexVectors x(a.n_vertices() + b.n_vertices(), 3);
-  x << vertex_positions(a), vertex_positions(b);
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> t(a.n_faces() + b.n_faces(), 3);
-  t << face_indices(a), (face_indices(b).array() + static_cast<int>(a.n_vertices())).matrix();
-  const auto volumes = component_volumes(make_mesh(x, t));
+  const auto volumes = component_volumes(analytic::disjoint_union(a, b));
   ASSERT_EQ(volumes.size(), 2u);
   EXPECT_NEAR(volumes[0], enclosed_volume(a), 1e-12);
   EXPECT_NEAR(volumes[1], enclosed_volume(b), 1e-11);

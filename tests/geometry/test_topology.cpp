@@ -7,15 +7,6 @@
 namespace sdflow {
 namespace {
 
-Mesh disjoint_union(const Mesh& a, const Mesh& b)
-{
-  VertexVectors x(a.n_vertices() + b.n_vertices(), 3);
-  x << vertex_positions(a), vertex_positions(b);
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> t(a.n_faces() + b.n_faces(), 3);
-  t << face_indices(a), (face_indices(b).array() + static_cast<int>(a.n_vertices())).matrix();
-  return make_mesh(x, t);
-}
-
 TEST(Topology, genus_and_boundary_of_known_surfaces)
 {
   struct Case {
@@ -53,7 +44,7 @@ TEST(Topology, annulus_has_two_boundary_loops)
 
 TEST(Topology, components_are_counted_separately)
 {
-  Mesh two = disjoint_union(analytic::torus(20, 10, 6, 3), analytic::icosphere(1, 1.0, Eigen::Vector3d(30, 0, 0)));
+  Mesh two = analytic::disjoint_union(analytic::torus(20, 10, 6, 3), analytic::icosphere(1, 1.0, Eigen::Vector3d(30, 0, 0)));
   int count = 0;
   const auto ids = face_component_ids(two, &count);
   EXPECT_EQ(count, 2);

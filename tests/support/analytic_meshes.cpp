@@ -166,6 +166,15 @@ Mesh disk(int rings, double radius)
   return mesh_from(points, faces);
 }
 
+Mesh disjoint_union(const Mesh& a, const Mesh& b)
+{
+  VertexVectors x(a.n_vertices() + b.n_vertices(), 3);
+  x << vertex_positions(a), vertex_positions(b);
+  Triangles t(a.n_faces() + b.n_faces(), 3);
+  t << face_indices(a), (face_indices(b).array() + static_cast<int>(a.n_vertices())).matrix();
+  return make_mesh(x, t);
+}
+
 double torus_mean_curvature(double major, double minor, double v)
 {
   return -(major + 2 * minor * std::cos(v)) / (2 * minor * (major + minor * std::cos(v)));

@@ -28,6 +28,9 @@ Mesh conformal_torus(int rows, double major, double minor);
 //! Flat disk of `radius` in the plane z = 0, normal +z, meshed on `rings` concentric rings.
 Mesh disk(int rings, double radius = 1.0);
 
+//! The two surfaces as one mesh: a's vertices and faces first, then b's.
+Mesh disjoint_union(const Mesh& a, const Mesh& b);
+
 //! Analytic mean curvature of the torus (outward normals, sphere-of-radius-R convention H = -1/R)
 //! at the point whose tube angle is v: H = -(major + 2 minor cos v) / (2 minor (major + minor cos v)).
 double torus_mean_curvature(double major, double minor, double v);
