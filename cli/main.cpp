@@ -41,8 +41,13 @@ int main(int argc, char** argv)
   sdflow::cli::add_normals_verb(app);
   sdflow::cli::add_plot_verb(app);
   sdflow::cli::add_reconstruct_verb(app);
+  sdflow::cli::add_remesh_verb(app);
   sdflow::cli::add_run_verb(app);
+  sdflow::cli::add_shape_verb(app);
   sdflow::cli::add_stats_verb(app);
+  sdflow::cli::add_intersections_verb(app);
+  sdflow::cli::add_components_verb(app);
+  sdflow::cli::add_union_verb(app);
 
   try {
     app.parse(argc, argv);

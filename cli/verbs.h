@@ -11,7 +11,12 @@ void add_fill_holes_verb(CLI::App& app);
 void add_normals_verb(CLI::App& app);
 void add_plot_verb(CLI::App& app);
 void add_reconstruct_verb(CLI::App& app);
+void add_remesh_verb(CLI::App& app);
 void add_run_verb(CLI::App& app);
+void add_shape_verb(CLI::App& app);
 void add_stats_verb(CLI::App& app);
+void add_intersections_verb(CLI::App& app);
+void add_components_verb(CLI::App& app);
+void add_union_verb(CLI::App& app);
 
 } // namespace sdflow::cli

@@ -4,6 +4,12 @@
 #   scripts/install-deps.sh            toolbox, CLI, tests
 #   scripts/install-deps.sh --bench    also the benchmark peers (CGAL, Surface Evolver, hyperfine)
 #   scripts/install-deps.sh --paraview also ParaView and pvpython (large) for scripts/check-paraview.sh
+#   scripts/install-deps.sh --meshlab  also what the MeshLab plugin needs: Debian's MeshLab, Qt 5,
+#                                      GLEW, dpkg-dev (to unpack MeshLab's source package for its
+#                                      headers) and Xvfb (meshlabserver needs an X server)
+#   scripts/install-deps.sh --screenshots  also xdotool and ImageMagick, to drive MeshLab under Xvfb
+#                                      and capture docs/images/meshlab-surface-diffusion.png
+# Flags combine.
 set -euo pipefail
 
 packages=(
@@ -11,7 +17,7 @@ packages=(
   libopenmesh-dev libeigen3-dev
   libsuitesparse-dev libmetis-dev libopenblas-dev
   libtet1.5-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libgmp-dev
   libnanoflann-dev libcli11-dev libtomlplusplus-dev libspdlog-dev libfmt-dev libmuparser-dev libtbb-dev
   gnuplot-nox
 )
@@ -20,6 +26,12 @@ if [[ " $* " == *" --bench "* ]]; then
 fi
 if [[ " $* " == *" --paraview "* ]]; then
   packages+=(paraview python3-paraview)
+fi
+if [[ " $* " == *" --meshlab "* ]]; then
+  packages+=(meshlab qtbase5-dev libqt5opengl5-dev libglew-dev dpkg-dev xvfb xauth)
+fi
+if [[ " $* " == *" --screenshots "* ]]; then
+  packages+=(xdotool imagemagick)
 fi
 
 missing=()

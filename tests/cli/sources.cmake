@@ -1,6 +1,5 @@
+# End-to-end tests of the sdflow command, one file per verb or group of verbs.
 if(TARGET sdflow)
-  target_sources(sdflow_tests PRIVATE
-    ${CMAKE_CURRENT_LIST_DIR}/test_point_verbs.cpp
-    ${CMAKE_CURRENT_LIST_DIR}/test_run.cpp
-    ${CMAKE_CURRENT_LIST_DIR}/test_stats.cpp)
+  file(GLOB _sdflow_cli_tests CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/test_*.cpp)
+  target_sources(sdflow_tests PRIVATE ${_sdflow_cli_tests})
 endif()

@@ -44,6 +44,24 @@ TEST(RunCommand, runs_a_scenario_with_flag_overrides_and_plots_it)
     EXPECT_GT(fs::file_size(dir / "run/plots" / png), 1000u) << png;
 }
 
+TEST(PlotCommand, topology_events_are_marked_and_a_bad_table_is_refused)
+{
+  test::TempDir dir;
+  fs::create_directories(dir / "run");
+  test::write_file(dir / "run/metrics.csv", std::string(metrics_header) + "\n"
+                   "0,0,0,100,196,1,0,10,2,-1,5,0,0,\n"
+                   "1,0.5,0.5,100,196,1,0,9.5,2,-1,4,0,0,rejected\n"
+                   "2,1,0.5,120,236,2,0,9,2,-1,3,0,0,rejected+split\n");
+  const auto r = analytic::run_sdflow("plot " + (dir / "run").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string script = test::read_file(dir / "run/plots/plots.gnuplot");
+  EXPECT_NE(script.find("set arrow from 1,graph 0"), std::string::npos) << script;
+  EXPECT_NE(script.find("set label 'split'"), std::string::npos) << script;
+  EXPECT_EQ(script.find("set arrow from 0.5,"), std::string::npos) << "rejections are not topology events";
+  test::write_file(dir / "run/metrics.csv", "step,time\n");
+  EXPECT_EQ(analytic::run_sdflow("plot " + (dir / "run").string()).exit_code, 2);
+}
+
 TEST(RunCommand, unstable_explicit_run_exits_3_and_bad_input_exits_2)
 {
   test::TempDir dir;

@@ -48,7 +48,7 @@ Eigen::VectorXd mean_edge_lengths(const Mesh& mesh)
   return sum.cwiseQuotient(count.cwiseMax(1.0));
 }
 
-//! Does the topology of the surface stay the same? Cached per connectivity.
+//! Components, closedness and total genus, recomputed only when the connectivity changes.
 struct Topology {
   std::vector<int> face_component;
   int count = 0;

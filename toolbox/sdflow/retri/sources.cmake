@@ -1,5 +1,3 @@
-target_sources(sdflow_toolbox PRIVATE
-  sdflow/retri/holes.cpp
-  sdflow/retri/point_cloud.cpp
-  sdflow/retri/point_normals.cpp
-  sdflow/retri/reconstruct.cpp)
+# Re-triangulation toolbox (DESIGN.md §3): one algorithm per file.
+file(GLOB _sdflow_retri CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/*.cpp)
+target_sources(sdflow_toolbox PRIVATE ${_sdflow_retri})

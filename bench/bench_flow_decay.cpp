@@ -1,0 +1,173 @@
+//! Side by side: sdflow against Surface Evolver (`evolver-nox`, method laplacian_mean_curvature,
+//! explicit) carrying the l = 2 mode of a perturbed unit sphere to t = 0.05. Each reports the decay
+//! rate it measured (exact: (l-1)l(l+1)(l+2)/2 = 12, DESIGN.md §1), its relative error and its time,
+//! so the two can be compared at equal accuracy. `cpu_s` is the CPU time (the Evolver process's own for
+//! Evolver), meaningful when the machine is shared; Time is wall-clock. The Evolver rows are skipped when `evolver-nox-d` is
+//! not installed (scripts/install-deps.sh --bench).
+//!   bench_flow_decay --benchmark_counters_tabular=true
+
+#include "sdflow/flow/cotangent_cache.h"
+#include "sdflow/flow/scheme.h"
+#include "support/analytic_meshes.h"
+
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sys/resource.h>
+#include <unistd.h>
+#include <vector>
+
+namespace {
+
+using sdflow::Mesh;
+
+constexpr double amplitude = 0.01;
+constexpr double end_time = 0.05;
+constexpr double exact_rate = 12.0;
+
+Mesh perturbed_sphere(int level)
+{
+  Mesh mesh = sdflow::analytic::icosphere(level);
+  for (auto v : mesh.vertices()) {
+    const auto p = mesh.point(v);
+    mesh.set_point(v, p * (1 + amplitude * 0.5 * (3 * p[2] * p[2] - 1)));
+  }
+  return mesh;
+}
+
+//! Least-squares fit |x| = a0 + a2 P2(z/|x|) over the vertices (unweighted, the same for both codes).
+double p2_amplitude(const std::vector<Eigen::Vector3d>& points)
+{
+  double n = 0, sp = 0, spp = 0, sr = 0, srp = 0;
+  for (const auto& x : points) {
+    const double r = x.norm(), c = x.z() / r, p = 0.5 * (3 * c * c - 1);
+    n += 1;
+    sp += p;
+    spp += p * p;
+    sr += r;
+    srp += r * p;
+  }
+  return (n * srp - sp * sr) / (n * spp - sp * sp);
+}
+
+std::vector<Eigen::Vector3d> points_of(const Mesh& mesh)
+{
+  std::vector<Eigen::Vector3d> points;
+  for (auto v : mesh.vertices())
+    points.push_back(sdflow::to_eigen(mesh.point(v)));
+  return points;
+}
+
+//! CPU seconds (user + system) of this process, or of its finished children.
+double cpu_seconds(int who)
+{
+  rusage usage{};
+  getrusage(who, &usage);
+  return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec + 1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+void report(benchmark::State& state, double a0, double a1, double seconds, int vertices)
+{
+  const double rate = -std::log(a1 / a0) / end_time;
+  state.SetIterationTime(seconds);
+  state.counters["vertices"] = vertices;
+  state.counters["rate"] = rate;
+  state.counters["rate_error_pct"] = 100 * std::abs(rate - exact_rate) / exact_rate;
+}
+
+//! sdflow: `steps` semi-implicit steps of constant τ (β = 1/2) from t = 0 to t = 0.05.
+void Sdflow(benchmark::State& state)
+{
+  const int level = static_cast<int>(state.range(0)), steps = static_cast<int>(state.range(1));
+  const Mesh start = perturbed_sphere(level);
+  for (auto _ : state) {
+    Mesh mesh = start;
+    const double cpu_begin = cpu_seconds(RUSAGE_SELF);
+    const auto begin = std::chrono::steady_clock::now();
+    const sdflow::CotangentCache cache(mesh);
+    sdflow::FlowSolver solver;
+    Eigen::VectorXd w;
+    for (int s = 0; s < steps; ++s) {
+      auto step = sdflow::solve_step(mesh, sdflow::flow_operators(mesh, {}, &cache), end_time / steps, 0.5, solver, w);
+      sdflow::set_vertex_positions(mesh, step.positions);
+      w = std::move(step.w);
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    report(state, p2_amplitude(points_of(start)), p2_amplitude(points_of(mesh)), seconds,
+           static_cast<int>(mesh.n_vertices()));
+    state.counters["cpu_s"] = cpu_seconds(RUSAGE_SELF) - cpu_begin;
+  }
+}
+
+//! Surface Evolver: explicit motion by the Laplacian of mean curvature with a fixed scale (time step)
+//! of 1e-5 / 16^(level-2), below its stability limit (about 0.001 h⁴, Evolver's documentation).
+void Evolver(benchmark::State& state)
+{
+  if (std::system("command -v evolver-nox-d > /dev/null 2>&1") != 0) {
+    state.SkipWithError("evolver-nox-d not installed (scripts/install-deps.sh --bench)");
+    return;
+  }
+  const int level = static_cast<int>(state.range(0));
+  const double scale = 1e-5 / std::pow(16.0, level - 2);
+  const long iterations = std::lround(end_time / scale);
+  const Mesh start = perturbed_sphere(level);
+  const auto dir = std::filesystem::temp_directory_path() / fmt::format("sdflow_evolver_{}", ::getpid());
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream fe(dir / "sphere.fe");
+    fe << "area_method_name \"null_area\"\nquantity lmc energy method laplacian_mean_curvature global\n\nvertices\n";
+    for (auto v : start.vertices()) {
+      const auto p = start.point(v);
+      fe << fmt::format("{} {} {} {}\n", v.idx() + 1, p[0], p[1], p[2]);
+    }
+    fe << "\nedges\n";
+    for (auto e : start.edges())
+      fe << fmt::format("{} {} {}\n", e.idx() + 1, e.v0().idx() + 1, e.v1().idx() + 1);
+    fe << "\nfaces\n";
+    for (auto f : start.faces()) {
+      fe << f.idx() + 1;
+      for (auto h : f.halfedges())
+        fe << ' ' << (h.edge().v0() == h.from() ? 1 : -1) * (h.edge().idx() + 1);
+      fe << '\n';
+    }
+    fe << "\nbodies\n1"; // the method moves along the volume gradient: the surface must bound a body
+    for (auto f : start.faces())
+      fe << ' ' << f.idx() + 1;
+    fe << '\n';
+    std::ofstream commands(dir / "run.cmd");
+    commands << fmt::format("quiet on\nm {}\ng {}\n", scale, iterations)
+             << "foreach vertex vv do printf \"%.17g %.17g %.17g\\n\", vv.x, vv.y, vv.z >> \"final.txt\"\nq\n";
+  }
+  for (auto _ : state) {
+    std::filesystem::remove(dir / "final.txt");
+    const double cpu_begin = cpu_seconds(RUSAGE_CHILDREN);
+    const auto begin = std::chrono::steady_clock::now();
+    const int status = std::system(fmt::format("cd '{}' && evolver-nox-d -x -f run.cmd sphere.fe > evolver.log 2>&1",
+                                               dir.string()).c_str());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    std::vector<Eigen::Vector3d> final;
+    std::ifstream in(dir / "final.txt");
+    for (Eigen::Vector3d x; in >> x.x() >> x.y() >> x.z();)
+      final.push_back(x);
+    if (status != 0 || final.size() != start.n_vertices()) {
+      state.SkipWithError("Surface Evolver failed (see its log in the temporary folder)");
+      return;
+    }
+    report(state, p2_amplitude(points_of(start)), p2_amplitude(final), seconds, static_cast<int>(final.size()));
+    state.counters["cpu_s"] = cpu_seconds(RUSAGE_CHILDREN) - cpu_begin;
+    state.counters["iterations"] = static_cast<double>(iterations);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+} // namespace
+
+BENCHMARK(Sdflow)->Args({2, 50})->Args({3, 100})->Args({4, 200})->Args({5, 400})
+    ->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(Evolver)->Arg(2)->Arg(3)->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_MAIN();

@@ -1,0 +1,105 @@
+//! `sdflow intersections MESH [OTHER] [--json] [-o OUT]`: the intersecting face pairs of a surface
+//! (or between two surfaces), decided exactly (retri/intersect.h); with -o, the surface without
+//! them (retri/remove_intersections.h). Exit code 0 whether or not pairs are found.
+
+#include "verbs.h"
+
+#include "sdflow/errors.h"
+#include "sdflow/io.h"
+#include "sdflow/retri/intersect.h"
+#include "sdflow/retri/remove_intersections.h"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <iostream>
+#include <optional>
+#include <string>
+
+namespace sdflow::cli {
+namespace {
+
+struct IntersectionsArguments {
+  std::string mesh;
+  std::string other;
+  std::string output;
+  bool json = false;
+};
+
+toml::array pair_array(const std::vector<FacePair>& pairs)
+{
+  toml::array out;
+  for (const FacePair& p : pairs)
+    out.push_back(toml::array{p.first, p.second});
+  return out;
+}
+
+void run(const IntersectionsArguments& args)
+{
+  if (!args.other.empty() && !args.output.empty())
+    throw InvalidParameter("intersections: -o removes the intersecting faces of one surface; it cannot be used "
+                           "with a second surface");
+  const Mesh mesh = read_mesh(args.mesh).mesh;
+  std::vector<FacePair> pairs;
+  std::optional<RemovalResult> removal;
+  if (!args.other.empty()) {
+    pairs = surface_intersections(mesh, read_mesh(args.other).mesh);
+  } else if (!args.output.empty()) {
+    removal = remove_self_intersections(mesh);
+    pairs = removal->intersecting_pairs;
+    write_mesh(removal->mesh, args.output);
+  } else {
+    pairs = self_intersections(mesh);
+  }
+  int degenerate = 0;
+  for (const FacePair& p : pairs)
+    degenerate += args.other.empty() && p.first == p.second;
+
+  if (args.json) {
+    toml::table root{{"file", args.mesh},
+                     {"faces", static_cast<int64_t>(mesh.n_faces())},
+                     {"intersecting_pairs", static_cast<int64_t>(pairs.size())},
+                     {"pairs", pair_array(pairs)}};
+    if (!args.other.empty())
+      root.insert("other", args.other);
+    else
+      root.insert("degenerate_faces", degenerate);
+    if (removal) {
+      root.insert("output", args.output);
+      root.insert("removed_faces", static_cast<int64_t>(removal->removed_faces.size()));
+      root.insert("removed_vertices", static_cast<int64_t>(removal->removed_vertices.size()));
+      root.insert("pinched_vertices", static_cast<int64_t>(removal->pinched_vertices.size()));
+    }
+    std::cout << toml::json_formatter{root} << '\n';
+    return;
+  }
+  if (args.other.empty())
+    std::cout << fmt::format("{}: {} intersecting face pair(s), {} degenerate face(s) among them as (f, f)\n",
+                             args.mesh, pairs.size(), degenerate);
+  else
+    std::cout << fmt::format("{} and {}: {} intersecting face pair(s) (face of the first, face of the second)\n",
+                             args.mesh, args.other, pairs.size());
+  for (const FacePair& p : pairs)
+    std::cout << fmt::format("  {} {}\n", p.first, p.second);
+  if (removal)
+    std::cout << fmt::format("removed {} face(s) and {} vertex(es); {} pinched vertex(es) remain; wrote {}\n",
+                             removal->removed_faces.size(), removal->removed_vertices.size(),
+                             removal->pinched_vertices.size(), args.output);
+}
+
+} // namespace
+
+void add_intersections_verb(CLI::App& app)
+{
+  auto args = std::make_shared<IntersectionsArguments>();
+  CLI::App* verb = app.add_subcommand(
+    "intersections", "List the intersecting face pairs of a surface (exact), or between two surfaces; -o removes them");
+  verb->add_option("mesh", args->mesh, "Mesh file (OFF, OBJ, PLY, STL)")->required();
+  verb->add_option("other", args->other, "Second mesh: list the pairs between the two surfaces instead");
+  verb->add_option("-o,--output", args->output,
+                   "Write the surface without its intersecting faces and the vertices they leave alone");
+  verb->add_flag("--json", args->json, "Print a JSON object: file, faces, intersecting_pairs, pairs, ...");
+  verb->callback([args] { run(*args); });
+}
+
+} // namespace sdflow::cli

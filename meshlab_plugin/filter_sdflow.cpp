@@ -1,0 +1,174 @@
+#include "filter_sdflow.h"
+
+#include "convert.h"
+#include "toolbox_bridge.h"
+
+#include "sdflow/errors.h"
+
+#include <exception>
+#include <stdexcept>
+
+namespace {
+
+using sdflow::meshlab::LogLevel;
+
+//! The toolbox's log lines and progress, routed to MeshLab's log and progress bar.
+sdflow::meshlab::Reporter reporter_for(MeshLabInterface& plugin, vcg::CallBackPos* progress)
+{
+  sdflow::meshlab::Reporter reporter;
+  reporter.log = [&plugin](LogLevel level, const std::string& line) {
+    plugin.Log(level == LogLevel::warning || level == LogLevel::error ? GLLogStream::WARNING : GLLogStream::FILTER,
+               line);
+  };
+  if (progress)
+    reporter.progress = [progress](int percent, const std::string& message) { progress(percent, message.c_str()); };
+  return reporter;
+}
+
+sdflow::meshlab::DiffusionSettings diffusion_settings(const RichParameterList& parameters)
+{
+  using sdflow::meshlab::intended_double;
+  sdflow::meshlab::DiffusionSettings s;
+  s.steps = parameters.getInt("Steps");
+  s.automatic_tau = parameters.getBool("AutomaticTau");
+  s.tau = intended_double(parameters.getFloat("Tau"));
+  s.beta = intended_double(parameters.getFloat("Beta"));
+  s.conserve_volume = parameters.getBool("ConserveVolume");
+  s.fixed_boundary = parameters.getBool("FixedBoundary");
+  return s;
+}
+
+} // namespace
+
+FilterSdflowPlugin::FilterSdflowPlugin()
+{
+  typeList << FP_SURFACE_DIFFUSION;
+  for (FilterIDType type : types())
+    actionList << new QAction(filterName(type), this);
+}
+
+QString FilterSdflowPlugin::pluginName() const { return "FilterSdflow"; }
+
+QString FilterSdflowPlugin::filterName(FilterIDType filter) const
+{
+  switch (filter) {
+  case FP_SURFACE_DIFFUSION:
+    return "Surface diffusion N steps";
+  }
+  return {};
+}
+
+QString FilterSdflowPlugin::filterInfo(FilterIDType filter) const
+{
+  switch (filter) {
+  case FP_SURFACE_DIFFUSION:
+    return "Evolves the surface by <b>surface diffusion flow</b>: every point moves along the normal with "
+           "speed V<sub>N</sub> = -&Delta;H, the negative surface Laplacian of the mean curvature. The flow "
+           "keeps the enclosed volume and lowers the area, rounding a closed surface of genus 0 into a "
+           "sphere; it is the motion of a solid surface by atom migration (sintering, void and pore "
+           "evolution).<br>"
+           "Each step solves the semi-implicit scheme (I + &tau;&beta;&Delta;&sup2;) w = &Delta;H, "
+           "X &larr; X - &tau; w N, with the cotangent/Voronoi Laplace-Beltrami operator, normals by Max's "
+           "weights and the mean curvature as the integral of normal curvatures, exactly as the <i>sdflow</i> "
+           "command line does (<tt>sdflow run</tt> gives the same surface for the same parameters).<br>"
+           "The result replaces the current mesh, all connected components together in this layer. "
+           "Per-vertex <b>quality holds the mean curvature H</b> (a sphere of radius R has H = -1/R) and "
+           "per-vertex normals hold N, so <i>Colorize by vertex quality</i> shows the curvature.<br>"
+           "The mesh must be a manifold, consistently oriented triangle mesh; otherwise the filter stops and "
+           "the log lists every problem found.<br><br>"
+           "See: <i>Efremenko</i>, <b>\"On semi-implicit numerical method for surface diffusion equation "
+           "for triangulated surfaces\"</b>; <i>M. Meyer, M. Desbrun, P. Schr&ouml;der, A. H. Barr</i>, "
+           "<b>\"Discrete differential-geometry operators for triangulated 2-manifolds\"</b>, "
+           "Visualization and Mathematics III, 2003.";
+  }
+  return {};
+}
+
+MeshFilterInterface::FilterClass FilterSdflowPlugin::getClass(QAction* action)
+{
+  switch (ID(action)) {
+  case FP_SURFACE_DIFFUSION:
+    // A curvature-driven fairing flow: it belongs beside MeshLab's Laplacian, Taubin and HC
+    // smoothing filters.
+    return MeshFilterInterface::Smoothing;
+  }
+  return MeshFilterInterface::Generic;
+}
+
+MeshFilterInterface::FILTER_ARITY FilterSdflowPlugin::filterArity(QAction*) const { return SINGLE_MESH; }
+
+int FilterSdflowPlugin::getPreConditions(QAction*) const { return MeshModel::MM_FACENUMBER; }
+
+int FilterSdflowPlugin::postCondition(QAction*) const
+{
+  return MeshModel::MM_VERTCOORD | MeshModel::MM_VERTNORMAL | MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTCOLOR |
+         MeshModel::MM_VERTNUMBER | MeshModel::MM_FACEVERT | MeshModel::MM_FACENORMAL | MeshModel::MM_FACENUMBER;
+}
+
+void FilterSdflowPlugin::initParameterSet(QAction* action, MeshModel& model, RichParameterList& parameters)
+{
+  switch (ID(action)) {
+  case FP_SURFACE_DIFFUSION: {
+    const double natural_tau = sdflow::meshlab::natural_time_step(sdflow::meshlab::to_surface(model.cm));
+    parameters.addParam(RichInt("Steps", 10, "Steps",
+                                "Number of time steps to take. Each accepted step advances the time by its "
+                                "time step τ."));
+    parameters.addParam(RichBool("AutomaticTau", true, "Automatic time step",
+                                 "On: τ is chosen for each step, as sdflow's adaptive time step does. It starts "
+                                 "from a safe estimate, grows while the surface evolves calmly, and a step is "
+                                 "retried with a smaller τ if a vertex would move too far for its edges, a "
+                                 "triangle would flip, or a volume would drift.<br>Off: every step uses the time "
+                                 "step τ below."));
+    parameters.addParam(RichFloat("Tau", static_cast<float>(natural_tau), "Time step τ",
+                                  "The constant time step, used only when the automatic time step is off (> 0). "
+                                  "Surface diffusion is a fourth-order flow: stable steps scale like h⁴ for edge "
+                                  "length h. The default is h⁴ for this mesh's mean edge length."));
+    parameters.addParam(RichFloat("Beta", 0.5f, "Implicitness β",
+                                  "Weight of the implicit part of the scheme (I + τβΔ²) w = ΔH: 0.5 is the "
+                                  "paper's stable choice, 0 the explicit scheme (which needs much smaller τ)."));
+    parameters.addParam(RichBool("ConserveVolume", false, "Conserve volume exactly",
+                                 "After each step, move every closed component along its normals by one uniform "
+                                 "distance that restores its enclosed volume. The flow conserves volume in theory; "
+                                 "this removes the small drift of the discrete scheme."));
+    parameters.addParam(RichBool("FixedBoundary", false, "Fixed boundary",
+                                 "Hold the boundary vertices of open surfaces in place. Off: boundary vertices move "
+                                 "like interior ones, with zero mean curvature there."));
+    break;
+  }
+  }
+}
+
+bool FilterSdflowPlugin::applyFilter(QAction* action, MeshDocument& document, const RichParameterList& parameters,
+                                     vcg::CallBackPos* progress)
+{
+  MeshModel* model = document.mm();
+  const QString name = filterName(action);
+  try {
+    if (!model)
+      throw sdflow::InvalidParameter("there is no current mesh");
+    const sdflow::meshlab::Surface input = sdflow::meshlab::to_surface(model->cm);
+    const auto reporter = reporter_for(*this, progress);
+    const std::string label = (model->fullName().isEmpty() ? model->label() : model->fullName()).toStdString();
+    sdflow::meshlab::ShadedSurface result;
+    switch (ID(action)) {
+    case FP_SURFACE_DIFFUSION:
+      result = sdflow::meshlab::surface_diffusion(input, label, diffusion_settings(parameters), reporter);
+      break;
+    default:
+      throw std::logic_error("unknown filter " + name.toStdString());
+    }
+    // Only a complete result touches the user's mesh.
+    sdflow::meshlab::replace_mesh(model->cm, result);
+    model->updateDataMask(MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTNORMAL);
+    Log("%s: %d vertices, %d faces; vertex quality = mean curvature H", qUtf8Printable(name), model->cm.vn,
+        model->cm.fn);
+    return true;
+  } catch (const std::exception& e) {
+    // meshlabserver does not print errorMessage: the log carries the reason too.
+    errorMessage = QString("%1 failed: %2").arg(name, QString::fromUtf8(e.what()));
+    Log(GLLogStream::WARNING, errorMessage.toStdString());
+    return false;
+  }
+}
+
+MESHLAB_PLUGIN_NAME_EXPORTER(FilterSdflowPlugin)

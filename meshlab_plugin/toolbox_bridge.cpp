@@ -1,0 +1,183 @@
+#include "toolbox_bridge.h"
+
+#include "sdflow/errors.h"
+#include "sdflow/flow/simulation.h"
+#include "sdflow/geometry/curvature.h"
+#include "sdflow/geometry/normals.h"
+#include "sdflow/geometry/quality.h"
+#include "sdflow/log.h"
+#include "sdflow/validate.h"
+
+#include <spdlog/sinks/base_sink.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+
+namespace sdflow::meshlab {
+namespace {
+
+//! Forwards each toolbox log line to the reporter.
+class ReporterSink : public spdlog::sinks::base_sink<std::mutex> {
+public:
+  explicit ReporterSink(std::function<void(LogLevel, const std::string&)> log) : log_(std::move(log)) {}
+
+protected:
+  void sink_it_(const spdlog::details::log_msg& message) override
+  {
+    LogLevel level = LogLevel::info;
+    if (message.level <= spdlog::level::debug)
+      level = LogLevel::debug;
+    else if (message.level == spdlog::level::warn)
+      level = LogLevel::warning;
+    else if (message.level >= spdlog::level::err)
+      level = LogLevel::error;
+    log_(level, std::string(message.payload.data(), message.payload.size()));
+  }
+  void flush_() override {}
+
+private:
+  std::function<void(LogLevel, const std::string&)> log_;
+};
+
+//! Routes the toolbox's logger to a reporter for one bridge call, and silences it afterwards so no
+//! later message reaches a reporter that no longer exists.
+class LoggerScope {
+public:
+  explicit LoggerScope(const Reporter& reporter)
+  {
+    auto logger = reporter.log ? std::make_shared<spdlog::logger>("sdflow", std::make_shared<ReporterSink>(reporter.log))
+                               : std::make_shared<spdlog::logger>("sdflow");
+    logger->set_level(spdlog::level::info);
+    set_logger(std::move(logger));
+  }
+  ~LoggerScope() { set_logger(std::make_shared<spdlog::logger>("sdflow")); }
+  LoggerScope(const LoggerScope&) = delete;
+  LoggerScope& operator=(const LoggerScope&) = delete;
+};
+
+//! A fresh private directory, removed with its contents at the end of the scope.
+class TemporaryDirectory {
+public:
+  TemporaryDirectory()
+  {
+    std::string pattern = (std::filesystem::temp_directory_path() / "sdflow-meshlab-XXXXXX").string();
+    if (!mkdtemp(pattern.data()))
+      throw IoError("cannot create a temporary directory from " + pattern);
+    path_ = pattern;
+  }
+  ~TemporaryDirectory()
+  {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  TemporaryDirectory(const TemporaryDirectory&) = delete;
+  TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+private:
+  std::filesystem::path path_;
+};
+
+PolygonSoup to_soup(const Surface& surface)
+{
+  PolygonSoup soup;
+  soup.points.reserve(surface.points.size());
+  for (const auto& p : surface.points)
+    soup.points.emplace_back(p[0], p[1], p[2]);
+  soup.polygons.reserve(surface.triangles.size());
+  for (const auto& t : surface.triangles)
+    soup.polygons.push_back({t[0], t[1], t[2]});
+  return soup;
+}
+
+//! The surface as `sdflow` would have it after reading a file: validated, oriented outward.
+Mesh checked_mesh(const Surface& surface, const std::string& name)
+{
+  BuiltMesh built;
+  try {
+    built = build_mesh(to_soup(surface), name);
+  } catch (const MeshValidationError& e) {
+    // The exception's message is capped; the log gets every finding with its code.
+    for (const Finding& finding : e.findings())
+      logger().error("{}: {}", finding.code, finding.message);
+    throw;
+  }
+  // Repairs are worth a warning; build_mesh itself logs the one notable information (a flip).
+  for (const Finding& finding : built.findings)
+    if (finding.severity == Severity::warning)
+      logger().warn("{}: {}", finding.code, finding.message);
+  return std::move(built.mesh);
+}
+
+ShadedSurface shaded(const Mesh& mesh, const SchemeOptions& scheme)
+{
+  const VertexVectors normals = vertex_normals(mesh, scheme.normals);
+  const Eigen::VectorXd curvature = mean_curvature(mesh, normals, scheme.curvature);
+  ShadedSurface result;
+  const VertexVectors positions = vertex_positions(mesh);
+  const auto triangles = face_indices(mesh);
+  for (Eigen::Index v = 0; v < positions.rows(); ++v) {
+    result.surface.points.push_back({positions(v, 0), positions(v, 1), positions(v, 2)});
+    result.normals.push_back({normals(v, 0), normals(v, 1), normals(v, 2)});
+    result.mean_curvature.push_back(curvature[v]);
+  }
+  for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+    result.surface.triangles.push_back({triangles(f, 0), triangles(f, 1), triangles(f, 2)});
+  return result;
+}
+
+//! Mean edge length of `input`, or 0 if it is not a valid surface (the filter reports why when it
+//! is applied).
+double mean_edge_length(const Surface& input)
+{
+  const LoggerScope silent{Reporter{}};
+  try {
+    return mesh_quality(checked_mesh(input, "mesh")).edge_mean;
+  } catch (const Error&) {
+    return 0;
+  }
+}
+
+} // namespace
+
+double natural_time_step(const Surface& input) { return std::pow(mean_edge_length(input), 4); }
+
+ShadedSurface surface_diffusion(const Surface& input, const std::string& name, const DiffusionSettings& settings,
+                                const Reporter& reporter)
+{
+  const LoggerScope scope(reporter);
+  if (settings.steps < 1)
+    throw InvalidParameter("steps must be at least 1, got " + std::to_string(settings.steps));
+  const Mesh initial = checked_mesh(input, name);
+
+  // The same run as `sdflow run` with the same options; the run directory it needs for its files
+  // is private and temporary, and only the first and last surfaces are written there.
+  const TemporaryDirectory run_directory;
+  SimulationOptions options;
+  RunParameters& p = options.parameters;
+  p.input = name; // recorded in the run's parameters only
+  p.output_dir = run_directory.path();
+  p.steps = settings.steps;
+  p.time_step.mode = settings.automatic_tau ? TimeStepMode::adaptive : TimeStepMode::constant;
+  p.time_step.tau = settings.automatic_tau ? 0.0 : settings.tau;
+  p.scheme.beta = settings.beta;
+  p.scheme.boundary = settings.fixed_boundary ? BoundaryMotion::fixed : BoundaryMotion::paper;
+  p.conserve_volume = settings.conserve_volume;
+  p.snapshot_every = 0;
+  p.checkpoint_every = settings.steps;
+  if (reporter.progress)
+    options.progress = [&](const StepRecord& record) {
+      reporter.progress(static_cast<int>(100 * record.step / settings.steps),
+                        fmt::format("surface diffusion: step {} of {}, τ = {:.3g}", record.step, settings.steps,
+                                    record.tau));
+    };
+  const SimulationResult result = run_simulation(initial, options);
+  logger().info("surface diffusion: {} steps to t = {:.6g} ({} rejected trial steps)", result.steps, result.time,
+                result.rejected_trials);
+  return shaded(result.mesh, p.scheme);
+}
+
+} // namespace sdflow::meshlab

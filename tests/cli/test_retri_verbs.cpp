@@ -1,0 +1,102 @@
+//! `sdflow intersections` and `sdflow components` end to end: results, files written, exit codes.
+#include "sdflow/io.h"
+#include "sdflow/retri/intersect.h"
+#include "retri/test_meshes.h"
+#include "support/analytic_meshes.h"
+#include "support/run_command.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace sdflow {
+namespace {
+
+namespace fs = std::filesystem;
+
+class RetriCommands : public ::testing::Test {
+protected:
+  fs::path dir = fs::temp_directory_path() / ("sdflow_retri_cli_" + std::to_string(::getpid()));
+  void SetUp() override { fs::create_directories(dir); }
+  void TearDown() override { fs::remove_all(dir); }
+  std::string path(const std::string& name) const { return (dir / name).string(); }
+};
+
+Mesh pushed_through_icosphere()
+{
+  return test::mapped(analytic::icosphere(3), [](const Eigen::Vector3d& p) {
+    Eigen::Vector3d q = p;
+    if (q.z() > 0.2)
+      q.z() = 0.2 - 2.2 * (q.z() - 0.2);
+    return q;
+  });
+}
+
+TEST_F(RetriCommands, intersections_json_counts_and_lists_the_exact_pairs)
+{
+  write_mesh(pushed_through_icosphere(), path("pushed.ply"));
+  const auto expected = self_intersections(read_mesh(path("pushed.ply")).mesh);
+  ASSERT_FALSE(expected.empty());
+  const auto r = analytic::run_sdflow("intersections --json " + path("pushed.ply"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* key : {"\"file\"", "\"faces\"", "\"intersecting_pairs\"", "\"pairs\"", "\"degenerate_faces\""})
+    EXPECT_NE(r.output.find(key), std::string::npos) << key;
+  EXPECT_NE(r.output.find(fmt::format("\"intersecting_pairs\" : {}", expected.size())), std::string::npos) << r.output;
+
+  const auto text = analytic::run_sdflow("intersections " + path("pushed.ply"));
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find(fmt::format("  {} {}\n", expected[0].first, expected[0].second)), std::string::npos);
+}
+
+TEST_F(RetriCommands, intersections_output_has_none_left)
+{
+  write_mesh(pushed_through_icosphere(), path("pushed.off"));
+  const auto r = analytic::run_sdflow("intersections " + path("pushed.off") + " -o " + path("clean.off"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_TRUE(fs::exists(path("clean.off")));
+  EXPECT_TRUE(self_intersections(read_mesh(path("clean.off")).mesh).empty());
+  const auto again = analytic::run_sdflow("intersections --json " + path("clean.off"));
+  EXPECT_NE(again.output.find("\"intersecting_pairs\" : 0"), std::string::npos) << again.output;
+}
+
+TEST_F(RetriCommands, intersections_between_two_surfaces_and_bad_input)
+{
+  write_mesh(analytic::icosphere(2), path("a.off"));
+  write_mesh(analytic::icosphere(2, 1.0, Eigen::Vector3d(1.2, 0.1, 0)), path("b.off"));
+  const auto r = analytic::run_sdflow("intersections --json " + path("a.off") + " " + path("b.off"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto expected = surface_intersections(read_mesh(path("a.off")).mesh, read_mesh(path("b.off")).mesh);
+  ASSERT_FALSE(expected.empty());
+  EXPECT_NE(r.output.find(fmt::format("\"intersecting_pairs\" : {}", expected.size())), std::string::npos) << r.output;
+  EXPECT_EQ(analytic::run_sdflow("intersections " + path("a.off") + " " + path("b.off") + " -o " + path("c.off"))
+              .exit_code,
+            2);
+  EXPECT_EQ(analytic::run_sdflow("intersections " + path("missing.off")).exit_code, 2);
+}
+
+TEST_F(RetriCommands, components_keeps_large_bodies_or_splits_them)
+{
+  const Mesh sphere = analytic::icosphere(2, 1.0, Eigen::Vector3d(10, 0, 0));
+  const Mesh torus = analytic::torus(20, 10, 3, 1);
+  const Mesh small = analytic::icosphere(1, 0.5, Eigen::Vector3d(-10, 0, 0));
+  write_mesh(test::disjoint_union({&small, &torus, &sphere}), path("bodies.obj"));
+
+  const auto keep = analytic::run_sdflow("components " + path("bodies.obj") + " --min-faces 100 -o " + path("large.obj"));
+  ASSERT_EQ(keep.exit_code, 0) << keep.output;
+  EXPECT_EQ(read_mesh(path("large.obj")).mesh.n_faces(), 720u);
+
+  const auto split =
+    analytic::run_sdflow("components " + path("bodies.obj") + " --keep-largest 2 --split -o " + path("part.ply"));
+  ASSERT_EQ(split.exit_code, 0) << split.output;
+  EXPECT_EQ(read_mesh(path("part_0.ply")).mesh.n_faces(), 400u);
+  EXPECT_EQ(read_mesh(path("part_1.ply")).mesh.n_faces(), 320u);
+  EXPECT_FALSE(fs::exists(path("part_2.ply")));
+
+  EXPECT_EQ(analytic::run_sdflow("components " + path("bodies.obj") + " --min-faces 0 -o " + path("x.obj")).exit_code, 2);
+  EXPECT_EQ(analytic::run_sdflow("components " + path("bodies.obj")).exit_code, 2);
+}
+
+} // namespace
+} // namespace sdflow

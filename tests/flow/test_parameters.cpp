@@ -1,0 +1,84 @@
+//! Run parameters (parameters.h): scenario files, run.toml round trip, clear errors.
+#include "sdflow/errors.h"
+#include "sdflow/flow/parameters.h"
+#include "io/temp_dir.h"
+
+#include <gtest/gtest.h>
+
+namespace sdflow {
+namespace {
+
+TEST(RunParameters, resolved_toml_reads_back_to_the_same_parameters)
+{
+  test::TempDir dir;
+  RunParameters p;
+  p.input = dir / "in.ply";
+  p.output_dir = dir / "out";
+  p.steps = 1600;
+  p.end_time = 774.5;
+  p.time_step.mode = TimeStepMode::schedule;
+  p.time_step.schedule = TauSchedule({{1, 50, 0.01}, {51, 100, 0.02}});
+  p.time_step.adaptive.max_displacement = 0.1;
+  p.scheme.beta = 0.75;
+  p.scheme.boundary = BoundaryMotion::fixed;
+  p.solver.kind = SolverKind::qr;
+  p.conserve_volume = true;
+  p.snapshot_every = 7;
+  p.reference_centre = {1, 2, 3};
+  p.reference_radius = 3;
+  test::write_file(dir / "run.toml", run_parameters_toml(p));
+
+  RunParameters q;
+  read_run_parameters(dir / "run.toml", q);
+  EXPECT_EQ(q.input, p.input);
+  EXPECT_EQ(q.output_dir, p.output_dir);
+  EXPECT_EQ(q.steps, p.steps);
+  EXPECT_EQ(q.end_time, p.end_time);
+  EXPECT_EQ(q.time_step.mode, TimeStepMode::schedule);
+  EXPECT_EQ(q.time_step.schedule.tau_for_step(60), 0.02);
+  EXPECT_EQ(q.time_step.adaptive.max_displacement, 0.1);
+  EXPECT_EQ(q.scheme.beta, 0.75);
+  EXPECT_EQ(q.scheme.boundary, BoundaryMotion::fixed);
+  EXPECT_EQ(q.solver.kind, SolverKind::qr);
+  EXPECT_TRUE(q.conserve_volume);
+  EXPECT_EQ(q.snapshot_every, 7);
+  EXPECT_EQ(q.reference_centre, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(q.reference_radius, 3);
+}
+
+TEST(RunParameters, scenario_errors_name_the_file_line_and_key)
+{
+  test::TempDir dir;
+  const auto expect_error = [&](const std::string& text, const std::string& needle) {
+    SCOPED_TRACE(text);
+    test::write_file(dir / "s.toml", text);
+    RunParameters p;
+    try {
+      read_run_parameters(dir / "s.toml", p);
+      FAIL() << "accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  expect_error("steps = 10\nstpes = 20\n", "s.toml:2: unknown key `stpes`");
+  expect_error("beta = \"half\"\n", "`beta` has the wrong type");
+  expect_error("solver = \"lu\"\n", "solver must be");
+  expect_error("[adaptive]\ngrowht = 2\n", "unknown key `adaptive.growht`");
+  expect_error("steps = [\n", "s.toml:");
+}
+
+TEST(RunParameters, validation_requires_a_stop_condition_and_sane_values)
+{
+  RunParameters p;
+  EXPECT_THROW(validate_run_parameters(p), InvalidParameter);
+  p.steps = 10;
+  EXPECT_NO_THROW(validate_run_parameters(p));
+  p.scheme.beta = -1;
+  EXPECT_THROW(validate_run_parameters(p), InvalidParameter);
+  p.scheme.beta = 0.5;
+  p.time_step.mode = TimeStepMode::constant;
+  EXPECT_THROW(validate_run_parameters(p), InvalidParameter) << "constant mode without τ";
+}
+
+} // namespace
+} // namespace sdflow

@@ -1,0 +1,505 @@
+#include "sdflow/retri/remesh.h"
+
+#include "sdflow/errors.h"
+#include "sdflow/geometry/curvature.h"
+#include "sdflow/geometry/laplacian.h"
+#include "sdflow/geometry/normals.h"
+#include "sdflow/log.h"
+#include "sdflow/retri/star_projection.h"
+
+#include <OpenMesh/Core/Utils/PropertyManager.hh>
+#include <fmt/format.h>
+#include <nanoflann.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <numbers>
+#include <vector>
+
+namespace sdflow {
+namespace {
+
+constexpr double kSplitRatio = 4.0 / 3.0;    //!< split edges longer than this × target
+constexpr double kCollapseRatio = 4.0 / 5.0; //!< collapse edges shorter than this × target
+//! Splitting passes per iteration; each pass at least halves the longest edges, so edges up to
+//! 2^10 × 4/3 ℓ are split to length in one iteration, longer ones in the next.
+constexpr int kMaxSplitPasses = 10;
+//! A collapse or flip must leave every new triangle within ~75° of the local surface normal
+//! (the area-weighted normal of the star it replaces): a fold-over turns a triangle by ~180°,
+//! while on a surface sampled finer than its curvature radius the honest turn is a few degrees.
+constexpr double kMinNormalCosine = 0.25;
+//! Triangles with twice-area below this × (edge target)² count as degenerate: their normals say
+//! nothing, and no operation may create one.
+constexpr double kDegenerateArea = 1e-10;
+
+Eigen::Vector3d point(const Mesh& mesh, Mesh::VertexHandle v) { return to_eigen(mesh.point(v)); }
+
+//! Twice-area normal of the triangle abc.
+Eigen::Vector3d area_normal(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c)
+{
+  return (b - a).cross(c - a);
+}
+
+Eigen::Vector3d face_area_normal(const Mesh& mesh, Mesh::FaceHandle f)
+{
+  auto h = mesh.halfedge_handle(f);
+  const Eigen::Vector3d a = point(mesh, mesh.from_vertex_handle(h));
+  const Eigen::Vector3d b = point(mesh, mesh.to_vertex_handle(h));
+  const Eigen::Vector3d c = point(mesh, mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
+  return area_normal(a, b, c);
+}
+
+class Remesher {
+public:
+  Remesher(Mesh& mesh, const RemeshOptions& options, double ell, PointProjection project,
+           PointProjection project_boundary)
+      : mesh_(mesh), options_(options), ell_(ell), project_(std::move(project)),
+        project_boundary_(std::move(project_boundary)), target_(mesh, "sdflow:remesh:target"),
+        locked_(mesh, "sdflow:remesh:locked")
+  {
+    const double corner_cos = std::cos(options.boundary_corner_angle_deg * std::numbers::pi / 180);
+    for (auto v : mesh_.vertices()) {
+      target_[v] = target_at(point(mesh_, v));
+      locked_[v] = false;
+      if (!mesh_.is_boundary(v))
+        continue;
+      if (options_.boundary == BoundaryMode::keep) {
+        locked_[v] = true;
+        continue;
+      }
+      // Boundary turning angle: between the incoming and the outgoing boundary edge.
+      const auto out = mesh_.halfedge_handle(v); // a boundary vertex's halfedge is on the boundary
+      const auto in = mesh_.prev_halfedge_handle(out);
+      const Eigen::Vector3d e_in = point(mesh_, v) - point(mesh_, mesh_.from_vertex_handle(in));
+      const Eigen::Vector3d e_out = point(mesh_, mesh_.to_vertex_handle(out)) - point(mesh_, v);
+      const double n = e_in.norm() * e_out.norm();
+      locked_[v] = n > 0 && e_in.dot(e_out) < corner_cos * n;
+    }
+  }
+
+  RemeshStatistics run()
+  {
+    for (int iteration = 0; iteration < options_.iterations; ++iteration) {
+      split_long_edges();
+      collapse_short_edges();
+      flip_edges();
+      relax_and_project();
+      mesh_.garbage_collection();
+      logger().debug("remesh iteration {}: {} vertices, {} faces", iteration + 1, mesh_.n_vertices(), mesh_.n_faces());
+    }
+    mesh_.garbage_collection();
+    statistics_.target_edge_length = ell_;
+    return statistics_;
+  }
+
+private:
+  double target_at(const Eigen::Vector3d& p) const
+  {
+    if (!options_.sizing)
+      return ell_;
+    const double t = options_.sizing(p);
+    if (!(t > 0) || !std::isfinite(t))
+      throw InvalidParameter(fmt::format("remesh: the sizing field gave {} at ({}, {}, {}); targets must be positive",
+                                         t, p.x(), p.y(), p.z()));
+    return t;
+  }
+
+  double edge_target(Mesh::VertexHandle a, Mesh::VertexHandle b) const { return 0.5 * (target_[a] + target_[b]); }
+
+  bool movable_on_boundary() const { return options_.boundary == BoundaryMode::remesh; }
+
+  Eigen::Vector3d project(Mesh::VertexHandle v, const Eigen::Vector3d& p) const
+  {
+    return mesh_.is_boundary(v) ? project_boundary_(p) : project_(p);
+  }
+
+  //! The area-weighted normal of v's star (unnormalised; zero for an all-degenerate star).
+  Eigen::Vector3d star_normal(Mesh::VertexHandle v) const
+  {
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    for (auto f : mesh_.vf_range(v))
+      n += face_area_normal(mesh_, f);
+    return n;
+  }
+
+  //! A new triangle is acceptable if it is not degenerate and within the normal cone of `reference`.
+  bool acceptable(const Eigen::Vector3d& new_normal, const Eigen::Vector3d& reference, double target) const
+  {
+    const double area2 = new_normal.norm();
+    if (!(area2 > kDegenerateArea * target * target))
+      return false;
+    const double r = reference.norm();
+    return r == 0 || new_normal.dot(reference) >= kMinNormalCosine * area2 * r;
+  }
+
+  void split_long_edges()
+  {
+    // Longest first, in passes over the edges that exist when the pass starts. Splitting a
+    // triangle's shorter edge first would create a median nearly as long as its longest edge,
+    // and index-order splitting of needle triangles can cascade without end.
+    std::vector<std::pair<double, Mesh::EdgeHandle>> queue;
+    for (int pass = 0; pass < kMaxSplitPasses; ++pass) {
+      queue.clear();
+      for (auto e : mesh_.edges()) {
+        if (mesh_.is_boundary(e) && !movable_on_boundary())
+          continue;
+        const auto h = mesh_.halfedge_handle(e, 0);
+        const auto a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
+        const double ratio = (point(mesh_, b) - point(mesh_, a)).norm() / edge_target(a, b);
+        if (ratio > kSplitRatio)
+          queue.emplace_back(ratio, e);
+      }
+      if (queue.empty())
+        break;
+      std::sort(queue.begin(), queue.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+      for (const auto& [ratio, e] : queue) {
+        const auto h = mesh_.halfedge_handle(e, 0);
+        const auto a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
+        const Eigen::Vector3d pa = point(mesh_, a), pb = point(mesh_, b);
+        if ((pb - pa).norm() <= kSplitRatio * edge_target(a, b))
+          continue; // an earlier split in this pass already shortened it
+        const Eigen::Vector3d mid = 0.5 * (pa + pb);
+        const Eigen::Vector3d p = mesh_.is_boundary(e) ? project_boundary_(mid) : project_(mid);
+        const auto v = mesh_.add_vertex(to_point(p));
+        mesh_.split(e, v);
+        target_[v] = options_.sizing ? target_at(p) : ell_;
+        locked_[v] = false;
+        ++statistics_.splits;
+      }
+    }
+  }
+
+  //! Where the surviving vertex goes when h's from-vertex is collapsed into its to-vertex: the
+  //! projected midpoint (Botsch & Kobbelt), unless the survivor must stay put (a locked vertex,
+  //! or a boundary vertex absorbing an interior one).
+  Eigen::Vector3d collapse_position(Mesh::HalfedgeHandle h) const
+  {
+    const auto v0 = mesh_.from_vertex_handle(h), v1 = mesh_.to_vertex_handle(h);
+    const Eigen::Vector3d p1 = point(mesh_, v1);
+    if (locked_[v1] || mesh_.is_boundary(v1) != mesh_.is_boundary(v0))
+      return p1;
+    return project(v1, 0.5 * (point(mesh_, v0) + p1));
+  }
+
+  //! Whether collapsing h's from-vertex v0 into its to-vertex v1, moved to `p`, is allowed.
+  bool collapse_ok(Mesh::HalfedgeHandle h, const Eigen::Vector3d& p) const
+  {
+    const auto v0 = mesh_.from_vertex_handle(h), v1 = mesh_.to_vertex_handle(h);
+    if (locked_[v0])
+      return false;
+    if (mesh_.is_boundary(v0)) {
+      // A boundary vertex may only slide along a boundary edge to a boundary neighbour.
+      if (!movable_on_boundary() || !mesh_.is_boundary(v1) || !mesh_.is_boundary(mesh_.edge_handle(h)))
+        return false;
+    }
+    if (!mesh_.is_collapse_ok(h))
+      return false;
+    for (auto v : {v0, v1})
+      for (auto w : mesh_.vv_range(v))
+        if (w != v0 && w != v1 && (point(mesh_, w) - p).norm() > kSplitRatio * edge_target(v1, w))
+          return false;
+    // Every surviving triangle around v0 or v1 must stay well-shaped and unturned.
+    for (auto v : {v0, v1}) {
+      const Eigen::Vector3d reference = star_normal(v);
+      for (auto f : mesh_.vf_range(v)) {
+        bool has_other = false;
+        std::array<Eigen::Vector3d, 3> q;
+        int k = 0;
+        for (auto u : mesh_.fv_range(f)) {
+          has_other |= u == (v == v0 ? v1 : v0);
+          q[k++] = u == v0 || u == v1 ? p : point(mesh_, u);
+        }
+        if (has_other)
+          continue; // the triangle on the collapsed edge disappears
+        if (!acceptable(area_normal(q[0], q[1], q[2]), reference, target_[v]))
+          return false;
+      }
+    }
+    return true;
+  }
+
+  void collapse_short_edges()
+  {
+    const std::size_t edges = mesh_.n_edges();
+    for (std::size_t i = 0; i < edges; ++i) {
+      const Mesh::EdgeHandle e(static_cast<int>(i));
+      if (mesh_.status(e).deleted())
+        continue;
+      const auto h01 = mesh_.halfedge_handle(e, 0), h10 = mesh_.halfedge_handle(e, 1);
+      const auto v0 = mesh_.from_vertex_handle(h01), v1 = mesh_.to_vertex_handle(h01);
+      if ((point(mesh_, v0) - point(mesh_, v1)).norm() >= kCollapseRatio * edge_target(v0, v1))
+        continue;
+      // Remove the vertex of lower valence when both ways are allowed: that pulls both valences
+      // toward the regular 6.
+      std::array<Mesh::HalfedgeHandle, 2> order = {h01, h10};
+      if (mesh_.valence(v1) < mesh_.valence(v0))
+        std::swap(order[0], order[1]);
+      for (const auto h : order) {
+        const Eigen::Vector3d p = collapse_position(h);
+        if (!collapse_ok(h, p))
+          continue;
+        const auto survivor = mesh_.to_vertex_handle(h);
+        mesh_.collapse(h);
+        mesh_.set_point(survivor, to_point(p));
+        ++statistics_.collapses;
+        break;
+      }
+    }
+  }
+
+  int valence_target(Mesh::VertexHandle v) const { return mesh_.is_boundary(v) ? 4 : 6; }
+
+  void flip_edges()
+  {
+    // Valences, kept current through the flips (a circulator per query is the costly part).
+    std::vector<int> valence(mesh_.n_vertices());
+    for (auto v : mesh_.vertices())
+      valence[v.idx()] = static_cast<int>(mesh_.valence(v));
+    const std::size_t edges = mesh_.n_edges();
+    for (std::size_t i = 0; i < edges; ++i) {
+      const Mesh::EdgeHandle e(static_cast<int>(i));
+      if (mesh_.status(e).deleted() || mesh_.is_boundary(e))
+        continue;
+      const auto h0 = mesh_.halfedge_handle(e, 0), h1 = mesh_.halfedge_handle(e, 1);
+      const auto a = mesh_.from_vertex_handle(h0), b = mesh_.to_vertex_handle(h0);
+      const auto c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h0));
+      const auto d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h1));
+      const int va = valence[a.idx()], vb = valence[b.idx()], vc = valence[c.idx()], vd = valence[d.idx()];
+      // Keep every vertex in at least three triangles (two on the boundary).
+      if (va - 1 < (mesh_.is_boundary(a) ? 2 : 3) || vb - 1 < (mesh_.is_boundary(b) ? 2 : 3))
+        continue;
+      const auto sq = [](int x) { return x * x; };
+      const int ta = valence_target(a), tb = valence_target(b), tc = valence_target(c), td = valence_target(d);
+      const int before = sq(va - ta) + sq(vb - tb) + sq(vc - tc) + sq(vd - td);
+      const int after = sq(va - 1 - ta) + sq(vb - 1 - tb) + sq(vc + 1 - tc) + sq(vd + 1 - td);
+      if (after >= before || !mesh_.is_flip_ok(e))
+        continue;
+      // The quad a-d-b-c is split along c-d after the flip: triangles (a, d, c) and (d, b, c).
+      const Eigen::Vector3d pa = point(mesh_, a), pb = point(mesh_, b), pc = point(mesh_, c), pd = point(mesh_, d);
+      const Eigen::Vector3d reference = area_normal(pa, pb, pc) + area_normal(pb, pa, pd);
+      const double target = edge_target(c, d);
+      if (!acceptable(area_normal(pa, pd, pc), reference, target) ||
+          !acceptable(area_normal(pd, pb, pc), reference, target))
+        continue;
+      mesh_.flip(e);
+      --valence[a.idx()];
+      --valence[b.idx()];
+      ++valence[c.idx()];
+      ++valence[d.idx()];
+      ++statistics_.flips;
+    }
+  }
+
+  //! Tangential relaxation sweeps, each followed by projection; then the moves of the corners
+  //! of any triangle that turned over since the first sweep are undone.
+  void relax_and_project()
+  {
+    if (options_.relaxation_steps == 0)
+      return;
+    const std::size_t n = mesh_.n_vertices();
+    std::vector<Eigen::Vector3d> start(n);
+    for (auto v : mesh_.vertices())
+      start[v.idx()] = point(mesh_, v);
+    std::vector<Eigen::Vector3d> start_normal(mesh_.n_faces());
+    for (auto f : mesh_.faces())
+      start_normal[f.idx()] = face_area_normal(mesh_, f);
+
+    std::vector<Eigen::Vector3d> current = start, next = start, face_normal = start_normal;
+    for (int step = 0; step < options_.relaxation_steps; ++step) {
+      if (step > 0)
+        for (auto f : mesh_.faces())
+          face_normal[f.idx()] = face_area_normal(mesh_, f);
+      for (auto v : mesh_.vertices()) {
+        if (locked_[v])
+          continue;
+        if (mesh_.is_boundary(v)) {
+          // Slide along the boundary toward the midpoint of the two boundary neighbours.
+          const auto out = mesh_.halfedge_handle(v);
+          const auto in = mesh_.prev_halfedge_handle(out);
+          next[v.idx()] = project_boundary_(
+              0.5 * (current[mesh_.to_vertex_handle(out).idx()] + current[mesh_.from_vertex_handle(in).idx()]));
+          continue;
+        }
+        // Tangential move toward the (sizing-weighted) centroid of the neighbours.
+        Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+        double weight = 0;
+        for (auto w : mesh_.vv_range(v)) {
+          const double omega = options_.sizing ? target_[w] : 1.0;
+          centroid += omega * current[w.idx()];
+          weight += omega;
+        }
+        if (!(weight > 0))
+          continue;
+        centroid /= weight;
+        Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+        for (auto f : mesh_.vf_range(v))
+          normal += face_normal[f.idx()];
+        const double nn = normal.norm();
+        Eigen::Vector3d q = centroid;
+        if (nn > 0) {
+          normal /= nn;
+          q = centroid + normal * normal.dot(current[v.idx()] - centroid);
+        }
+        next[v.idx()] = project_(q);
+      }
+      current = next;
+      for (auto v : mesh_.vertices())
+        mesh_.set_point(v, to_point(current[v.idx()]));
+    }
+
+    // Undo the moves of the corners of any triangle that turned over; repeat, since undoing one
+    // vertex can turn a triangle of its neighbours.
+    for (int round = 0; round < 10; ++round) {
+      bool reverted = false;
+      for (auto f : mesh_.faces()) {
+        const Eigen::Vector3d& before = start_normal[f.idx()];
+        if (before.squaredNorm() == 0 || face_area_normal(mesh_, f).dot(before) > 0)
+          continue;
+        for (auto u : mesh_.fv_range(f)) {
+          if (current[u.idx()] != start[u.idx()]) {
+            current[u.idx()] = start[u.idx()];
+            mesh_.set_point(u, to_point(start[u.idx()]));
+            ++statistics_.relaxation_reverts;
+            reverted = true;
+          }
+        }
+      }
+      if (!reverted)
+        break;
+    }
+    if (options_.sizing)
+      for (auto v : mesh_.vertices())
+        target_[v] = target_at(point(mesh_, v));
+  }
+
+  Mesh& mesh_;
+  const RemeshOptions& options_;
+  double ell_;
+  PointProjection project_;
+  PointProjection project_boundary_;
+  OpenMesh::VProp<double> target_;
+  OpenMesh::VProp<bool> locked_;
+  RemeshStatistics statistics_;
+};
+
+//! Vertices with their target lengths, as nanoflann's point source.
+struct SizingSites {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<double> length;
+  std::size_t kdtree_get_point_count() const { return points.size(); }
+  double kdtree_get_pt(std::size_t i, std::size_t k) const { return points[i][k]; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const
+  {
+    return false;
+  }
+};
+using SizingTree = nanoflann::KDTreeSingleIndexAdaptor<
+    nanoflann::L2_Simple_Adaptor<double, SizingSites, double, std::uint32_t>, SizingSites, 3, std::uint32_t>;
+
+double mean_edge_length(const Mesh& mesh)
+{
+  double sum = 0;
+  for (auto e : mesh.edges())
+    sum += mesh.calc_edge_length(e);
+  return mesh.n_edges() ? sum / mesh.n_edges() : 0;
+}
+
+} // namespace
+
+RemeshResult isotropic_remesh(const Mesh& input, const RemeshOptions& options)
+{
+  if (input.n_faces() == 0)
+    throw InvalidMesh("remesh: the mesh has no triangles");
+  if (!(options.target_edge_length >= 0) || !std::isfinite(options.target_edge_length))
+    throw InvalidParameter(fmt::format("remesh: target edge length {} must be positive (or 0 for the mean edge length)",
+                                       options.target_edge_length));
+  if (options.iterations < 0 || options.relaxation_steps < 0)
+    throw InvalidParameter(fmt::format("remesh: iterations ({}) and relaxation steps ({}) must not be negative",
+                                       options.iterations, options.relaxation_steps));
+  if (!(options.boundary_corner_angle_deg >= 0 && options.boundary_corner_angle_deg <= 180))
+    throw InvalidParameter(fmt::format("remesh: boundary corner angle {}° must be in [0°, 180°]",
+                                       options.boundary_corner_angle_deg));
+  RemeshResult result;
+  result.mesh = input;
+  result.mesh.garbage_collection();
+  const double ell = options.target_edge_length > 0 ? options.target_edge_length : mean_edge_length(result.mesh);
+  if (!(ell > 0))
+    throw InvalidMesh("remesh: every edge has zero length, so no target edge length can be derived");
+
+  // Default targets: the input surface itself, searched around its nearest vertices.
+  std::shared_ptr<StarProjection> reference;
+  if (!options.project || !options.project_boundary)
+    reference = std::make_shared<StarProjection>(result.mesh);
+  PointProjection project = options.project;
+  if (!project)
+    project = [reference](const Eigen::Vector3d& p) { return reference->closest_point(p); };
+  PointProjection project_boundary = options.project_boundary;
+  if (!project_boundary)
+    project_boundary = [reference](const Eigen::Vector3d& p) { return reference->closest_boundary_point(p); };
+
+  Remesher remesher(result.mesh, options, ell, std::move(project), std::move(project_boundary));
+  result.statistics = remesher.run();
+  return result;
+}
+
+SizingField curvature_sizing(const Mesh& mesh, const CurvatureSizingOptions& options)
+{
+  if (!(options.tolerance > 0) || !(options.min_length > 0) || !(options.max_length >= options.min_length))
+    throw InvalidParameter(fmt::format("curvature_sizing: need tolerance > 0 and 0 < min_length ≤ max_length, got "
+                                       "ε = {}, min = {}, max = {}",
+                                       options.tolerance, options.min_length, options.max_length));
+  if (mesh.n_faces() == 0)
+    throw InvalidMesh("curvature_sizing: the mesh has no triangles");
+  Mesh clean = mesh;
+  clean.garbage_collection();
+  const VertexVectors normals = vertex_normals(clean);
+  const Eigen::VectorXd H = mean_curvature(clean, normals);
+  const Eigen::VectorXd area = mixed_voronoi_areas(clean);
+  const auto n = static_cast<Eigen::Index>(clean.n_vertices());
+  // Largest absolute principal curvature from H and the Gaussian curvature K (angle defect):
+  // κ = |H| + √max(H² − K, 0).
+  Eigen::VectorXd kappa = Eigen::VectorXd::Zero(n);
+  for (auto v : clean.vertices()) {
+    if (clean.is_boundary(v) || !(area[v.idx()] > 0))
+      continue;
+    double angle_sum = 0;
+    for (auto h : clean.voh_range(v)) {
+      if (h.is_boundary())
+        continue;
+      const Eigen::Vector3d p = to_eigen(clean.point(v));
+      const Eigen::Vector3d a = to_eigen(clean.point(h.to())) - p;
+      const Eigen::Vector3d b = to_eigen(clean.point(h.next().to())) - p;
+      angle_sum += std::atan2(a.cross(b).norm(), a.dot(b));
+    }
+    const double K = (2 * std::numbers::pi - angle_sum) / area[v.idx()];
+    const double h = H[v.idx()];
+    kappa[v.idx()] = std::abs(h) + std::sqrt(std::max(h * h - K, 0.0));
+  }
+  // Eq. (9) sets H = 0 on the boundary: borrow the largest curvature of the interior neighbours.
+  for (auto v : clean.vertices())
+    if (clean.is_boundary(v))
+      for (auto w : clean.vv_range(v))
+        if (!clean.is_boundary(w))
+          kappa[v.idx()] = std::max(kappa[v.idx()], kappa[w.idx()]);
+
+  auto sites = std::make_shared<SizingSites>();
+  const double eps = options.tolerance;
+  for (auto v : clean.vertices()) {
+    const double k = kappa[v.idx()];
+    const double length = k > 0 ? std::sqrt(std::max(6 * eps / k - 3 * eps * eps, 0.0)) : options.max_length;
+    sites->points.push_back(to_eigen(clean.point(v)));
+    sites->length.push_back(std::clamp(length, options.min_length, options.max_length));
+  }
+  auto tree = std::make_shared<SizingTree>(3, *sites, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  return [sites, tree](const Eigen::Vector3d& p) {
+    std::uint32_t id = 0;
+    double distance = 0;
+    tree->knnSearch(p.data(), 1, &id, &distance);
+    return sites->length[id];
+  };
+}
+
+} // namespace sdflow

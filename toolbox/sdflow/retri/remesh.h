@@ -1,0 +1,88 @@
+#pragma once
+//! \file remesh.h
+//! \brief Isotropic remeshing (Botsch & Kobbelt 2004, "A remeshing approach to multiresolution
+//! modeling"): the first step of the re-triangulation of paper §3.2.1 and the finishing step of
+//! the implicit-surface mesher.
+//!
+//! Each iteration splits edges longer than 4/3 ℓ, collapses edges shorter than 4/5 ℓ (unless the
+//! collapse would create an edge longer than 4/3 ℓ, invert a triangle or change the topology),
+//! flips edges toward valence 6 (4 on the boundary), relaxes vertices tangentially and projects
+//! them back onto the reference surface. What "the reference surface" is belongs to the caller:
+//! a projection function (onto an implicit surface for the mesher, onto the pre-remesh surface
+//! through a BVH for the re-triangulation pipeline).
+
+#include "sdflow/mesh.h"
+
+#include <Eigen/Core>
+
+#include <functional>
+
+namespace sdflow {
+
+//! Maps a point near the surface to its closest point on it (or on a boundary curve).
+using PointProjection = std::function<Eigen::Vector3d(const Eigen::Vector3d&)>;
+
+//! Target edge length at a point, for adaptive remeshing.
+using SizingField = std::function<double(const Eigen::Vector3d&)>;
+
+enum class BoundaryMode {
+  remesh, //!< boundary edges are split and collapsed along the boundary, vertices slide on it
+  keep,   //!< boundary vertices and edges are left exactly as they are
+};
+
+struct RemeshOptions {
+  //! ℓ, the target edge length; 0 takes the input's mean edge length.
+  double target_edge_length = 0;
+  //! Split / collapse / flip / relax / project rounds.
+  int iterations = 10;
+  //! Tangential relaxation sweeps (each followed by projection) per iteration.
+  int relaxation_steps = 3;
+  //! Closest point on the surface. Empty: the input mesh itself, through StarProjection
+  //! (closest point among the triangles around the nearest input vertices).
+  PointProjection project;
+  //! Closest point on the boundary curves (BoundaryMode::remesh). Empty: the input's boundary
+  //! polylines, through the same nearest-vertex search.
+  PointProjection project_boundary;
+  BoundaryMode boundary = BoundaryMode::remesh;
+  //! Boundary vertices where the boundary turns by more than this angle (degrees) are corners:
+  //! never moved or removed, so polygonal boundaries keep their shape.
+  double boundary_corner_angle_deg = 45;
+  //! Local target ℓ(p) for adaptive remeshing (e.g. curvature_sizing); empty: uniform ℓ.
+  //! An edge's target is the mean of the targets at its two ends.
+  SizingField sizing;
+};
+
+//! What the remesher did, summed over all iterations.
+struct RemeshStatistics {
+  long splits = 0;
+  long collapses = 0;
+  long flips = 0;
+  long relaxation_reverts = 0; //!< vertex moves undone because they would have inverted a triangle
+  double target_edge_length = 0; //!< the ℓ used (uniform part)
+};
+
+struct RemeshResult {
+  Mesh mesh; //!< garbage-collected: vertex i is VertexHandle(i)
+  RemeshStatistics statistics;
+};
+
+//! Isotropic remeshing of `mesh` (Botsch & Kobbelt 2004). Genus, components and boundary loops
+//! are preserved (collapses pass OpenMesh's link condition; boundary vertices stay on the
+//! boundary). Throws InvalidParameter for a non-positive ℓ, negative iteration counts or a
+//! sizing field that returns a non-positive length, InvalidMesh for an empty mesh.
+RemeshResult isotropic_remesh(const Mesh& mesh, const RemeshOptions& options = {});
+
+//! Curvature-adapted sizing (Dunyach et al. 2013): ℓ(v) = √(6ε/κ − 3ε²) where κ is the largest
+//! absolute principal curvature at v (from the discrete mean curvature, eq. 9, and the angle
+//! defect), so the chord deviates at most ε from the surface; clamped to [min_length, max_length].
+struct CurvatureSizingOptions {
+  double tolerance = 0;  //!< ε, the approximation error allowed (> 0)
+  double min_length = 0; //!< smallest target (> 0)
+  double max_length = 0; //!< largest target (≥ min_length)
+};
+
+//! Sizing field from the curvature of `mesh`: the target at a point is the one of the nearest
+//! vertex of `mesh`. Throws InvalidParameter for out-of-range options.
+SizingField curvature_sizing(const Mesh& mesh, const CurvatureSizingOptions& options);
+
+} // namespace sdflow

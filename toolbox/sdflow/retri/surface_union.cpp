@@ -1,0 +1,248 @@
+#include "sdflow/retri/surface_union.h"
+
+#include "sdflow/errors.h"
+#include "sdflow/log.h"
+#include "sdflow/retri/bvh.h"
+#include "sdflow/retri/intersect.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace sdflow {
+namespace {
+
+//! Side of a surface through the angle-weighted pseudonormal at the closest point (Bærentzen &
+//! Aanæs 2005): exact sign for closed surfaces, whether the closest point is inside a face, on an
+//! edge or at a vertex.
+class SideOracle {
+public:
+  explicit SideOracle(const Mesh& mesh) : mesh_(mesh), bvh_(mesh)
+  {
+    face_normal_.resize(mesh.n_faces());
+    vertex_normal_.assign(mesh.n_vertices(), Eigen::Vector3d::Zero());
+    for (auto f : mesh.faces()) {
+      face_normal_[f.idx()] = to_eigen(mesh.calc_face_normal(f));
+      for (auto h : f.halfedges())
+        vertex_normal_[h.to().idx()] += mesh.calc_sector_angle(h) * face_normal_[f.idx()];
+    }
+  }
+
+  //! True when q lies inside the closed surface.
+  bool inside(const Eigen::Vector3d& q) const
+  {
+    const ClosestPoint cp = bvh_.closest_point(q);
+    if (cp.face < 0)
+      return false;
+    const Mesh::FaceHandle f(cp.face);
+    constexpr double on_element = 1e-10;
+    int zeros = 0, nonzero = -1;
+    for (int k = 0; k < 3; ++k) {
+      if (cp.barycentric[k] < on_element)
+        ++zeros;
+      else
+        nonzero = k;
+    }
+    Eigen::Vector3d normal = face_normal_[cp.face];
+    const auto corners = bvh_.triangle(cp.face);
+    if (zeros == 2) {
+      normal = vertex_normal_[corners[nonzero]];
+    } else if (zeros == 1) {
+      // On the edge opposite the zero weight: add the neighbour across it.
+      for (auto h : mesh_.fh_range(f)) {
+        const int from = h.from().idx(), to = h.to().idx();
+        bool opposite_zero = true;
+        for (int k = 0; k < 3; ++k)
+          if ((corners[k] == from || corners[k] == to) && cp.barycentric[k] < on_element)
+            opposite_zero = false;
+        if (opposite_zero && !h.opp().is_boundary()) {
+          normal += face_normal_[h.opp().face().idx()];
+          break;
+        }
+      }
+    }
+    return (q - cp.point).dot(normal) < 0;
+  }
+
+private:
+  const Mesh& mesh_;
+  Bvh bvh_;
+  std::vector<Eigen::Vector3d> face_normal_;
+  std::vector<Eigen::Vector3d> vertex_normal_;
+};
+
+//! Delete the faces flagged in `remove`, then faces around vertices left with several boundary
+//! gaps (a loop through them would be a figure eight), until every vertex is manifold.
+int remove_faces(Mesh& mesh, std::vector<bool> remove)
+{
+  int removed = 0;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (auto f : mesh.faces())
+      if (remove[f.idx()]) {
+        mesh.delete_face(f, true);
+        ++removed;
+        changed = true;
+      }
+    std::fill(remove.begin(), remove.end(), false);
+    for (auto v : mesh.vertices()) {
+      int gaps = 0;
+      for (auto h : v.outgoing_halfedges())
+        gaps += h.is_boundary();
+      if (gaps > 1)
+        for (auto f : v.faces())
+          remove[f.idx()] = true;
+    }
+  }
+  return removed;
+}
+
+struct Loop {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<int> vertices; //!< indices in the combined vertex list
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+};
+
+//! Boundary loops of `mesh` in boundary-halfedge order, vertex indices shifted by `offset`.
+std::vector<Loop> boundary_loops(const Mesh& mesh, int offset)
+{
+  std::vector<Loop> loops;
+  std::vector<bool> seen(mesh.n_halfedges(), false);
+  for (auto h : mesh.halfedges()) {
+    if (!h.is_boundary() || seen[h.idx()])
+      continue;
+    Loop loop;
+    for (auto g = h; !seen[g.idx()]; g = g.next()) {
+      seen[g.idx()] = true;
+      loop.points.push_back(to_eigen(mesh.point(g.from())));
+      loop.vertices.push_back(g.from().idx() + offset);
+      loop.centre += loop.points.back();
+    }
+    loop.centre /= static_cast<double>(loop.points.size());
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+//! Triangulate the band between loop a (in its boundary order) and loop b (walked against its
+//! boundary order, so both run the same way in space), always adding the shorter new rung
+//! (Christiansen & Sederberg 1978 contour tiling).
+void bridge(const Loop& a, const Loop& b, std::vector<std::array<int, 3>>& faces)
+{
+  const int na = static_cast<int>(a.points.size()), nb = static_cast<int>(b.points.size());
+  int start_b = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < nb; ++j)
+    if (const double d = (b.points[j] - a.points[0]).squaredNorm(); d < best) {
+      best = d;
+      start_b = j;
+    }
+  // b walked backwards: position k ↦ index start_b - k.
+  auto b_at = [&](int k) { return ((start_b - k) % nb + nb) % nb; };
+  for (int i = 0, k = 0; i < na || k < nb;) {
+    const bool advance_a =
+        k == nb || (i < na && (a.points[(i + 1) % na] - b.points[b_at(k)]).squaredNorm() <=
+                                  (a.points[i % na] - b.points[b_at(k + 1)]).squaredNorm());
+    if (advance_a) {
+      faces.push_back({a.vertices[i % na], a.vertices[(i + 1) % na], b.vertices[b_at(k)]});
+      ++i;
+    } else {
+      faces.push_back({b.vertices[b_at(k + 1)], b.vertices[b_at(k)], a.vertices[i % na]});
+      ++k;
+    }
+  }
+}
+
+void append(const Mesh& mesh, VertexVectors& x, std::vector<std::array<int, 3>>& faces, int offset)
+{
+  for (auto v : mesh.vertices())
+    x.row(offset + v.idx()) = to_eigen(mesh.point(v)).transpose();
+  for (auto f : mesh.faces()) {
+    std::array<int, 3> t{};
+    int k = 0;
+    for (auto v : f.vertices())
+      t[k++] = v.idx() + offset;
+    faces.push_back(t);
+  }
+}
+
+//! The mesh with unreferenced vertices dropped.
+Mesh compact(const VertexVectors& x, const std::vector<std::array<int, 3>>& faces)
+{
+  std::vector<int> number(x.rows(), -1);
+  int used = 0;
+  for (const auto& t : faces)
+    for (int v : t)
+      if (number[v] < 0)
+        number[v] = used++;
+  VertexVectors y(used, 3);
+  for (Eigen::Index v = 0; v < x.rows(); ++v)
+    if (number[v] >= 0)
+      y.row(number[v]) = x.row(v);
+  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> t(faces.size(), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    t.row(f) << number[faces[f][0]], number[faces[f][1]], number[faces[f][2]];
+  return make_mesh(y, t);
+}
+
+} // namespace
+
+UnionResult surface_union(const Mesh& a, const Mesh& b)
+{
+  UnionResult result;
+  const std::vector<FacePair> crossing = surface_intersections(a, b);
+  const SideOracle inside_a(a), inside_b(b);
+
+  std::vector<bool> remove_a(a.n_faces(), false), remove_b(b.n_faces(), false);
+  for (const FacePair& p : crossing) {
+    remove_a[p.first] = true;
+    remove_b[p.second] = true;
+  }
+  for (auto f : a.faces())
+    remove_a[f.idx()] = remove_a[f.idx()] || inside_b.inside(to_eigen(a.calc_face_centroid(f)));
+  for (auto f : b.faces())
+    remove_b[f.idx()] = remove_b[f.idx()] || inside_a.inside(to_eigen(b.calc_face_centroid(f)));
+
+  Mesh kept_a = a, kept_b = b;
+  result.removed_faces_a = remove_faces(kept_a, remove_a);
+  result.removed_faces_b = remove_faces(kept_b, remove_b);
+  kept_a.garbage_collection();
+  kept_b.garbage_collection();
+
+  const int offset = static_cast<int>(kept_a.n_vertices());
+  VertexVectors x(kept_a.n_vertices() + kept_b.n_vertices(), 3);
+  std::vector<std::array<int, 3>> faces;
+  append(kept_a, x, faces, 0);
+  append(kept_b, x, faces, offset);
+
+  const std::vector<Loop> loops_a = boundary_loops(kept_a, 0), loops_b = boundary_loops(kept_b, offset);
+  if (loops_a.size() != loops_b.size())
+    throw InvalidMesh(fmt::format("surface union: removing the overlap left {} boundary loop(s) on the first surface "
+                                  "and {} on the second; they cannot be paired (refine the meshes near the contact)",
+                                  loops_a.size(), loops_b.size()));
+  std::vector<bool> used(loops_b.size(), false);
+  for (const Loop& loop : loops_a) {
+    int partner = -1;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < loops_b.size(); ++j)
+      if (!used[j] && (loops_b[j].centre - loop.centre).squaredNorm() < best) {
+        best = (loops_b[j].centre - loop.centre).squaredNorm();
+        partner = static_cast<int>(j);
+      }
+    used[partner] = true;
+    bridge(loop, loops_b[partner], faces);
+    ++result.joined_loops;
+  }
+  try {
+    result.mesh = compact(x, faces);
+  } catch (const InvalidMesh& e) {
+    throw InvalidMesh(fmt::format("surface union: joining the boundary loops did not give a manifold surface ({})", e.what()));
+  }
+  logger().debug("surface union: removed {} + {} faces, joined {} loop pair(s)", result.removed_faces_a,
+                 result.removed_faces_b, result.joined_loops);
+  return result;
+}
+
+} // namespace sdflow
