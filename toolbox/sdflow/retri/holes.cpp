@@ -59,12 +59,15 @@ std::vector<Loop> boundary_loops(const Mesh& mesh)
 }
 
 //! Liepa's weight of a triangulation: the largest dihedral angle between adjacent triangles (patch
-//! and surrounding surface), then the total area, compared in that order.
+//! and surrounding surface), then the total area, compared in that order. The angle is kept as
+//! its monotone stand-in 1 - cos, which needs no trigonometry in the O(n³) loop.
 struct Weight {
-  double angle = 0;
+  double fold = 0;
   double area = 0;
-  bool operator<(const Weight& o) const { return angle < o.angle || (angle == o.angle && area < o.area); }
+  bool operator<(const Weight& o) const { return fold < o.fold || (fold == o.fold && area < o.area); }
 };
+
+double fold(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return 1 - a.dot(b); }
 
 double normal_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b)
 {
@@ -81,7 +84,7 @@ std::vector<std::array<int, 3>> minimum_weight_triangulation(const Mesh& mesh, c
   std::vector<Eigen::Vector3d> p(n);
   for (int j = 0; j < n; ++j)
     p[j] = to_eigen(mesh.point(loop.vertices[j]));
-  // Normal of the surface triangle outside loop edge j (v_j → v_j+1).
+  // Unit normal of the surface triangle outside loop edge j (v_j → v_j+1).
   std::vector<Eigen::Vector3d> outside(n);
   for (int j = 0; j < n; ++j)
     outside[j] = to_eigen(mesh.calc_face_normal(mesh.face_handle(mesh.opposite_halfedge_handle(loop.halfedges[j]))));
@@ -91,36 +94,48 @@ std::vector<std::array<int, 3>> minimum_weight_triangulation(const Mesh& mesh, c
   const double min_area = 1e-14 * scale;
 
   auto at = [n](int i, int k) { return static_cast<std::size_t>(i) * n + k; };
+  // Weight and normal of the best triangle on (i, k), stored twice: at (i, k) and at (k, i), so
+  // that the inner loop over m reads both sub-polygons (i, m) and (m, k) along contiguous rows.
   std::vector<Weight> weight(static_cast<std::size_t>(n) * n, Weight{infinity, infinity});
   std::vector<int> split(static_cast<std::size_t>(n) * n, -1);
+  std::vector<Eigen::Vector3d> normal_of(static_cast<std::size_t>(n) * n);
   for (int i = 0; i + 1 < n; ++i)
-    weight[at(i, i + 1)] = Weight{0, 0};
-  auto unit_normal = [&](int a, int b, int c) { return (p[b] - p[a]).cross(p[c] - p[a]).normalized(); };
+    weight[at(i, i + 1)] = weight[at(i + 1, i)] = Weight{0, 0};
   for (int length = 2; length < n; ++length)
     for (int i = 0; i + length < n; ++i) {
       const int k = i + length;
       // A diagonal that is already an edge of the mesh would get a third triangle.
       if (!(i == 0 && k == n - 1) && mesh.find_halfedge(loop.vertices[i], loop.vertices[k]).is_valid())
         continue;
+      Weight best = weight[at(i, k)];
+      int best_m = -1;
+      Eigen::Vector3d best_normal;
       for (int m = i + 1; m < k; ++m) {
         const Weight& left = weight[at(i, m)];
-        const Weight& right = weight[at(m, k)];
-        if (left.angle == infinity || right.angle == infinity)
+        const Weight& right = weight[at(k, m)];
+        if (left.fold == infinity || right.fold == infinity)
           continue;
         const Eigen::Vector3d cross = (p[m] - p[i]).cross(p[k] - p[i]);
-        if (!(0.5 * cross.norm() > min_area))
+        const double area = 0.5 * cross.norm();
+        if (!(area > min_area))
           continue;
-        const Eigen::Vector3d normal = cross.normalized();
-        double angle = std::max(left.angle, right.angle);
-        angle = std::max(angle, normal_angle(normal, m == i + 1 ? outside[i] : unit_normal(i, split[at(i, m)], m)));
-        angle = std::max(angle, normal_angle(normal, k == m + 1 ? outside[m] : unit_normal(m, split[at(m, k)], k)));
+        const Eigen::Vector3d normal = cross / (2 * area);
+        double worst = std::max(left.fold, right.fold);
+        worst = std::max(worst, fold(normal, m == i + 1 ? outside[i] : normal_of[at(i, m)]));
+        worst = std::max(worst, fold(normal, k == m + 1 ? outside[m] : normal_of[at(k, m)]));
         if (i == 0 && k == n - 1)
-          angle = std::max(angle, normal_angle(normal, outside[n - 1]));
-        const Weight candidate{angle, left.area + right.area + 0.5 * cross.norm()};
-        if (candidate < weight[at(i, k)]) {
-          weight[at(i, k)] = candidate;
-          split[at(i, k)] = m;
+          worst = std::max(worst, fold(normal, outside[n - 1]));
+        const Weight candidate{worst, left.area + right.area + area};
+        if (candidate < best) {
+          best = candidate;
+          best_m = m;
+          best_normal = normal;
         }
+      }
+      if (best_m >= 0) {
+        weight[at(i, k)] = weight[at(k, i)] = best;
+        normal_of[at(i, k)] = normal_of[at(k, i)] = best_normal;
+        split[at(i, k)] = best_m;
       }
     }
   std::vector<std::array<int, 3>> triangles;
