@@ -35,7 +35,7 @@ void run(const RemeshArguments& args)
 {
   format_from_extension(args.output); // refuse an unknown format before the work
   const BuiltMesh input = read_mesh(args.input);
-  // Projection onto the input through nearest-vertex stars (retri/star_projection.h).
+  // Projection onto the input surface (its BVH) and its boundary polylines: the defaults.
   const RemeshResult result = isotropic_remesh(
       input.mesh, {.target_edge_length = args.edge_length,
                    .iterations = args.iterations,

@@ -5,6 +5,7 @@
 #include "sdflow/geometry/laplacian.h"
 #include "sdflow/geometry/normals.h"
 #include "sdflow/log.h"
+#include "sdflow/retri/bvh.h"
 #include "sdflow/retri/star_projection.h"
 
 #include <OpenMesh/Core/Utils/PropertyManager.hh>
@@ -429,16 +430,18 @@ RemeshResult isotropic_remesh(const Mesh& input, const RemeshOptions& options)
   if (!(ell > 0))
     throw InvalidMesh("remesh: every edge has zero length, so no target edge length can be derived");
 
-  // Default targets: the input surface itself, searched around its nearest vertices.
-  std::shared_ptr<StarProjection> reference;
-  if (!options.project || !options.project_boundary)
-    reference = std::make_shared<StarProjection>(result.mesh);
+  // Default targets: the input surface itself (exact closest points through the BVH) and its
+  // boundary polylines (closest points around the nearest boundary vertices).
   PointProjection project = options.project;
-  if (!project)
-    project = [reference](const Eigen::Vector3d& p) { return reference->closest_point(p); };
+  if (!project) {
+    auto tree = std::make_shared<const Bvh>(result.mesh);
+    project = [tree](const Eigen::Vector3d& p) { return tree->closest_point(p).point; };
+  }
   PointProjection project_boundary = options.project_boundary;
-  if (!project_boundary)
+  if (!project_boundary) {
+    auto reference = std::make_shared<const StarProjection>(result.mesh);
     project_boundary = [reference](const Eigen::Vector3d& p) { return reference->closest_boundary_point(p); };
+  }
 
   Remesher remesher(result.mesh, options, ell, std::move(project), std::move(project_boundary));
   result.statistics = remesher.run();

@@ -37,8 +37,8 @@ struct RemeshOptions {
   int iterations = 10;
   //! Tangential relaxation sweeps (each followed by projection) per iteration.
   int relaxation_steps = 3;
-  //! Closest point on the surface. Empty: the input mesh itself, through StarProjection
-  //! (closest point among the triangles around the nearest input vertices).
+  //! Closest point on the surface. Empty: the input mesh itself (exact closest point through
+  //! the BVH of retri/bvh.h).
   PointProjection project;
   //! Closest point on the boundary curves (BoundaryMode::remesh). Empty: the input's boundary
   //! polylines, through the same nearest-vertex search.

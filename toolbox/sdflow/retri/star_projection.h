@@ -3,7 +3,8 @@
 //! \brief Closest points on a reference mesh by a nearest-vertex search: the closest point among
 //! the triangles (or boundary edges) around the k reference vertices nearest to the query.
 //!
-//! This is the remesher's default projection target. It is exact whenever the closest triangle
+//! The remesher projects boundary vertices onto the input's boundary polylines with it (the BVH
+//! of bvh.h covers triangles only). It is exact whenever the closest triangle
 //! has one of its corners among the k nearest vertices, which holds for well-shaped reference
 //! meshes and queries within about an edge length of the surface (the remesher's case). It is
 //! not a general closest-point query: use a BVH for far queries or very uneven triangles.
