@@ -1,7 +1,7 @@
 //! `sdflow run`: evolve a surface by surface diffusion flow into a run directory (flow/simulation.h).
 //!   sdflow run --input MESH --out DIR [--steps N] [--t-end T] [--tau T | --schedule FILE | --adaptive]
 //!              [--beta B] [--solver cholmod|qr] [--snapshot-every K] [--checkpoint-every K]
-//!              [--conserve-volume] [--fixed-boundary] [--quiet]
+//!              [--conserve-volume] [--fixed-boundary] [--retriangulate [--edge-length L]] [--quiet]
 //!   sdflow run SCENARIO.toml [flags]     (flags override the file's keys)
 //!   sdflow run --resume DIR [--steps N] [--t-end T]
 
@@ -26,8 +26,8 @@ namespace {
 struct RunArguments {
   std::string scenario, input, out, resume, schedule, solver;
   long steps = 0, snapshot_every = 0, checkpoint_every = 0;
-  double end_time = 0, tau = 0, beta = 0;
-  bool adaptive = false, conserve_volume = false, fixed_boundary = false, quiet = false;
+  double end_time = 0, tau = 0, beta = 0, edge_length = 0;
+  bool adaptive = false, conserve_volume = false, fixed_boundary = false, retriangulate = false, quiet = false;
   std::map<std::string, CLI::Option*> given;
   bool has(const std::string& name) const { return given.at(name)->count() > 0; }
 };
@@ -115,6 +115,8 @@ void apply_flags(const RunArguments& a, RunParameters& p)
   if (a.has("--checkpoint-every")) p.checkpoint_every = a.checkpoint_every;
   if (a.has("--conserve-volume")) p.conserve_volume = true;
   if (a.has("--fixed-boundary")) p.scheme.boundary = BoundaryMotion::fixed;
+  if (a.has("--retriangulate")) p.retriangulation.enabled = true;
+  if (a.has("--edge-length")) p.retriangulation.pipeline.target_edge_length = a.edge_length;
   if (a.has("--solver")) p.solver.kind = a.solver == "qr" ? SolverKind::qr : SolverKind::cholmod;
   if (a.has("--tau")) {
     p.time_step.mode = TimeStepMode::constant;
@@ -134,7 +136,7 @@ void run(const RunArguments& a)
   const bool resuming = a.has("--resume");
   if (resuming) {
     if (a.has("--input") || a.has("--tau") || a.has("--schedule") || a.has("--adaptive") || a.has("--beta") ||
-        a.has("--solver") || !a.scenario.empty())
+        a.has("--solver") || a.has("--retriangulate") || a.has("--edge-length") || !a.scenario.empty())
       throw InvalidParameter("--resume continues a run with its own parameters (run.toml): only --steps, --t-end, "
                              "--snapshot-every and --checkpoint-every may be changed");
     read_run_parameters(std::filesystem::path(a.resume) / "run.toml", p);
@@ -203,6 +205,12 @@ void add_run_verb(CLI::App& app)
   g["--conserve-volume"] = verb->add_flag("--conserve-volume", args->conserve_volume,
                                           "Restore each closed component's volume after every step");
   g["--fixed-boundary"] = verb->add_flag("--fixed-boundary", args->fixed_boundary, "Hold boundary vertices in place");
+  g["--retriangulate"] = verb->add_flag(
+      "--retriangulate", args->retriangulate,
+      "Re-triangulate between steps when the surface intersects itself or its triangles degrade (paper §3.2.1)");
+  g["--edge-length"] = verb->add_option("--edge-length", args->edge_length,
+                                        "Target edge length of the re-triangulation (default: the initial mean)")
+                           ->check(CLI::PositiveNumber);
   g["--resume"] = verb->add_option("--resume", args->resume, "Continue the run in DIR from its checkpoint")
                       ->check(CLI::ExistingDirectory);
   verb->add_flag("--quiet", args->quiet, "No progress output");

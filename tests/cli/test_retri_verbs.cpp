@@ -98,5 +98,37 @@ TEST_F(RetriCommands, components_keeps_large_bodies_or_splits_them)
   EXPECT_EQ(analytic::run_sdflow("components " + path("bodies.obj")).exit_code, 2);
 }
 
+TEST_F(RetriCommands, retriangulate_joins_overlapping_bodies_and_reports_each_stage)
+{
+  const Mesh a = analytic::icosphere(3, 1.0, Eigen::Vector3d(-0.6, 0, 0));
+  const Mesh b = analytic::icosphere(3, 1.0, Eigen::Vector3d(0.6, 0, 0));
+  write_mesh(test::disjoint_union({&a, &b}), path("two.off"));
+  const auto r = analytic::run_sdflow("retriangulate " + path("two.off") + " -o " + path("one.ply") + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* key : {"\"merged_components\" : 1", "\"components_before\" : 2", "\"components_after\" : 1",
+                          "\"intersecting_pairs\"", "\"seconds\""})
+    EXPECT_NE(r.output.find(key), std::string::npos) << key << " in " << r.output;
+  const Mesh one = read_mesh(path("one.ply")).mesh;
+  EXPECT_TRUE(self_intersections(one).empty());
+
+  const auto text = analytic::run_sdflow("retriangulate " + path("two.off") + " -o " + path("one.off"));
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("0. 1 intersecting component(s) joined"), std::string::npos) << text.output;
+}
+
+TEST_F(RetriCommands, retriangulate_refuses_bad_input_and_options_without_writing)
+{
+  write_mesh(analytic::icosphere(1), path("sphere.off"));
+  EXPECT_EQ(analytic::run_sdflow("retriangulate " + path("missing.off") + " -o " + path("x.off")).exit_code, 2);
+  EXPECT_EQ(analytic::run_sdflow("retriangulate " + path("sphere.off") + " -o " + path("x.off") + " --neighbours 3")
+                .exit_code,
+            2);
+  const auto nothing_left =
+      analytic::run_sdflow("retriangulate " + path("sphere.off") + " -o " + path("x.off") + " --min-component-faces 1000");
+  EXPECT_NE(nothing_left.exit_code, 0);
+  EXPECT_NE(nothing_left.output.find("nothing is left"), std::string::npos) << nothing_left.output;
+  EXPECT_FALSE(fs::exists(path("x.off")));
+}
+
 } // namespace
 } // namespace sdflow

@@ -26,6 +26,18 @@ TEST(RunParameters, resolved_toml_reads_back_to_the_same_parameters)
   p.snapshot_every = 7;
   p.reference_centre = {1, 2, 3};
   p.reference_radius = 3;
+  p.retriangulation.enabled = true;
+  p.retriangulation.every = 3;
+  p.retriangulation.min_angle_deg = 12.5;
+  p.retriangulation.edge_ratio = 1.8;
+  p.retriangulation.always = true;
+  p.retriangulation.pipeline.target_edge_length = 0.25;
+  p.retriangulation.pipeline.remesh_iterations = 5;
+  p.retriangulation.pipeline.normals.neighbours = 24;
+  p.retriangulation.pipeline.fill_holes = false;
+  p.retriangulation.pipeline.max_hole_length = 7.5;
+  p.retriangulation.pipeline.min_component_faces = 40;
+  p.retriangulation.pipeline.min_component_thickness = 0.125;
   test::write_file(dir / "run.toml", run_parameters_toml(p));
 
   RunParameters q;
@@ -44,6 +56,19 @@ TEST(RunParameters, resolved_toml_reads_back_to_the_same_parameters)
   EXPECT_EQ(q.snapshot_every, 7);
   EXPECT_EQ(q.reference_centre, Eigen::Vector3d(1, 2, 3));
   EXPECT_EQ(q.reference_radius, 3);
+  const RetriangulationSchedule& r = q.retriangulation;
+  EXPECT_TRUE(r.enabled);
+  EXPECT_EQ(r.every, 3);
+  EXPECT_EQ(r.min_angle_deg, 12.5);
+  EXPECT_EQ(r.edge_ratio, 1.8);
+  EXPECT_TRUE(r.always);
+  EXPECT_EQ(r.pipeline.target_edge_length, 0.25);
+  EXPECT_EQ(r.pipeline.remesh_iterations, 5);
+  EXPECT_EQ(r.pipeline.normals.neighbours, 24);
+  EXPECT_FALSE(r.pipeline.fill_holes);
+  EXPECT_EQ(r.pipeline.max_hole_length, 7.5);
+  EXPECT_EQ(r.pipeline.min_component_faces, 40);
+  EXPECT_EQ(r.pipeline.min_component_thickness, 0.125);
 }
 
 TEST(RunParameters, scenario_errors_name_the_file_line_and_key)
@@ -65,6 +90,8 @@ TEST(RunParameters, scenario_errors_name_the_file_line_and_key)
   expect_error("solver = \"lu\"\n", "solver must be");
   expect_error("[adaptive]\ngrowht = 2\n", "unknown key `adaptive.growht`");
   expect_error("steps = [\n", "s.toml:");
+  expect_error("[retriangulation]\neverey = 2\n", "s.toml:2: unknown key `retriangulation.everey`");
+  expect_error("retriangulation = true\n", "`retriangulation` must be a table");
 }
 
 TEST(RunParameters, validation_requires_a_stop_condition_and_sane_values)
@@ -78,6 +105,15 @@ TEST(RunParameters, validation_requires_a_stop_condition_and_sane_values)
   p.scheme.beta = 0.5;
   p.time_step.mode = TimeStepMode::constant;
   EXPECT_THROW(validate_run_parameters(p), InvalidParameter) << "constant mode without τ";
+  p.time_step.mode = TimeStepMode::adaptive;
+  p.retriangulation.every = 0;
+  EXPECT_THROW(validate_run_parameters(p), InvalidParameter);
+  p.retriangulation.every = 1;
+  p.retriangulation.edge_ratio = 1;
+  EXPECT_THROW(validate_run_parameters(p), InvalidParameter);
+  p.retriangulation.edge_ratio = 2;
+  p.retriangulation.pipeline.normals.neighbours = 2;
+  EXPECT_THROW(validate_run_parameters(p), InvalidParameter);
 }
 
 } // namespace

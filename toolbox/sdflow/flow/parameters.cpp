@@ -1,6 +1,7 @@
 #include "sdflow/flow/parameters.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/flow/retriangulation.h"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -83,7 +84,7 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
   check_keys(file, table,
              {"input", "out", "steps", "t_end", "time_step", "tau", "schedule", "beta", "solver", "factorisation",
               "cg_tolerance", "snapshot_every", "checkpoint_every", "conserve_volume", "fixed_boundary", "adaptive",
-              "reference_sphere"},
+              "retriangulation", "reference_sphere"},
              "");
   std::optional<std::string> mode;
   for (const auto& [key_view, node] : table) {
@@ -144,6 +145,33 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
           else a.max_tau = v;
         }
       }
+    } else if (key == "retriangulation") {
+      const toml::table* t = node.as_table();
+      if (!t)
+        bad(file, node, "`retriangulation` must be a table of the re-triangulation parameters");
+      check_keys(file, *t, {"enabled", "every", "min_angle", "edge_ratio", "always", "edge_length",
+                            "remesh_iterations", "neighbours", "fill_holes", "max_hole_length", "min_component_faces",
+                            "min_component_thickness"},
+                 "retriangulation.");
+      RetriangulationSchedule& r = p.retriangulation;
+      for (const auto& [k, n] : *t) {
+        const std::string name(k.str());
+        if (name == "enabled") r.enabled = get<bool>(file, n, "enabled");
+        else if (name == "always") r.always = get<bool>(file, n, "always");
+        else if (name == "fill_holes") r.pipeline.fill_holes = get<bool>(file, n, "fill_holes");
+        else if (name == "every") r.every = get<long>(file, n, "every");
+        else if (name == "remesh_iterations")
+          r.pipeline.remesh_iterations = static_cast<int>(get<long>(file, n, "remesh_iterations"));
+        else if (name == "neighbours") r.pipeline.normals.neighbours = static_cast<int>(get<long>(file, n, "neighbours"));
+        else if (name == "min_component_faces")
+          r.pipeline.min_component_faces = static_cast<int>(get<long>(file, n, "min_component_faces"));
+        else if (name == "min_component_thickness")
+          r.pipeline.min_component_thickness = get<double>(file, n, "min_component_thickness");
+        else if (name == "min_angle") r.min_angle_deg = get<double>(file, n, "min_angle");
+        else if (name == "edge_ratio") r.edge_ratio = get<double>(file, n, "edge_ratio");
+        else if (name == "edge_length") r.pipeline.target_edge_length = get<double>(file, n, "edge_length");
+        else r.pipeline.max_hole_length = get<double>(file, n, "max_hole_length");
+      }
     } else if (key == "reference_sphere") {
       const toml::table* t = node.as_table();
       if (!t)
@@ -186,6 +214,7 @@ void validate_run_parameters(const RunParameters& p)
   if (!(p.reference_radius > 0))
     throw InvalidParameter(fmt::format("the reference sphere's radius must be positive, got {}", p.reference_radius));
   TimeStepController check(p.time_step); // validates the time-step options
+  validate_retriangulation_schedule(p.retriangulation);
 }
 
 std::string run_parameters_toml(const RunParameters& p)
@@ -222,6 +251,13 @@ std::string run_parameters_toml(const RunParameters& p)
                    "max_volume_change = {}\nmin_tau = {}\nmax_tau = {}\nmax_rejections = {}\n",
                    a.initial_tau, a.max_displacement, a.growth, a.shrink, a.safety, a.max_volume_change, a.min_tau,
                    std::isfinite(a.max_tau) ? a.max_tau : 1e300, a.max_rejections);
+  const RetriangulationSchedule& r = p.retriangulation;
+  s += fmt::format("\n[retriangulation]\nenabled = {}\nevery = {}\nmin_angle = {}\nedge_ratio = {}\nalways = {}\n"
+                   "edge_length = {}\nremesh_iterations = {}\nneighbours = {}\nfill_holes = {}\nmax_hole_length = {}\n"
+                   "min_component_faces = {}\nmin_component_thickness = {}\n",
+                   r.enabled, r.every, r.min_angle_deg, r.edge_ratio, r.always, r.pipeline.target_edge_length,
+                   r.pipeline.remesh_iterations, r.pipeline.normals.neighbours, r.pipeline.fill_holes,
+                   r.pipeline.max_hole_length, r.pipeline.min_component_faces, r.pipeline.min_component_thickness);
   s += fmt::format("\n[reference_sphere]\ncentre = [{}, {}, {}]\nradius = {}\n", p.reference_centre.x(),
                    p.reference_centre.y(), p.reference_centre.z(), p.reference_radius);
   return s;

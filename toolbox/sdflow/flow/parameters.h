@@ -29,6 +29,19 @@
 //! min_tau = 1e-14
 //! max_tau = 1e300
 //! max_rejections = 25
+//! [retriangulation]            # see RetriangulationSchedule below and retri/pipeline.h
+//! enabled = false
+//! every = 1
+//! min_angle = 15.0             # degrees
+//! edge_ratio = 2.0
+//! always = false
+//! edge_length = 0.0            # ℓ; 0: the initial surface's mean edge length
+//! remesh_iterations = 3
+//! neighbours = 18              # k of the jet normals
+//! fill_holes = true
+//! max_hole_length = 0.0        # 0: automatic
+//! min_component_faces = 16
+//! min_component_thickness = 0.01
 //! [reference_sphere]           # for the d1/d2 columns
 //! centre = [0.0, 0.0, 0.0]
 //! radius = 1.0
@@ -37,6 +50,7 @@
 #include "sdflow/flow/scheme.h"
 #include "sdflow/flow/solver.h"
 #include "sdflow/flow/time_step.h"
+#include "sdflow/retri/pipeline.h"
 
 #include <Eigen/Core>
 
@@ -44,6 +58,21 @@
 #include <limits>
 
 namespace sdflow {
+
+//! When a run re-triangulates (retriangulation.h): every `every` steps the surface is looked at, and
+//! the pipeline of retri/pipeline.h runs when it intersects itself (a pinch-off, a hole sealing,
+//! bodies touching), when its triangles have degraded (an angle below `min_angle_deg`, an edge
+//! outside [ℓ/r, r·ℓ] with r = `edge_ratio`), or every time with `always` (the paper's practice).
+struct RetriangulationSchedule {
+  bool enabled = false;
+  long every = 1;             //!< look at the surface after every k-th step (≥ 1)
+  double min_angle_deg = 15;  //!< re-triangulate when a triangle's smallest angle is below this
+  double edge_ratio = 2;      //!< ... or an edge is longer than r·ℓ or shorter than ℓ/r (r > 1)
+  bool always = false;        //!< run the whole pipeline after every k-th step (the paper's practice)
+  //! The pipeline; its ℓ (0 = automatic) is fixed when the run starts, to the initial surface's
+  //! mean edge length, so that it stays the same for the whole run and its resumption.
+  RetriangulationOptions pipeline;
+};
 
 struct RunParameters {
   std::filesystem::path input;       //!< the initial mesh
@@ -58,6 +87,7 @@ struct RunParameters {
   long checkpoint_every = 10;        //!< ≥ 1
   Eigen::Vector3d reference_centre = Eigen::Vector3d::Zero();
   double reference_radius = 1.0;
+  RetriangulationSchedule retriangulation;
 };
 
 //! Read a scenario or run.toml into `parameters`, overwriting only the keys present. Relative

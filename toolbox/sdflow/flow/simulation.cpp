@@ -2,6 +2,7 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/flow/checkpoint.h"
+#include "sdflow/flow/retriangulation.h"
 #include "sdflow/flow/scheme.h"
 #include "sdflow/flow/volume.h"
 #include "sdflow/geometry/laplacian.h"
@@ -116,6 +117,7 @@ public:
     std::filesystem::create_directories(dir_ / "snapshots");
     mesh_ = canonical(initial);
     renew_connectivity();
+    prepare_retriangulation();
     last_w_ = Eigen::VectorXd::Zero(mesh_.n_vertices());
     metrics_ = std::string(metrics_header) + '\n';
     write_atomically(dir_ / "run.toml", [&](std::ostream& out) { out << run_parameters_toml(p_); });
@@ -134,6 +136,7 @@ public:
     time_ = c.time;
     mesh_ = make_mesh(c.positions, c.triangles);
     renew_connectivity();
+    prepare_retriangulation();
     previous_w_ = c.previous_w;
     last_w_ = c.previous_w.size() == static_cast<Eigen::Index>(mesh_.n_vertices())
                   ? c.previous_w
@@ -180,6 +183,37 @@ private:
   {
     return (p_.steps > 0 && step_ >= p_.steps) ||
            (std::isfinite(p_.end_time) && time_ >= p_.end_time * (1 - end_time_tolerance));
+  }
+
+  //! The hook: the caller's, or the one of the parameters' schedule with its ℓ fixed now.
+  void prepare_retriangulation()
+  {
+    if (options_.retriangulate) {
+      retriangulate_ = options_.retriangulate;
+      return;
+    }
+    RetriangulationSchedule& schedule = p_.retriangulation;
+    if (!schedule.enabled)
+      return;
+    if (!(schedule.pipeline.target_edge_length > 0)) {
+      double sum = 0;
+      for (const auto e : mesh_.edges())
+        sum += mesh_.calc_edge_length(e);
+      schedule.pipeline.target_edge_length = sum / static_cast<double>(std::max<std::size_t>(mesh_.n_edges(), 1));
+    }
+    retriangulate_ = make_retriangulation_hook(schedule);
+  }
+
+  //! The hook's failure stops the run like an unstable step: the files written so far stay valid.
+  RetriangulationReport call_retriangulation()
+  {
+    try {
+      return retriangulate_(mesh_, {step_, time_});
+    } catch (const SolverFailure&) {
+      throw;
+    } catch (const Error& e) {
+      throw SolverFailure(fmt::format("re-triangulation after step {} failed: {}", step_, e.what()));
+    }
   }
 
   void renew_connectivity()
@@ -282,8 +316,8 @@ private:
     std::vector<std::string> events;
     if (rejections > 0)
       events.emplace_back("rejected");
-    if (options_.retriangulate) {
-      const RetriangulationReport report = options_.retriangulate(mesh_, {step_, time_});
+    if (retriangulate_) {
+      const RetriangulationReport report = call_retriangulation();
       if (report.changed()) {
         mesh_ = canonical(mesh_);
         renew_connectivity();
@@ -377,6 +411,7 @@ private:
 
   const SimulationOptions& options_;
   RunParameters p_;
+  RetriangulationHook retriangulate_;
   std::filesystem::path dir_;
   FlowSolver solver_;
   TimeStepController controller_;

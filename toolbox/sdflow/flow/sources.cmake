@@ -2,6 +2,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/checkpoint.cpp
   sdflow/flow/cotangent_cache.cpp
   sdflow/flow/parameters.cpp
+  sdflow/flow/retriangulation.cpp
   sdflow/flow/scheme.cpp
   sdflow/flow/simulation.cpp
   sdflow/flow/solver.cpp

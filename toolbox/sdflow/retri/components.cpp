@@ -1,11 +1,13 @@
 #include "sdflow/retri/components.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 namespace sdflow {
@@ -24,17 +26,29 @@ Selection select(const Mesh& mesh, const ComponentOptions& options)
   if (options.keep_largest < 0)
     throw InvalidParameter(fmt::format("components: keep_largest must be 0 (all) or more, not {}",
                                        options.keep_largest));
+  if (!(options.min_thickness >= 0) || !std::isfinite(options.min_thickness))
+    throw InvalidParameter(fmt::format("components: min_thickness must be 0 or more, not {}", options.min_thickness));
   Selection s;
   int count = 0;
   s.face_id = face_component_ids(mesh, &count);
   s.faces.assign(count, 0);
   for (auto f : mesh.faces())
     ++s.faces[s.face_id[f.idx()]];
+  std::vector<bool> flat(count, false);
+  if (options.min_thickness > 0) {
+    const std::vector<double> volumes = component_volumes(mesh);
+    const std::vector<ComponentTopology> topology = component_topology(mesh);
+    std::vector<double> areas(count, 0.0);
+    for (auto f : mesh.faces())
+      areas[s.face_id[f.idx()]] += mesh.calc_face_area(f);
+    for (int c = 0; c < count; ++c)
+      flat[c] = topology[c].closed() && std::abs(volumes[c]) < options.min_thickness * areas[c];
+  }
   std::vector<int> order(count);
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return s.faces[a] > s.faces[b]; });
   for (int c : order) {
-    const bool large = s.faces[c] >= options.min_faces;
+    const bool large = s.faces[c] >= options.min_faces && !flat[c];
     const bool room = options.keep_largest == 0 || static_cast<int>(s.kept.size()) < options.keep_largest;
     (large && room ? s.kept : s.dropped).push_back(c);
   }

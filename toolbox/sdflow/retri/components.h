@@ -10,11 +10,15 @@
 
 namespace sdflow {
 
-//! Which components to keep: first those with at least `min_faces` triangles, then of those the
+//! Which components to keep: first those with at least `min_faces` triangles (and, when closed,
+//! enclosing a volume of at least `min_thickness` times their area), then of those the
 //! `keep_largest` largest (ties go to the component met first in face order).
 struct ComponentOptions {
   int min_faces = 1;    //!< ≥ 1; the default keeps every component
   int keep_largest = 0; //!< ≥ 0; 0 keeps all that pass min_faces
+  //! ≥ 0; a closed component with |volume| < min_thickness · area is a collapsed double sheet
+  //! (debris of a surgery). 0 keeps them all.
+  double min_thickness = 0;
 };
 
 //! The kept components as one mesh, and the bookkeeping.

@@ -1,0 +1,133 @@
+//! `sdflow retriangulate IN -o OUT [--edge-length L] [...] [--json]`: the whole re-triangulation of
+//! paper §3.2.1 with Appendix B (retri/pipeline.h), as a run applies it between steps.
+
+#include "verbs.h"
+
+#include "sdflow/io.h"
+#include "sdflow/retri/pipeline.h"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <iostream>
+#include <memory>
+#include <string>
+
+namespace sdflow::cli {
+namespace {
+
+struct RetriangulateArguments {
+  std::string input;
+  std::string output;
+  RetriangulationOptions options;
+  bool json = false;
+};
+
+void report_json(const RetriangulateArguments& args, const BuiltMesh& input, const RetriangulationResult& r)
+{
+  const auto& s = r.seconds;
+  toml::table stages{{"merge", s.merge},         {"remesh", s.remesh},
+                     {"intersections", s.intersections}, {"normals", s.normals},
+                     {"reconstruction", s.reconstruction}, {"holes", s.holes},
+                     {"components", s.components}};
+  toml::table root{{"input", args.input},
+                   {"output", args.output},
+                   {"input_vertices", static_cast<int64_t>(input.mesh.n_vertices())},
+                   {"input_faces", static_cast<int64_t>(input.mesh.n_faces())},
+                   {"vertices", static_cast<int64_t>(r.mesh.n_vertices())},
+                   {"faces", static_cast<int64_t>(r.mesh.n_faces())},
+                   {"target_edge_length", r.target_edge_length},
+                   {"merged_components", r.merged_components},
+                   {"splits", static_cast<int64_t>(r.remesh.splits)},
+                   {"collapses", static_cast<int64_t>(r.remesh.collapses)},
+                   {"flips", static_cast<int64_t>(r.remesh.flips)},
+                   {"intersecting_pairs", r.intersecting_pairs},
+                   {"removed_faces", r.removed_faces},
+                   {"rebuilt", r.rebuilt},
+                   {"removed_points", r.removed_points},
+                   {"unused_points", r.unused_points},
+                   {"filled_holes", r.filled_holes},
+                   {"open_holes", r.open_holes},
+                   {"components_before", r.components_before},
+                   {"components_after", r.components_after},
+                   {"dropped_components", r.dropped_components},
+                   {"seconds", stages}};
+  std::cout << toml::json_formatter{root} << '\n';
+}
+
+void report_text(const RetriangulateArguments& args, const BuiltMesh& input, const RetriangulationResult& r)
+{
+  std::cout << fmt::format("{}: {} vertices, {} faces, {} component(s) -> {} vertices, {} faces, {} component(s)\n",
+                           args.input, input.mesh.n_vertices(), input.mesh.n_faces(), r.components_before,
+                           r.mesh.n_vertices(), r.mesh.n_faces(), r.components_after);
+  if (r.merged_components > 0)
+    std::cout << fmt::format("  0. {} intersecting component(s) joined into others (Appendix B)\n",
+                             r.merged_components);
+  std::cout << fmt::format("  1. remeshed to edge length {:.6g}: {} splits, {} collapses, {} flips ({:.3f} s)\n",
+                           r.target_edge_length, r.remesh.splits, r.remesh.collapses, r.remesh.flips, r.seconds.remesh);
+  std::cout << fmt::format("  2. {} intersecting face pairs, {} faces removed ({:.3f} s)\n", r.intersecting_pairs,
+                           r.removed_faces, r.seconds.intersections);
+  if (r.rebuilt) {
+    std::cout << fmt::format("  3. {} inconsistently oriented points dropped ({:.3f} s)\n", r.removed_points,
+                             r.seconds.normals);
+    std::cout << fmt::format("  4. surface rebuilt from the points, {} unused ({:.3f} s)\n", r.unused_points,
+                             r.seconds.reconstruction);
+    std::cout << fmt::format("  5. {} hole(s) filled ({:.3f} s)\n", r.filled_holes, r.seconds.holes);
+  } else {
+    std::cout << "  3-5. nothing intersects: the remeshed surface is kept\n";
+  }
+  std::cout << fmt::format("  6. {} debris component(s) dropped (small or flat); {} boundary loop(s) remain\n", r.dropped_components,
+                           r.open_holes);
+  std::cout << fmt::format("  wrote {}\n", args.output);
+}
+
+void run(const RetriangulateArguments& args)
+{
+  format_from_extension(args.output); // refuse an unknown format before the work
+  const BuiltMesh input = read_mesh(args.input);
+  const RetriangulationResult result = retriangulate(input.mesh, args.options);
+  write_mesh(result.mesh, args.output, {.encoding = Encoding::binary});
+  if (args.json)
+    report_json(args, input, result);
+  else
+    report_text(args, input, result);
+}
+
+} // namespace
+
+void add_retriangulate_verb(CLI::App& app)
+{
+  auto args = std::make_shared<RetriangulateArguments>();
+  RetriangulationOptions& o = args->options;
+  CLI::App* verb = app.add_subcommand(
+      "retriangulate", "The re-triangulation pipeline of paper §3.2.1: remesh, remove self-intersections, jet + MST "
+                       "normals, advancing-front reconstruction, hole filling, components");
+  verb->add_option("input", args->input, "Input mesh (OFF, OBJ, PLY, STL)")->required();
+  verb->add_option("-o,--output", args->output, "Output mesh")->required();
+  verb->add_option("--edge-length", o.target_edge_length, "Target edge length (default: the input's mean)")
+      ->check(CLI::PositiveNumber);
+  verb->add_option("--iterations", o.remesh_iterations, "Remeshing iterations (0: no remeshing)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  verb->add_flag("--always-rebuild", o.always_rebuild,
+                 "Rebuild from the points even when nothing intersects (stages 3-5 always)");
+  verb->add_option("--neighbours", o.normals.neighbours, "k nearest neighbours of the jet normals")
+      ->capture_default_str()
+      ->check(CLI::Range(6, 1000));
+  verb->add_flag("!--no-fill-holes", o.fill_holes, "Leave the holes the rebuild leaves open");
+  verb->add_option("--max-hole-length", o.max_hole_length,
+                   "Fill only holes shorter than this (default: every hole of a closed surface, else those shorter "
+                   "than its shortest boundary loop)")
+      ->check(CLI::PositiveNumber);
+  verb->add_option("--min-component-faces", o.min_component_faces, "Drop components with fewer triangles")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1 << 30));
+  verb->add_option("--min-component-thickness", o.min_component_thickness,
+                   "Drop closed components whose volume is below this times ℓ times their area")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  verb->add_flag("--json", args->json, "Print a JSON object with what each stage did (documented in README)");
+  verb->callback([args] { run(*args); });
+}
+
+} // namespace sdflow::cli

@@ -1,0 +1,135 @@
+//! The composed re-triangulation of paper §3.2.1 with Appendix B (retri/pipeline.h).
+#include "sdflow/errors.h"
+#include "sdflow/geometry/measures.h"
+#include "sdflow/geometry/topology.h"
+#include "sdflow/retri/pipeline.h"
+#include "retri/mesh_checks.h"
+#include "retri/test_meshes.h"
+#include "support/analytic_meshes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace sdflow {
+namespace {
+
+//! Every component closed, and their genera in order of appearance.
+std::vector<int> closed_genera(const Mesh& mesh)
+{
+  std::vector<int> genera;
+  for (const auto& c : component_topology(mesh)) {
+    EXPECT_TRUE(c.closed());
+    genera.push_back(c.genus);
+  }
+  return genera;
+}
+
+TEST(Pipeline, clean_sphere_is_only_remeshed)
+{
+  const Mesh sphere = analytic::icosphere(4);
+  const RetriangulationResult r = retriangulate(sphere, {.target_edge_length = 0.1});
+  EXPECT_FALSE(r.rebuilt);
+  EXPECT_EQ(r.intersecting_pairs, 0);
+  EXPECT_EQ(closed_genera(r.mesh), std::vector<int>{0});
+  int in_band = 0;
+  for (const auto e : r.mesh.edges()) {
+    const double ratio = r.mesh.calc_edge_length(e) / 0.1;
+    in_band += ratio >= 0.8 && ratio <= 4.0 / 3.0;
+  }
+  EXPECT_GE(in_band, 0.9 * r.mesh.n_edges());
+  EXPECT_NEAR(enclosed_volume(r.mesh), enclosed_volume(sphere), 0.01 * enclosed_volume(sphere));
+  EXPECT_EQ(checks::self_intersecting_pairs(r.mesh), 0);
+}
+
+TEST(Pipeline, default_edge_length_is_the_input_mean)
+{
+  const Mesh sphere = analytic::icosphere(3);
+  const RetriangulationResult r = retriangulate(sphere, {.remesh_iterations = 0});
+  EXPECT_NEAR(r.target_edge_length, checks::mean_edge_length(sphere), 1e-12);
+  EXPECT_EQ(r.mesh.n_vertices(), sphere.n_vertices()) << "no remeshing, nothing to remove: unchanged";
+}
+
+TEST(Pipeline, always_rebuild_reconstructs_a_torus_with_its_genus)
+{
+  const Mesh torus = analytic::conformal_torus(24, 6, 3);
+  const RetriangulationResult r = retriangulate(torus, {.remesh_iterations = 1, .always_rebuild = true});
+  EXPECT_TRUE(r.rebuilt);
+  EXPECT_EQ(closed_genera(r.mesh), std::vector<int>{1});
+  EXPECT_NEAR(enclosed_volume(r.mesh), enclosed_volume(torus), 0.02 * enclosed_volume(torus));
+}
+
+TEST(Pipeline, intersecting_components_are_joined_into_the_boundary_of_their_union)
+{
+  // Two unit spheres whose centres are 1.2 apart: the union's volume is 2·(4π/3) minus the lens.
+  const Mesh a = analytic::icosphere(4, 1.0, {-0.6, 0, 0});
+  const Mesh b = analytic::icosphere(4, 1.0, {0.6, 0, 0});
+  const RetriangulationResult r = retriangulate(analytic::disjoint_union(a, b), {.target_edge_length = 0.08});
+  EXPECT_EQ(r.components_before, 2);
+  EXPECT_EQ(r.merged_components, 1);
+  EXPECT_EQ(closed_genera(r.mesh), std::vector<int>{0});
+  const double d = 1.2, lens = std::numbers::pi * (4 + d) * (2 - d) * (2 - d) / 12;
+  const double exact = 2 * 4 * std::numbers::pi / 3 - lens;
+  EXPECT_NEAR(enclosed_volume(r.mesh), exact, 0.01 * exact);
+  EXPECT_EQ(checks::self_intersecting_pairs(r.mesh), 0);
+}
+
+TEST(Pipeline, torus_whose_hole_closed_through_itself_becomes_a_sphere)
+{
+  // Shrink the major radius 6 → 6 - 3.4 everywhere: the inner equator (radius 3) is carried across
+  // the axis, so the walls of the hole pass through each other as in the torus's evolution (§4.1).
+  const Mesh crossed = test::mapped(analytic::conformal_torus(24, 6, 3), [](const Eigen::Vector3d& p) {
+    const double rho = std::hypot(p.x(), p.y());
+    const double scale = (rho - 3.4) / rho;
+    return Eigen::Vector3d(p.x() * scale, p.y() * scale, p.z());
+  });
+  const RetriangulationResult r = retriangulate(crossed, {.remesh_iterations = 1});
+  EXPECT_GT(r.intersecting_pairs, 0);
+  EXPECT_TRUE(r.rebuilt);
+  EXPECT_EQ(closed_genera(r.mesh), std::vector<int>{0});
+  EXPECT_EQ(checks::self_intersecting_pairs(r.mesh), 0);
+  EXPECT_TRUE(checks::is_two_manifold(r.mesh));
+}
+
+TEST(Pipeline, small_components_are_dropped)
+{
+  const Mesh big = analytic::icosphere(3);
+  const Mesh debris = analytic::icosphere(0, 0.05, {3, 0, 0}); // 20 faces
+  const RetriangulationResult r =
+      retriangulate(analytic::disjoint_union(big, debris), {.remesh_iterations = 0, .min_component_faces = 21});
+  EXPECT_EQ(r.dropped_components, 1);
+  EXPECT_EQ(r.components_after, 1);
+  EXPECT_EQ(r.mesh.n_faces(), big.n_faces());
+}
+
+TEST(Pipeline, closed_components_enclosing_no_volume_are_dropped)
+{
+  // A flat closed "pillow" of two coincident-boundary sheets 1e-4 apart: debris, not a body.
+  const Mesh sphere = analytic::icosphere(3);
+  const Mesh pillow = test::mapped(analytic::icosphere(2, 0.5, {3, 0, 0}), [](const Eigen::Vector3d& p) {
+    return Eigen::Vector3d(p.x(), p.y(), 3e-4 * p.z());
+  });
+  const RetriangulationResult r =
+      retriangulate(analytic::disjoint_union(sphere, pillow), {.target_edge_length = 0.2, .remesh_iterations = 0});
+  EXPECT_EQ(r.dropped_components, 1);
+  EXPECT_EQ(r.mesh.n_faces(), sphere.n_faces());
+}
+
+TEST(Pipeline, bad_options_and_empty_results_are_refused)
+{
+  const Mesh sphere = analytic::icosphere(1);
+  EXPECT_THROW(retriangulate(sphere, {.target_edge_length = -1}), InvalidParameter);
+  EXPECT_THROW(retriangulate(sphere, {.remesh_iterations = -1}), InvalidParameter);
+  EXPECT_THROW(retriangulate(sphere, {.max_hole_length = -1}), InvalidParameter);
+  EXPECT_THROW(retriangulate(sphere, {.min_component_faces = 0}), InvalidParameter);
+  EXPECT_THROW(retriangulate(sphere, {.min_component_thickness = -1}), InvalidParameter);
+  RetriangulationOptions few_neighbours;
+  few_neighbours.normals.neighbours = 3;
+  EXPECT_THROW(retriangulate(sphere, few_neighbours), InvalidParameter);
+  EXPECT_THROW(retriangulate(sphere, {.remesh_iterations = 0, .min_component_faces = 1000}), InvalidMesh);
+  EXPECT_THROW(retriangulate(Mesh{}), InvalidMesh);
+}
+
+} // namespace
+} // namespace sdflow

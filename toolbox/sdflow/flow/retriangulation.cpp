@@ -1,0 +1,101 @@
+#include "sdflow/flow/retriangulation.h"
+
+#include "sdflow/errors.h"
+#include "sdflow/retri/intersect.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+namespace sdflow {
+namespace {
+
+//! Smallest corner angle of face f, in degrees.
+double smallest_angle_deg(const Mesh& mesh, Mesh::FaceHandle f)
+{
+  std::array<Eigen::Vector3d, 3> x;
+  int k = 0;
+  for (const auto v : mesh.fv_range(f))
+    x[k++] = to_eigen(mesh.point(v));
+  double smallest = 180;
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d a = x[(i + 1) % 3] - x[i], b = x[(i + 2) % 3] - x[i];
+    smallest = std::min(smallest, std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / std::numbers::pi);
+  }
+  return smallest;
+}
+
+//! Why the surface needs the pipeline now (empty: it does not).
+std::string reason_to_retriangulate(const Mesh& mesh, const RetriangulationSchedule& s)
+{
+  if (s.always)
+    return "scheduled";
+  const auto pairs = self_intersections(mesh);
+  if (!pairs.empty())
+    return fmt::format("{} intersecting face pairs", pairs.size());
+  const double ell = s.pipeline.target_edge_length;
+  for (const auto e : mesh.edges()) {
+    const double length = mesh.calc_edge_length(e);
+    if (length > s.edge_ratio * ell || length * s.edge_ratio < ell)
+      return fmt::format("edge {} has length {:.3g} (target {:.3g})", e.idx(), length, ell);
+  }
+  for (const auto f : mesh.faces())
+    if (const double angle = smallest_angle_deg(mesh, f); angle < s.min_angle_deg)
+      return fmt::format("face {} has an angle of {:.1f}°", f.idx(), angle);
+  return {};
+}
+
+std::string describe(const RetriangulationResult& r)
+{
+  std::string s = fmt::format("{} splits, {} collapses, {} flips", r.remesh.splits, r.remesh.collapses, r.remesh.flips);
+  if (r.merged_components > 0)
+    s += fmt::format("; {} intersecting components joined", r.merged_components);
+  if (r.rebuilt)
+    s += fmt::format("; {} intersecting pairs, {} faces removed, {} points dropped, rebuilt, {} holes filled",
+                     r.intersecting_pairs, r.removed_faces, r.removed_points, r.filled_holes);
+  s += fmt::format("; components {} → {}", r.components_before, r.components_after);
+  if (r.dropped_components > 0)
+    s += fmt::format(" ({} debris dropped)", r.dropped_components);
+  return s;
+}
+
+} // namespace
+
+void validate_retriangulation_schedule(const RetriangulationSchedule& s)
+{
+  if (s.every < 1)
+    throw InvalidParameter(fmt::format("retriangulation.every must be ≥ 1, got {}", s.every));
+  if (!(s.min_angle_deg >= 0 && s.min_angle_deg < 60))
+    throw InvalidParameter(fmt::format("retriangulation.min_angle must be in [0, 60) degrees, got {}", s.min_angle_deg));
+  if (!(s.edge_ratio > 1) || !std::isfinite(s.edge_ratio))
+    throw InvalidParameter(fmt::format("retriangulation.edge_ratio must be a finite number > 1, got {}", s.edge_ratio));
+  validate_retriangulation_options(s.pipeline);
+}
+
+RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& schedule)
+{
+  validate_retriangulation_schedule(schedule);
+  if (!(schedule.pipeline.target_edge_length > 0))
+    throw InvalidParameter("the re-triangulation hook needs a resolved target edge length (> 0)");
+  return [schedule](Mesh& mesh, const RetriangulationContext& context) {
+    RetriangulationReport report;
+    if (context.step % schedule.every != 0)
+      return report;
+    const std::string reason = reason_to_retriangulate(mesh, schedule);
+    if (reason.empty())
+      return report;
+    RetriangulationResult r = retriangulate(mesh, schedule.pipeline);
+    report.remeshed = schedule.pipeline.remesh_iterations > 0;
+    report.surgery = r.rebuilt;
+    report.split = r.components_after > r.components_before - r.merged_components;
+    report.merged = r.merged_components > 0;
+    report.detail = reason + ": " + describe(r);
+    mesh = std::move(r.mesh);
+    return report;
+  };
+}
+
+} // namespace sdflow

@@ -1,0 +1,231 @@
+#include "sdflow/retri/pipeline.h"
+
+#include "sdflow/errors.h"
+#include "sdflow/geometry/topology.h"
+#include "sdflow/log.h"
+#include "sdflow/retri/components.h"
+#include "sdflow/retri/intersect.h"
+#include "sdflow/retri/remove_intersections.h"
+#include "sdflow/retri/surface_union.h"
+#include "sdflow/soup.h"
+#include "sdflow/validate.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace sdflow {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+} // namespace
+
+void validate_retriangulation_options(const RetriangulationOptions& o)
+{
+  if (!(o.target_edge_length >= 0) || !std::isfinite(o.target_edge_length))
+    throw InvalidParameter(fmt::format("re-triangulation: target edge length must be ≥ 0 (0: automatic), got {}",
+                                       o.target_edge_length));
+  if (o.remesh_iterations < 0)
+    throw InvalidParameter(
+        fmt::format("re-triangulation: remesh iterations must be ≥ 0, got {}", o.remesh_iterations));
+  if (!(o.max_hole_length >= 0))
+    throw InvalidParameter(fmt::format("re-triangulation: max hole length must be ≥ 0 (0: automatic), got {}",
+                                       o.max_hole_length));
+  if (o.normals.neighbours < 6)
+    throw InvalidParameter(
+        fmt::format("re-triangulation: the jet normals need at least 6 neighbours, got {}", o.normals.neighbours));
+  if (!(o.min_component_thickness >= 0) || !std::isfinite(o.min_component_thickness))
+    throw InvalidParameter(fmt::format("re-triangulation: min component thickness must be ≥ 0, got {}",
+                                       o.min_component_thickness));
+  if (o.min_component_faces < 1)
+    throw InvalidParameter(
+        fmt::format("re-triangulation: min component faces must be ≥ 1, got {}", o.min_component_faces));
+}
+
+namespace {
+
+double mean_edge_length(const Mesh& mesh)
+{
+  double sum = 0;
+  for (const auto e : mesh.edges())
+    sum += mesh.calc_edge_length(e);
+  return mesh.n_edges() > 0 ? sum / static_cast<double>(mesh.n_edges()) : 0.0;
+}
+
+//! Length of every boundary loop of `mesh`.
+std::vector<double> boundary_loop_lengths(const Mesh& mesh)
+{
+  std::vector<double> lengths;
+  std::vector<bool> seen(mesh.n_halfedges(), false);
+  for (const auto h0 : mesh.halfedges()) {
+    if (!mesh.is_boundary(h0) || seen[h0.idx()])
+      continue;
+    double length = 0;
+    auto h = h0;
+    do {
+      seen[h.idx()] = true;
+      length += mesh.calc_edge_length(h);
+      h = mesh.next_halfedge_handle(h);
+    } while (h != h0);
+    lengths.push_back(length);
+  }
+  return lengths;
+}
+
+//! The paper's bound for stage 5: every hole of a closed surface, otherwise the loops shorter than
+//! the shortest true boundary loop.
+double automatic_hole_bound(const Mesh& input)
+{
+  const std::vector<double> loops = boundary_loop_lengths(input);
+  if (loops.empty())
+    return std::numeric_limits<double>::infinity();
+  return *std::min_element(loops.begin(), loops.end());
+}
+
+//! Stage 0 (Appendix B): replace every set of mutually intersecting components by the boundary of
+//! their union. Returns the number of components merged away.
+int merge_intersecting_components(Mesh& mesh)
+{
+  std::vector<Mesh> parts = split_components(mesh);
+  if (parts.size() < 2)
+    return 0;
+  int merged = 0;
+  bool changed = true;
+  while (changed) {
+    changed = false;
+    for (std::size_t i = 0; i < parts.size() && !changed; ++i)
+      for (std::size_t j = i + 1; j < parts.size() && !changed; ++j) {
+        if (surface_intersections(parts[i], parts[j]).empty())
+          continue;
+        parts[i] = surface_union(parts[i], parts[j]).mesh;
+        parts.erase(parts.begin() + static_cast<std::ptrdiff_t>(j));
+        ++merged;
+        changed = true;
+      }
+  }
+  if (merged == 0)
+    return 0;
+  mesh = parts.front();
+  for (std::size_t i = 1; i < parts.size(); ++i) {
+    VertexVectors x(mesh.n_vertices() + parts[i].n_vertices(), 3);
+    x << vertex_positions(mesh), vertex_positions(parts[i]);
+    Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> t(mesh.n_faces() + parts[i].n_faces(), 3);
+    t << face_indices(mesh), (face_indices(parts[i]).array() + static_cast<int>(mesh.n_vertices())).matrix();
+    mesh = make_mesh(x, t);
+  }
+  return merged;
+}
+
+//! The mesh rebuilt through validation: closed components oriented outward, degenerate faces and
+//! non-manifold configurations reported as InvalidMesh.
+Mesh validated(const Mesh& mesh)
+{
+  PolygonSoup soup;
+  soup.points.reserve(mesh.n_vertices());
+  for (const auto v : mesh.vertices())
+    soup.points.push_back(to_eigen(mesh.point(v)));
+  soup.polygons.reserve(mesh.n_faces());
+  for (const auto f : mesh.faces()) {
+    std::vector<long long> polygon;
+    for (const auto v : mesh.fv_range(f))
+      polygon.push_back(v.idx());
+    soup.polygons.push_back(std::move(polygon));
+  }
+  return build_mesh(soup, "re-triangulated surface").mesh;
+}
+
+} // namespace
+
+RetriangulationResult retriangulate(const Mesh& input, const RetriangulationOptions& options)
+{
+  validate_retriangulation_options(options);
+  if (input.n_faces() == 0)
+    throw InvalidMesh("re-triangulation: the surface has no triangles");
+
+  RetriangulationResult r;
+  int count = 0;
+  face_component_ids(input, &count);
+  r.components_before = count;
+  const double hole_bound = options.max_hole_length > 0 ? options.max_hole_length : automatic_hole_bound(input);
+  r.target_edge_length = options.target_edge_length > 0 ? options.target_edge_length : mean_edge_length(input);
+
+  const ComponentOptions debris{.min_faces = options.min_component_faces,
+                                .min_thickness = options.min_component_thickness * r.target_edge_length};
+  Mesh mesh = input;
+  auto start = Clock::now();
+  r.merged_components = merge_intersecting_components(mesh);
+  r.seconds.merge = seconds_since(start);
+
+  if (options.remesh_iterations > 0) {
+    start = Clock::now();
+    RemeshOptions remesh;
+    remesh.target_edge_length = r.target_edge_length;
+    remesh.iterations = options.remesh_iterations;
+    RemeshResult remeshed = isotropic_remesh(mesh, remesh);
+    mesh = std::move(remeshed.mesh);
+    r.remesh = remeshed.statistics;
+    r.seconds.remesh = seconds_since(start);
+  }
+
+  start = Clock::now();
+  RemovalResult removal = remove_self_intersections(mesh);
+  r.intersecting_pairs = static_cast<int>(removal.intersecting_pairs.size());
+  r.removed_faces = static_cast<int>(removal.removed_faces.size());
+  r.seconds.intersections = seconds_since(start);
+
+  if (r.removed_faces > 0 || options.always_rebuild) {
+    r.rebuilt = true;
+    start = Clock::now();
+    const OrientedPoints oriented = oriented_point_normals(removal.mesh, options.normals);
+    r.removed_points = static_cast<int>(oriented.removed.size());
+    r.seconds.normals = seconds_since(start);
+
+    start = Clock::now();
+    Reconstruction rebuilt = reconstruct_surface(oriented.points, oriented.normals, options.reconstruction);
+    r.unused_points = static_cast<int>(rebuilt.unused.size());
+    r.seconds.reconstruction = seconds_since(start);
+    // Debris first, so that no hole of a stray piece is filled.
+    ComponentSelection pieces = keep_components(rebuilt.mesh, debris);
+    r.dropped_components += static_cast<int>(pieces.dropped.size());
+    mesh = std::move(pieces.mesh);
+
+    if (options.fill_holes) {
+      start = Clock::now();
+      HoleFillingOptions holes;
+      holes.max_loop_length = hole_bound;
+      FilledHoles filled = fill_holes(mesh, holes);
+      r.filled_holes = static_cast<int>(std::count_if(filled.loops.begin(), filled.loops.end(), [](const HoleReport& loop) {
+        return loop.outcome == LoopOutcome::filled;
+      }));
+      mesh = std::move(filled.mesh);
+      r.seconds.holes = seconds_since(start);
+    }
+  }
+
+  start = Clock::now();
+  ComponentSelection selection = keep_components(mesh, debris);
+  r.dropped_components += static_cast<int>(selection.dropped.size());
+  if (selection.mesh.n_faces() == 0)
+    throw InvalidMesh(fmt::format("re-triangulation: nothing is left: every component has fewer than {} triangles "
+                                  "or encloses almost no volume",
+                                  options.min_component_faces));
+  r.mesh = validated(selection.mesh);
+  face_component_ids(r.mesh, &count);
+  r.components_after = count;
+  r.open_holes = static_cast<int>(boundary_loop_lengths(r.mesh).size());
+  r.seconds.components = seconds_since(start);
+
+  logger().debug("re-triangulated: {} merged, {} intersecting pairs, {} faces removed, {} points dropped, {} holes "
+                 "filled, {} → {} components ({} dropped)",
+                 r.merged_components, r.intersecting_pairs, r.removed_faces, r.removed_points, r.filled_holes,
+                 r.components_before, r.components_after, r.dropped_components);
+  return r;
+}
+
+} // namespace sdflow

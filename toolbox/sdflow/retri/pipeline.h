@@ -1,0 +1,73 @@
+#pragma once
+//! \file pipeline.h
+//! \brief The re-triangulation of paper §3.2.1 (with Appendix B), composed from the toolbox:
+//! 0. components that intersect each other are joined into the boundary of their union (surface_union.h);
+//! 1. isotropic remeshing to the target edge length ℓ (remesh.h);
+//! 2. the self-intersecting faces are removed, then the vertices left without a face (remove_intersections.h);
+//! 3. jet normals oriented by a minimum spanning tree; inconsistently oriented points are dropped (point_normals.h);
+//! 4. the surface is rebuilt from the oriented points by advancing front (reconstruct.h);
+//! 5. holes shorter than a bound are filled (holes.h);
+//! 6. debris is dropped: components with fewer triangles than a bound, and closed components that
+//!    enclose almost no volume (a collapsed double sheet), both before and after stage 5 (components.h).
+//! Stages 3–5 run only when stage 2 found something to remove (or when asked to always run):
+//! on a surface without singularities they would only re-triangulate the same points.
+
+#include "sdflow/mesh.h"
+#include "sdflow/retri/holes.h"
+#include "sdflow/retri/point_normals.h"
+#include "sdflow/retri/reconstruct.h"
+#include "sdflow/retri/remesh.h"
+
+namespace sdflow {
+
+struct RetriangulationOptions {
+  //! ℓ, the target edge length of stage 1; 0 takes the input's mean edge length.
+  double target_edge_length = 0;
+  //! Rounds of stage 1; 0 skips it.
+  int remesh_iterations = 3;
+  //! Run stages 3–5 even when nothing intersects (the paper's "after every step" application).
+  bool always_rebuild = false;
+  PointNormalsOptions normals;
+  ReconstructionOptions reconstruction;
+  //! Stage 5 on or off.
+  bool fill_holes = true;
+  //! Holes whose boundary is longer than this stay open; 0: automatic, i.e. every hole of a
+  //! closed input, and on an input with boundary only the loops shorter than its shortest boundary
+  //! loop (the paper's bound: a new hole is shorter than the true boundary).
+  double max_hole_length = 0;
+  //! Stage 6: components with fewer triangles are dropped (debris of a surgery).
+  int min_component_faces = 16;
+  //! Stage 6: closed components whose volume is below this fraction of ℓ times their area are
+  //! dropped (a sphere of radius ℓ has 1/3).
+  double min_component_thickness = 0.01;
+};
+
+//! What each stage did, and how long it took (seconds of wall time).
+struct RetriangulationResult {
+  Mesh mesh; //!< valid, closed components oriented outward, garbage-collected
+  double target_edge_length = 0;
+  int merged_components = 0;    //!< stage 0: components joined into others
+  RemeshStatistics remesh;      //!< stage 1
+  int intersecting_pairs = 0;   //!< stage 2
+  int removed_faces = 0;        //!< stage 2
+  bool rebuilt = false;         //!< stages 3–5 ran
+  int removed_points = 0;       //!< stage 3: inconsistently oriented
+  int unused_points = 0;        //!< stage 4: points no triangle uses
+  int filled_holes = 0;         //!< stage 5
+  int open_holes = 0;           //!< stage 5: boundary loops left open (true boundaries included)
+  int components_before = 0;    //!< components of the input
+  int components_after = 0;     //!< components of the result
+  int dropped_components = 0;   //!< stage 6
+  struct Seconds {
+    double merge = 0, remesh = 0, intersections = 0, normals = 0, reconstruction = 0, holes = 0, components = 0;
+  } seconds;
+};
+
+//! Throws InvalidParameter for options out of range.
+void validate_retriangulation_options(const RetriangulationOptions& options);
+
+//! Re-triangulate `mesh` by the pipeline above. Throws InvalidParameter for options out of range,
+//! InvalidMesh when nothing is left (every component dropped) or the result is not a valid mesh.
+RetriangulationResult retriangulate(const Mesh& mesh, const RetriangulationOptions& options = {});
+
+} // namespace sdflow
