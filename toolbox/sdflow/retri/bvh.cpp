@@ -9,11 +9,8 @@
 #include <numeric>
 
 namespace sdflow {
-namespace {
 
-//! Nearest point of triangle (a, b, c) to p by Voronoi regions of its corners, edges and interior
-//! (Ericson 2005, Real-Time Collision Detection §5.1.5). Returns the barycentric weights.
-Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+Eigen::Vector3d nearest_barycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                     const Eigen::Vector3d& c)
 {
   const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
@@ -67,6 +64,8 @@ Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vecto
   }
   return best;
 }
+
+namespace {
 
 //! A float ≤ x, at most two units in the last place below it (|x| within float range). Without
 //! branches: refits convert every box, and a data-dependent branch here mispredicts half the time.
@@ -369,7 +368,7 @@ ClosestPoint Bvh::closest_point(const Eigen::Vector3d& query, double max_squared
         const Eigen::Vector3d pa = Eigen::Map<const Eigen::Vector3d>(point(a));
         const Eigen::Vector3d pb = Eigen::Map<const Eigen::Vector3d>(point(b));
         const Eigen::Vector3d pc = Eigen::Map<const Eigen::Vector3d>(point(c));
-        const Eigen::Vector3d w = closest_on_triangle(query, pa, pb, pc);
+        const Eigen::Vector3d w = nearest_barycentric(query, pa, pb, pc);
         const Eigen::Vector3d x = w[0] * pa + w[1] * pb + w[2] * pc;
         const double d = (x - query).squaredNorm();
         if (d < best.squared_distance || (best.face < 0 && d <= best.squared_distance)) {

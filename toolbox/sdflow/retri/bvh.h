@@ -92,6 +92,12 @@ struct RayHit {
   Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
 };
 
+//! Barycentric weights of the point of triangle abc nearest to p, by the Voronoi regions of its
+//! corners, edges and interior (Ericson 2005, Real-Time Collision Detection §5.1.5); a collinear
+//! triangle's nearest point is on one of its edges. Every closest-point query here uses it.
+Eigen::Vector3d nearest_barycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                    const Eigen::Vector3d& c);
+
 //! Axis-aligned bounding-box tree over triangles (a class: it is kept and refitted across steps).
 class Bvh {
 public:
