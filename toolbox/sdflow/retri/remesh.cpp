@@ -5,14 +5,17 @@
 #include "sdflow/geometry/laplacian.h"
 #include "sdflow/geometry/normals.h"
 #include "sdflow/log.h"
-#include "sdflow/retri/bvh.h"
+#include "sdflow/retri/closest_point_grid.h"
+#include "sdflow/retri/spatial_order.h"
 #include "sdflow/retri/star_projection.h"
 
-#include <OpenMesh/Core/Utils/PropertyManager.hh>
 #include <fmt/format.h>
 #include <nanoflann.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -52,22 +55,36 @@ Eigen::Vector3d face_area_normal(const Mesh& mesh, Mesh::FaceHandle f)
   return area_normal(a, b, c);
 }
 
+//! Calls `body(i)` for i in [0, n), on TBB threads when `parallel`.
+template <class Body> void for_each_index(int n, bool parallel, const Body& body)
+{
+  if (!parallel) {
+    for (int i = 0; i < n; ++i)
+      body(i);
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, 512), [&](const tbb::blocked_range<int>& r) {
+    for (int i = r.begin(); i < r.end(); ++i)
+      body(i);
+  });
+}
+
 class Remesher {
 public:
+  //! `thread_safe`: the projections may be called from several threads at once.
   Remesher(Mesh& mesh, const RemeshOptions& options, double ell, PointProjection project,
-           PointProjection project_boundary)
+           PointProjection project_boundary, bool thread_safe)
       : mesh_(mesh), options_(options), ell_(ell), project_(std::move(project)),
-        project_boundary_(std::move(project_boundary)), target_(mesh, "sdflow:remesh:target"),
-        locked_(mesh, "sdflow:remesh:locked")
+        project_boundary_(std::move(project_boundary)), parallel_projection_(thread_safe),
+        target_(mesh.n_vertices()), locked_(mesh.n_vertices(), 0)
   {
     const double corner_cos = std::cos(options.boundary_corner_angle_deg * std::numbers::pi / 180);
     for (auto v : mesh_.vertices()) {
-      target_[v] = target_at(point(mesh_, v));
-      locked_[v] = false;
+      target_[v.idx()] = target_at(point(mesh_, v));
       if (!mesh_.is_boundary(v))
         continue;
       if (options_.boundary == BoundaryMode::keep) {
-        locked_[v] = true;
+        locked_[v.idx()] = 1;
         continue;
       }
       // Boundary turning angle: between the incoming and the outgoing boundary edge.
@@ -76,7 +93,7 @@ public:
       const Eigen::Vector3d e_in = point(mesh_, v) - point(mesh_, mesh_.from_vertex_handle(in));
       const Eigen::Vector3d e_out = point(mesh_, mesh_.to_vertex_handle(out)) - point(mesh_, v);
       const double n = e_in.norm() * e_out.norm();
-      locked_[v] = n > 0 && e_in.dot(e_out) < corner_cos * n;
+      locked_[v.idx()] = n > 0 && e_in.dot(e_out) < corner_cos * n;
     }
   }
 
@@ -87,10 +104,9 @@ public:
       collapse_short_edges();
       flip_edges();
       relax_and_project();
-      mesh_.garbage_collection();
+      renumber();
       logger().debug("remesh iteration {}: {} vertices, {} faces", iteration + 1, mesh_.n_vertices(), mesh_.n_faces());
     }
-    mesh_.garbage_collection();
     statistics_.target_edge_length = ell_;
     return statistics_;
   }
@@ -107,7 +123,25 @@ private:
     return t;
   }
 
-  double edge_target(Mesh::VertexHandle a, Mesh::VertexHandle b) const { return 0.5 * (target_[a] + target_[b]); }
+  double edge_target(Mesh::VertexHandle a, Mesh::VertexHandle b) const
+  {
+    return 0.5 * (target_[a.idx()] + target_[b.idx()]);
+  }
+
+  //! Drops the deleted elements and renumbers the rest along a Morton curve (spatial_order.h):
+  //! the next iteration's sweeps and projections then read memory in order.
+  void renumber()
+  {
+    const std::vector<int> old = sort_spatially(mesh_);
+    std::vector<double> target(old.size());
+    std::vector<char> locked(old.size());
+    for (std::size_t i = 0; i < old.size(); ++i) {
+      target[i] = target_[old[i]];
+      locked[i] = locked_[old[i]];
+    }
+    target_.swap(target);
+    locked_.swap(locked);
+  }
 
   bool movable_on_boundary() const { return options_.boundary == BoundaryMode::remesh; }
 
@@ -163,10 +197,9 @@ private:
           continue; // an earlier split in this pass already shortened it
         const Eigen::Vector3d mid = 0.5 * (pa + pb);
         const Eigen::Vector3d p = mesh_.is_boundary(e) ? project_boundary_(mid) : project_(mid);
-        const auto v = mesh_.add_vertex(to_point(p));
-        mesh_.split(e, v);
-        target_[v] = options_.sizing ? target_at(p) : ell_;
-        locked_[v] = false;
+        mesh_.split(e, mesh_.add_vertex(to_point(p)));
+        target_.push_back(options_.sizing ? target_at(p) : ell_);
+        locked_.push_back(0);
         ++statistics_.splits;
       }
     }
@@ -179,24 +212,63 @@ private:
   {
     const auto v0 = mesh_.from_vertex_handle(h), v1 = mesh_.to_vertex_handle(h);
     const Eigen::Vector3d p1 = point(mesh_, v1);
-    if (locked_[v1] || mesh_.is_boundary(v1) != mesh_.is_boundary(v0))
+    if (locked_[v1.idx()] || mesh_.is_boundary(v1) != mesh_.is_boundary(v0))
       return p1;
     return project(v1, 0.5 * (point(mesh_, v0) + p1));
   }
 
-  //! Whether collapsing h's from-vertex v0 into its to-vertex v1, moved to `p`, is allowed.
-  bool collapse_ok(Mesh::HalfedgeHandle h, const Eigen::Vector3d& p) const
+  //! OpenMesh's is_collapse_ok (the link condition, which keeps the topology), on marks of our
+  //! own: Debian's library is built with assertions, and its version checks every handle it
+  //! meets. The one-rings of v0 and v1 must share only the two vertices opposite the edge, and
+  //! an edge between two boundary vertices must be a boundary edge.
+  bool link_condition(Mesh::HalfedgeHandle h)
+  {
+    const auto o = mesh_.opposite_halfedge_handle(h);
+    const auto v0 = mesh_.to_vertex_handle(o), v1 = mesh_.to_vertex_handle(h);
+    // The third corner of the triangle on each side; that triangle must not have its other
+    // two edges on the boundary.
+    const auto apex = [&](Mesh::HalfedgeHandle side, Mesh::VertexHandle& corner) {
+      if (mesh_.is_boundary(side))
+        return true;
+      const auto h1 = mesh_.next_halfedge_handle(side), h2 = mesh_.next_halfedge_handle(h1);
+      corner = mesh_.to_vertex_handle(h1);
+      return !(mesh_.is_boundary(mesh_.opposite_halfedge_handle(h1)) &&
+               mesh_.is_boundary(mesh_.opposite_halfedge_handle(h2)));
+    };
+    Mesh::VertexHandle vl, vr;
+    if (!apex(h, vl) || !apex(o, vr) || vl == vr)
+      return false;
+    if (mark_.size() < mesh_.n_vertices())
+      mark_.resize(mesh_.n_vertices(), 0);
+    ++stamp_;
+    for (auto w : mesh_.vv_range(v1))
+      mark_[w.idx()] = stamp_;
+    for (auto w : mesh_.vv_range(v0))
+      if (mark_[w.idx()] == stamp_ && w != vl && w != vr)
+        return false;
+    return !(mesh_.is_boundary(v0) && mesh_.is_boundary(v1) && !mesh_.is_boundary(h) && !mesh_.is_boundary(o));
+  }
+
+  //! Whether h's from-vertex v0 may be collapsed into its to-vertex v1 at all: unlocked, along
+  //! the boundary if on it, and through the link condition.
+  bool collapse_allowed(Mesh::HalfedgeHandle h)
   {
     const auto v0 = mesh_.from_vertex_handle(h), v1 = mesh_.to_vertex_handle(h);
-    if (locked_[v0])
+    if (locked_[v0.idx()])
       return false;
     if (mesh_.is_boundary(v0)) {
       // A boundary vertex may only slide along a boundary edge to a boundary neighbour.
       if (!movable_on_boundary() || !mesh_.is_boundary(v1) || !mesh_.is_boundary(mesh_.edge_handle(h)))
         return false;
     }
-    if (!mesh_.is_collapse_ok(h))
-      return false;
+    return link_condition(h);
+  }
+
+  //! Whether an allowed collapse of h, with the survivor moved to `p`, keeps every edge shorter
+  //! than the split bound and every surviving triangle well-shaped and unturned.
+  bool collapse_keeps_shape(Mesh::HalfedgeHandle h, const Eigen::Vector3d& p) const
+  {
+    const auto v0 = mesh_.from_vertex_handle(h), v1 = mesh_.to_vertex_handle(h);
     for (auto v : {v0, v1})
       for (auto w : mesh_.vv_range(v))
         if (w != v0 && w != v1 && (point(mesh_, w) - p).norm() > kSplitRatio * edge_target(v1, w))
@@ -214,7 +286,7 @@ private:
         }
         if (has_other)
           continue; // the triangle on the collapsed edge disappears
-        if (!acceptable(area_normal(q[0], q[1], q[2]), reference, target_[v]))
+        if (!acceptable(area_normal(q[0], q[1], q[2]), reference, target_[v.idx()]))
           return false;
       }
     }
@@ -235,11 +307,14 @@ private:
       // Remove the vertex of lower valence when both ways are allowed: that pulls both valences
       // toward the regular 6.
       std::array<Mesh::HalfedgeHandle, 2> order = {h01, h10};
-      if (mesh_.valence(v1) < mesh_.valence(v0))
+      if (valence(v1) < valence(v0))
         std::swap(order[0], order[1]);
       for (const auto h : order) {
+        // The projection in collapse_position() is the costly part: only for allowed collapses.
+        if (!collapse_allowed(h))
+          continue;
         const Eigen::Vector3d p = collapse_position(h);
-        if (!collapse_ok(h, p))
+        if (!collapse_keeps_shape(h, p))
           continue;
         const auto survivor = mesh_.to_vertex_handle(h);
         mesh_.collapse(h);
@@ -250,14 +325,25 @@ private:
     }
   }
 
+  //! Edges at v (OpenMesh's valence(), inlined: see link_condition()).
+  int valence(Mesh::VertexHandle v) const
+  {
+    int n = 0;
+    for ([[maybe_unused]] auto h : mesh_.voh_range(v))
+      ++n;
+    return n;
+  }
+
   int valence_target(Mesh::VertexHandle v) const { return mesh_.is_boundary(v) ? 4 : 6; }
 
   void flip_edges()
   {
     // Valences, kept current through the flips (a circulator per query is the costly part).
-    std::vector<int> valence(mesh_.n_vertices());
-    for (auto v : mesh_.vertices())
-      valence[v.idx()] = static_cast<int>(mesh_.valence(v));
+    std::vector<int> valence(mesh_.n_vertices(), 0);
+    for (auto e : mesh_.edges()) {
+      ++valence[e.v0().idx()];
+      ++valence[e.v1().idx()];
+    }
     const std::size_t edges = mesh_.n_edges();
     for (std::size_t i = 0; i < edges; ++i) {
       const Mesh::EdgeHandle e(static_cast<int>(i));
@@ -293,61 +379,114 @@ private:
     }
   }
 
-  //! Tangential relaxation sweeps, each followed by projection; then the moves of the corners
-  //! of any triangle that turned over since the first sweep are undone.
+  //! What the relaxation sweeps read of the connectivity (which they do not change), in flat
+  //! arrays and circulator order.
+  struct Neighbourhoods {
+    //! Neighbours of v: neighbours[first_neighbour[v], first_neighbour[v + 1]); none for a locked
+    //! or deleted vertex, the next and previous boundary vertex for a boundary vertex.
+    std::vector<int> first_neighbour, neighbours;
+    //! Faces around an interior vertex v: faces[first_face[v], first_face[v + 1]).
+    std::vector<int> first_face, faces;
+    std::vector<char> on_boundary;
+    std::vector<std::array<int, 3>> corners; //!< of every face, from its halfedge on
+  };
+
+  Neighbourhoods neighbourhoods() const
+  {
+    Neighbourhoods n;
+    const std::size_t count = mesh_.n_vertices();
+    n.first_neighbour.assign(count + 1, 0);
+    n.first_face.assign(count + 1, 0);
+    n.on_boundary.assign(count, 0);
+    n.neighbours.reserve(6 * count);
+    n.faces.reserve(6 * count);
+    for (std::size_t i = 0; i < count; ++i) {
+      const Mesh::VertexHandle v(static_cast<int>(i));
+      if (!mesh_.status(v).deleted() && !locked_[i] && mesh_.halfedge_handle(v).is_valid()) {
+        if (mesh_.is_boundary(v)) {
+          const auto out = mesh_.halfedge_handle(v); // a boundary vertex's halfedge is on the boundary
+          n.neighbours.push_back(mesh_.to_vertex_handle(out).idx());
+          n.neighbours.push_back(mesh_.from_vertex_handle(mesh_.prev_halfedge_handle(out)).idx());
+          n.on_boundary[i] = 1;
+        } else {
+          for (auto w : mesh_.vv_range(v))
+            n.neighbours.push_back(w.idx());
+          for (auto f : mesh_.vf_range(v))
+            n.faces.push_back(f.idx());
+        }
+      }
+      n.first_neighbour[i + 1] = static_cast<int>(n.neighbours.size());
+      n.first_face[i + 1] = static_cast<int>(n.faces.size());
+    }
+    n.corners.assign(mesh_.n_faces(), {0, 0, 0});
+    for (auto f : mesh_.faces()) {
+      const auto h = mesh_.halfedge_handle(f);
+      n.corners[f.idx()] = {mesh_.from_vertex_handle(h).idx(), mesh_.to_vertex_handle(h).idx(),
+                            mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h)).idx()};
+    }
+    return n;
+  }
+
+  //! Where a sweep moves v, projected: a boundary vertex toward the midpoint of its two boundary
+  //! neighbours, an interior one toward the (sizing-weighted) centroid of its neighbours, within
+  //! the plane normal to the area-weighted normal of its star.
+  Eigen::Vector3d relaxed(int v, const Neighbourhoods& n, const std::vector<Eigen::Vector3d>& x,
+                          const std::vector<Eigen::Vector3d>& face_normal) const
+  {
+    const int* w = n.neighbours.data();
+    const int first = n.first_neighbour[v], last = n.first_neighbour[v + 1];
+    if (n.on_boundary[v])
+      return project_boundary_(0.5 * (x[w[first]] + x[w[first + 1]]));
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    double weight = 0;
+    for (int i = first; i < last; ++i) {
+      const double omega = options_.sizing ? target_[w[i]] : 1.0;
+      centroid += omega * x[w[i]];
+      weight += omega;
+    }
+    if (!(weight > 0))
+      return x[v];
+    centroid /= weight;
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    for (int i = n.first_face[v]; i < n.first_face[v + 1]; ++i)
+      normal += face_normal[n.faces[i]];
+    const double nn = normal.norm();
+    Eigen::Vector3d q = centroid;
+    if (nn > 0) {
+      normal /= nn;
+      q = centroid + normal * normal.dot(x[v] - centroid);
+    }
+    return project_(q);
+  }
+
+  //! Tangential relaxation sweeps (Jacobi: every vertex moves from the previous sweep's
+  //! positions, so the order, and the threads, change nothing), each followed by projection; then
+  //! the moves of the corners of any triangle that turned over since the first sweep are undone.
   void relax_and_project()
   {
     if (options_.relaxation_steps == 0)
       return;
-    const std::size_t n = mesh_.n_vertices();
-    std::vector<Eigen::Vector3d> start(n);
-    for (auto v : mesh_.vertices())
-      start[v.idx()] = point(mesh_, v);
-    std::vector<Eigen::Vector3d> start_normal(mesh_.n_faces());
-    for (auto f : mesh_.faces())
-      start_normal[f.idx()] = face_area_normal(mesh_, f);
+    const Neighbourhoods n = neighbourhoods();
+    const int vertices = static_cast<int>(mesh_.n_vertices()), faces = static_cast<int>(mesh_.n_faces());
+    std::vector<Eigen::Vector3d> start(vertices);
+    for (int v = 0; v < vertices; ++v)
+      start[v] = point(mesh_, Mesh::VertexHandle(v));
+    const auto face_normal_at = [&](const std::vector<Eigen::Vector3d>& x, int f) {
+      const auto& [a, b, c] = n.corners[f];
+      return area_normal(x[a], x[b], x[c]);
+    };
+    std::vector<Eigen::Vector3d> start_normal(faces);
+    for_each_index(faces, true, [&](int f) { start_normal[f] = face_normal_at(start, f); });
 
     std::vector<Eigen::Vector3d> current = start, next = start, face_normal = start_normal;
     for (int step = 0; step < options_.relaxation_steps; ++step) {
       if (step > 0)
-        for (auto f : mesh_.faces())
-          face_normal[f.idx()] = face_area_normal(mesh_, f);
-      for (auto v : mesh_.vertices()) {
-        if (locked_[v])
-          continue;
-        if (mesh_.is_boundary(v)) {
-          // Slide along the boundary toward the midpoint of the two boundary neighbours.
-          const auto out = mesh_.halfedge_handle(v);
-          const auto in = mesh_.prev_halfedge_handle(out);
-          next[v.idx()] = project_boundary_(
-              0.5 * (current[mesh_.to_vertex_handle(out).idx()] + current[mesh_.from_vertex_handle(in).idx()]));
-          continue;
-        }
-        // Tangential move toward the (sizing-weighted) centroid of the neighbours.
-        Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-        double weight = 0;
-        for (auto w : mesh_.vv_range(v)) {
-          const double omega = options_.sizing ? target_[w] : 1.0;
-          centroid += omega * current[w.idx()];
-          weight += omega;
-        }
-        if (!(weight > 0))
-          continue;
-        centroid /= weight;
-        Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-        for (auto f : mesh_.vf_range(v))
-          normal += face_normal[f.idx()];
-        const double nn = normal.norm();
-        Eigen::Vector3d q = centroid;
-        if (nn > 0) {
-          normal /= nn;
-          q = centroid + normal * normal.dot(current[v.idx()] - centroid);
-        }
-        next[v.idx()] = project_(q);
-      }
-      current = next;
-      for (auto v : mesh_.vertices())
-        mesh_.set_point(v, to_point(current[v.idx()]));
+        for_each_index(faces, true, [&](int f) { face_normal[f] = face_normal_at(current, f); });
+      for_each_index(vertices, parallel_projection_, [&](int v) {
+        if (n.first_neighbour[v] < n.first_neighbour[v + 1])
+          next[v] = relaxed(v, n, current, face_normal);
+      });
+      current.swap(next);
     }
 
     // Undo the moves of the corners of any triangle that turned over; repeat, since undoing one
@@ -356,12 +495,11 @@ private:
       bool reverted = false;
       for (auto f : mesh_.faces()) {
         const Eigen::Vector3d& before = start_normal[f.idx()];
-        if (before.squaredNorm() == 0 || face_area_normal(mesh_, f).dot(before) > 0)
+        if (before.squaredNorm() == 0 || face_normal_at(current, f.idx()).dot(before) > 0)
           continue;
-        for (auto u : mesh_.fv_range(f)) {
-          if (current[u.idx()] != start[u.idx()]) {
-            current[u.idx()] = start[u.idx()];
-            mesh_.set_point(u, to_point(start[u.idx()]));
+        for (int u : n.corners[f.idx()]) {
+          if (current[u] != start[u]) {
+            current[u] = start[u];
             ++statistics_.relaxation_reverts;
             reverted = true;
           }
@@ -370,9 +508,11 @@ private:
       if (!reverted)
         break;
     }
+    for (auto v : mesh_.vertices())
+      mesh_.set_point(v, to_point(current[v.idx()]));
     if (options_.sizing)
       for (auto v : mesh_.vertices())
-        target_[v] = target_at(point(mesh_, v));
+        target_[v.idx()] = target_at(point(mesh_, v));
   }
 
   Mesh& mesh_;
@@ -380,8 +520,11 @@ private:
   double ell_;
   PointProjection project_;
   PointProjection project_boundary_;
-  OpenMesh::VProp<double> target_;
-  OpenMesh::VProp<bool> locked_;
+  bool parallel_projection_;
+  std::vector<double> target_; //!< ℓ at every vertex, by index (deleted vertices too)
+  std::vector<char> locked_;   //!< corners and kept boundaries: never moved or removed
+  std::vector<unsigned> mark_; //!< link_condition()'s marks: vertex → stamp of its last marking
+  unsigned stamp_ = 0;
   RemeshStatistics statistics_;
 };
 
@@ -425,25 +568,29 @@ RemeshResult isotropic_remesh(const Mesh& input, const RemeshOptions& options)
                                        options.boundary_corner_angle_deg));
   RemeshResult result;
   result.mesh = input;
-  result.mesh.garbage_collection();
+  sort_spatially(result.mesh);
   const double ell = options.target_edge_length > 0 ? options.target_edge_length : mean_edge_length(result.mesh);
   if (!(ell > 0))
     throw InvalidMesh("remesh: every edge has zero length, so no target edge length can be derived");
 
-  // Default targets: the input surface itself (exact closest points through the BVH) and its
-  // boundary polylines (closest points around the nearest boundary vertices).
+  // Default targets: the input surface itself (exact closest points, closest_point_grid.h) and
+  // its boundary polylines (closest points around the nearest boundary vertices). Both may be
+  // called from several threads; a caller's projections are called from one at a time.
+  const bool own_projections = !options.project && !options.project_boundary;
   PointProjection project = options.project;
   if (!project) {
-    auto tree = std::make_shared<const Bvh>(result.mesh);
-    project = [tree](const Eigen::Vector3d& p) { return tree->closest_point(p).point; };
+    auto grid = std::make_shared<const ClosestPointGrid>(result.mesh);
+    project = [grid](const Eigen::Vector3d& p) { return grid->closest_point(p).point; };
   }
   PointProjection project_boundary = options.project_boundary;
-  if (!project_boundary) {
+  const bool has_boundary = std::any_of(result.mesh.halfedges_begin(), result.mesh.halfedges_end(),
+                                        [&](auto h) { return result.mesh.is_boundary(h); });
+  if (!project_boundary && has_boundary) { // a closed surface never asks for one
     auto reference = std::make_shared<const StarProjection>(result.mesh);
     project_boundary = [reference](const Eigen::Vector3d& p) { return reference->closest_boundary_point(p); };
   }
 
-  Remesher remesher(result.mesh, options, ell, std::move(project), std::move(project_boundary));
+  Remesher remesher(result.mesh, options, ell, std::move(project), std::move(project_boundary), own_projections);
   result.statistics = remesher.run();
   return result;
 }

@@ -9,7 +9,9 @@
 //! flips edges toward valence 6 (4 on the boundary), relaxes vertices tangentially and projects
 //! them back onto the reference surface. What "the reference surface" is belongs to the caller:
 //! a projection function (onto an implicit surface for the mesher, onto the pre-remesh surface
-//! through a BVH for the re-triangulation pipeline).
+//! through a closest-point grid for the re-triangulation pipeline). After every iteration the
+//! mesh is renumbered along a Morton curve (spatial_order.h), so the sweeps of the next one, and
+//! their projections, read memory in order.
 
 #include "sdflow/mesh.h"
 
@@ -37,11 +39,13 @@ struct RemeshOptions {
   int iterations = 10;
   //! Tangential relaxation sweeps (each followed by projection) per iteration.
   int relaxation_steps = 3;
-  //! Closest point on the surface. Empty: the input mesh itself (exact closest point through
-  //! the BVH of retri/bvh.h).
+  //! Closest point on the surface. Empty: the input mesh itself (exact closest point, through
+  //! the grid of retri/closest_point_grid.h). A given function is called from one thread at a
+  //! time; with both projections left empty the relaxation sweeps run on TBB threads (with the
+  //! same results).
   PointProjection project;
   //! Closest point on the boundary curves (BoundaryMode::remesh). Empty: the input's boundary
-  //! polylines, through the same nearest-vertex search.
+  //! polylines, through a nearest-vertex search (retri/star_projection.h).
   PointProjection project_boundary;
   BoundaryMode boundary = BoundaryMode::remesh;
   //! Boundary vertices where the boundary turns by more than this angle (degrees) are corners:
@@ -62,7 +66,7 @@ struct RemeshStatistics {
 };
 
 struct RemeshResult {
-  Mesh mesh; //!< garbage-collected: vertex i is VertexHandle(i)
+  Mesh mesh; //!< garbage-collected (vertex i is VertexHandle(i)), numbered along a Morton curve
   RemeshStatistics statistics;
 };
 
