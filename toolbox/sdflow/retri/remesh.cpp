@@ -459,14 +459,18 @@ private:
     return project_(q);
   }
 
-  //! Tangential relaxation sweeps (Jacobi: every vertex moves from the previous sweep's
-  //! positions, so the order, and the threads, change nothing), each followed by projection; then
-  //! the moves of the corners of any triangle that turned over since the first sweep are undone.
+  //! Tangential relaxation sweeps, each followed by projection (Jacobi sweeps: every vertex moves
+  //! from the previous sweep's positions, so neither the order nor the threads change anything);
+  //! then the moves of the corners of any triangle that turned over since the first sweep are
+  //! undone.
   void relax_and_project()
   {
     if (options_.relaxation_steps == 0)
       return;
     const Neighbourhoods n = neighbourhoods();
+    // Vertices in spatial order, so that consecutive projections look near each other (the
+    // vertices the splits appended lie anywhere).
+    const std::vector<int> order = morton_order(mesh_);
     const int vertices = static_cast<int>(mesh_.n_vertices()), faces = static_cast<int>(mesh_.n_faces());
     std::vector<Eigen::Vector3d> start(vertices);
     for (int v = 0; v < vertices; ++v)
@@ -482,7 +486,8 @@ private:
     for (int step = 0; step < options_.relaxation_steps; ++step) {
       if (step > 0)
         for_each_index(faces, true, [&](int f) { face_normal[f] = face_normal_at(current, f); });
-      for_each_index(vertices, parallel_projection_, [&](int v) {
+      for_each_index(static_cast<int>(order.size()), parallel_projection_, [&](int i) {
+        const int v = order[i];
         if (n.first_neighbour[v] < n.first_neighbour[v + 1])
           next[v] = relaxed(v, n, current, face_normal);
       });

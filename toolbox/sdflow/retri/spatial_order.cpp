@@ -49,7 +49,7 @@ std::vector<int> inverse(const std::vector<int>& order, std::size_t old_count)
 
 } // namespace
 
-std::vector<int> sort_spatially(Mesh& mesh)
+std::vector<int> morton_order(const Mesh& mesh)
 {
   std::array<double, 3> lo, hi;
   lo.fill(std::numeric_limits<double>::infinity());
@@ -71,9 +71,15 @@ std::vector<int> sort_spatially(Mesh& mesh)
     keyed.emplace_back(code, v.idx());
   }
   std::sort(keyed.begin(), keyed.end());
-  std::vector<int> old_vertex(keyed.size());
+  std::vector<int> order(keyed.size());
   for (std::size_t i = 0; i < keyed.size(); ++i)
-    old_vertex[i] = keyed[i].second;
+    order[i] = keyed[i].second;
+  return order;
+}
+
+std::vector<int> sort_spatially(Mesh& mesh)
+{
+  std::vector<int> old_vertex = morton_order(mesh);
   const std::vector<int> new_vertex = inverse(old_vertex, mesh.n_vertices());
   const int vertex_count = static_cast<int>(old_vertex.size());
 

@@ -14,12 +14,15 @@
 
 namespace sdflow {
 
-//! Renumbers `mesh` in place: vertices by the Morton code of their position (21 bits per axis
-//! over the bounding box; ties by index), then edges and faces by their lowest-numbered vertex
-//! (ties by index). Deleted elements are dropped, like garbage_collection(); the surface, its
-//! orientation and every halfedge's next/previous/face links are unchanged. Only the points and
-//! the connectivity are carried over: other properties are dropped. Returns the old index of every
-//! new vertex.
+//! The live vertices of `mesh` (indices) by the Morton code of their position (21 bits per axis
+//! over the bounding box; ties by index).
+std::vector<int> morton_order(const Mesh& mesh);
+
+//! Renumbers `mesh` in place: vertices in morton_order(), then edges and faces by their
+//! lowest-numbered vertex (ties by index). Deleted elements are dropped, like
+//! garbage_collection(); the surface, its orientation and every halfedge's next/previous/face
+//! links are unchanged. Only the points and the connectivity are carried over: other properties
+//! are dropped. Returns the old index of every new vertex.
 std::vector<int> sort_spatially(Mesh& mesh);
 
 } // namespace sdflow
