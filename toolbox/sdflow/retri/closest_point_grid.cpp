@@ -151,8 +151,8 @@ void ClosestPointGrid::search_cell(std::int64_t i, std::int64_t j, std::int64_t 
 {
   if (i < 0 || j < 0 || k < 0 || i >= size_[0] || j >= size_[1] || k >= size_[2])
     return; // outside the grid: no triangle there
-  const std::size_t c = cell_index(i, j, k);
-  for (std::uint32_t e = first_[c]; e < first_[c + 1]; ++e) {
+  const std::size_t cell = cell_index(i, j, k);
+  for (std::uint32_t e = first_[cell]; e < first_[cell + 1]; ++e) {
     const int t = entries_[e];
     if (squared_box_distance(boxes_[t], query) > best.squared_distance)
       continue;
@@ -187,9 +187,12 @@ ClosestPoint ClosestPointGrid::closest_point(const Eigen::Vector3d& query) const
   ClosestPoint best;
   search_cell(c[0], c[1], c[2], query, best);
   // A nearer triangle meets the ball of radius `reach`, hence one of the cells that ball meets:
-  // while it is narrower than a cell, those are among the 26 neighbours. `reach` only shrinks,
-  // so a neighbour passed over stays out of reach.
+  // usually only the query's own; while the ball is narrower than a cell, the others are among
+  // the 26 neighbours. `reach` only shrinks, so a neighbour passed over stays out of reach.
   const auto reach = [&] { return std::min(std::sqrt(best.squared_distance) + slack_, cell_); };
+  double r = reach();
+  if (r < std::min({below[0], below[1], below[2], above[0], above[1], above[2]}))
+    return best;
   for (int di = -1; di <= 1; ++di)
     for (int dj = -1; dj <= 1; ++dj)
       for (int dk = -1; dk <= 1; ++dk) {
@@ -197,9 +200,10 @@ ClosestPoint ClosestPointGrid::closest_point(const Eigen::Vector3d& query) const
         double gap = 0;
         for (int k = 0; k < 3; ++k)
           gap += d[k] < 0 ? below[k] * below[k] : (d[k] > 0 ? above[k] * above[k] : 0.0);
-        const double r = reach();
-        if ((di != 0 || dj != 0 || dk != 0) && gap < r * r)
+        if ((di != 0 || dj != 0 || dk != 0) && gap < r * r) {
           search_cell(c[0] + di, c[1] + dj, c[2] + dk, query, best);
+          r = reach();
+        }
       }
   if (best.face >= 0 && std::sqrt(best.squared_distance) + slack_ < cell_)
     return best;
