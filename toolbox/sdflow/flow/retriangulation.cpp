@@ -16,10 +16,7 @@ namespace {
 //! Smallest corner angle of face f, in degrees.
 double smallest_angle_deg(const Mesh& mesh, Mesh::FaceHandle f)
 {
-  std::array<Eigen::Vector3d, 3> x;
-  int k = 0;
-  for (const auto v : mesh.fv_range(f))
-    x[k++] = to_eigen(mesh.point(v));
+  const auto x = triangle_corners(mesh, f).point;
   double smallest = 180;
   for (int i = 0; i < 3; ++i) {
     const Eigen::Vector3d a = x[(i + 1) % 3] - x[i], b = x[(i + 2) % 3] - x[i];
