@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
+#include <optional>
 #include <numbers>
 
 namespace sdflow {
@@ -25,14 +27,36 @@ double smallest_angle_deg(const Mesh& mesh, Mesh::FaceHandle f)
   return smallest;
 }
 
+//! The self-intersections of the surface from step to step: a SelfIntersectionTracker refitted
+//! while the connectivity stays the same, rebuilt when it changes. Its pairs are exactly those of
+//! self_intersections(), so the cache changes the cost of a check, never its answer.
+class IntersectionWatch {
+public:
+  std::size_t count(const Mesh& mesh)
+  {
+    Triangles triangles = face_indices(mesh);
+    if (tracker_ && vertices_ == mesh.n_vertices() && triangles.rows() == triangles_.rows() && triangles == triangles_)
+      return tracker_->update(mesh).size();
+    tracker_.emplace(mesh);
+    triangles_ = std::move(triangles);
+    vertices_ = mesh.n_vertices();
+    return tracker_->pairs().size();
+  }
+
+private:
+  using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+  std::optional<SelfIntersectionTracker> tracker_;
+  Triangles triangles_;
+  std::size_t vertices_ = 0;
+};
+
 //! Why the surface needs the pipeline now (empty: it does not).
-std::string reason_to_retriangulate(const Mesh& mesh, const RetriangulationSchedule& s)
+std::string reason_to_retriangulate(const Mesh& mesh, const RetriangulationSchedule& s, IntersectionWatch& watch)
 {
   if (s.always)
     return "scheduled";
-  const auto pairs = self_intersections(mesh);
-  if (!pairs.empty())
-    return fmt::format("{} intersecting face pairs", pairs.size());
+  if (const std::size_t pairs = watch.count(mesh); pairs > 0)
+    return fmt::format("{} intersecting face pairs", pairs);
   const double ell = s.pipeline.target_edge_length;
   for (const auto e : mesh.edges()) {
     const double length = mesh.calc_edge_length(e);
@@ -77,11 +101,12 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
   validate_retriangulation_schedule(schedule);
   if (!(schedule.pipeline.target_edge_length > 0))
     throw InvalidParameter("the re-triangulation hook needs a resolved target edge length (> 0)");
-  return [schedule](Mesh& mesh, const RetriangulationContext& context) {
+  auto watch = std::make_shared<IntersectionWatch>();
+  return [schedule, watch](Mesh& mesh, const RetriangulationContext& context) {
     RetriangulationReport report;
     if (context.step % schedule.every != 0)
       return report;
-    const std::string reason = reason_to_retriangulate(mesh, schedule);
+    const std::string reason = reason_to_retriangulate(mesh, schedule, *watch);
     if (reason.empty())
       return report;
     RetriangulationResult r = retriangulate(mesh, schedule.pipeline);
