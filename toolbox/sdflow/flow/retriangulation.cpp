@@ -58,14 +58,17 @@ std::string reason_to_retriangulate(const Mesh& mesh, const RetriangulationSched
   if (const std::size_t pairs = watch.count(mesh); pairs > 0)
     return fmt::format("{} intersecting face pairs", pairs);
   const double ell = s.pipeline.target_edge_length;
+  long long_or_short = 0, sharp = 0;
   for (const auto e : mesh.edges()) {
     const double length = mesh.calc_edge_length(e);
-    if (length > s.edge_ratio * ell || length * s.edge_ratio < ell)
-      return fmt::format("edge {} has length {:.3g} (target {:.3g})", e.idx(), length, ell);
+    long_or_short += length > s.edge_ratio * ell || length * s.edge_ratio < ell;
   }
   for (const auto f : mesh.faces())
-    if (const double angle = smallest_angle_deg(mesh, f); angle < s.min_angle_deg)
-      return fmt::format("face {} has an angle of {:.1f}°", f.idx(), angle);
+    sharp += smallest_angle_deg(mesh, f) < s.min_angle_deg;
+  const double allowed = s.degraded_fraction * static_cast<double>(mesh.n_faces());
+  if (static_cast<double>(long_or_short + sharp) > allowed)
+    return fmt::format("{} edges outside [ℓ/{}, {}ℓ] and {} triangles with an angle below {}°", long_or_short,
+                       s.edge_ratio, s.edge_ratio, sharp, s.min_angle_deg);
   return {};
 }
 
@@ -91,6 +94,9 @@ void validate_retriangulation_schedule(const RetriangulationSchedule& s)
     throw InvalidParameter(fmt::format("retriangulation.every must be ≥ 1, got {}", s.every));
   if (!(s.min_angle_deg >= 0 && s.min_angle_deg < 60))
     throw InvalidParameter(fmt::format("retriangulation.min_angle must be in [0, 60) degrees, got {}", s.min_angle_deg));
+  if (!(s.degraded_fraction >= 0 && s.degraded_fraction < 1))
+    throw InvalidParameter(
+        fmt::format("retriangulation.degraded_fraction must be in [0, 1), got {}", s.degraded_fraction));
   if (!(s.edge_ratio > 1) || !std::isfinite(s.edge_ratio))
     throw InvalidParameter(fmt::format("retriangulation.edge_ratio must be a finite number > 1, got {}", s.edge_ratio));
   validate_retriangulation_options(s.pipeline);
