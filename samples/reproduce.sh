@@ -14,7 +14,7 @@ samples/make_meshes.sh "$sdflow"
 
 names=("$@")
 [[ ${#names[@]} -gt 0 ]] || names=(sphere_accuracy ellipsoid_relax ellipsoid_quarter_beta ellipsoid_explicit torus
-                                   dumbbell sintering spheres_on_plane)
+                                   dumbbell sintering sintering_late spheres_on_plane)
 for name in "${names[@]}"; do
   rm -rf "runs/$name"
   status=0
