@@ -42,6 +42,7 @@ int main(int argc, char** argv)
   sdflow::cli::add_plot_verb(app);
   sdflow::cli::add_reconstruct_verb(app);
   sdflow::cli::add_remesh_verb(app);
+  sdflow::cli::add_render_verb(app);
   sdflow::cli::add_retriangulate_verb(app);
   sdflow::cli::add_run_verb(app);
   sdflow::cli::add_shape_verb(app);

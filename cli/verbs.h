@@ -12,6 +12,7 @@ void add_normals_verb(CLI::App& app);
 void add_plot_verb(CLI::App& app);
 void add_reconstruct_verb(CLI::App& app);
 void add_remesh_verb(CLI::App& app);
+void add_render_verb(CLI::App& app);
 void add_retriangulate_verb(CLI::App& app);
 void add_run_verb(CLI::App& app);
 void add_shape_verb(CLI::App& app);

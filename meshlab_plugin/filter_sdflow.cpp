@@ -35,6 +35,19 @@ sdflow::meshlab::DiffusionSettings diffusion_settings(const RichParameterList& p
   s.beta = intended_double(parameters.getFloat("Beta"));
   s.conserve_volume = parameters.getBool("ConserveVolume");
   s.fixed_boundary = parameters.getBool("FixedBoundary");
+  s.retriangulate = parameters.getBool("Retriangulate");
+  s.edge_length = intended_double(parameters.getFloat("EdgeLength"));
+  return s;
+}
+
+sdflow::meshlab::RetriangulationSettings retriangulation_settings(const RichParameterList& parameters)
+{
+  sdflow::meshlab::RetriangulationSettings s;
+  s.edge_length = sdflow::meshlab::intended_double(parameters.getFloat("EdgeLength"));
+  s.remesh_iterations = parameters.getInt("RemeshIterations");
+  s.always_rebuild = parameters.getBool("AlwaysRebuild");
+  s.fill_holes = parameters.getBool("FillHoles");
+  s.min_component_faces = parameters.getInt("MinComponentFaces");
   return s;
 }
 
@@ -42,7 +55,7 @@ sdflow::meshlab::DiffusionSettings diffusion_settings(const RichParameterList& p
 
 FilterSdflowPlugin::FilterSdflowPlugin()
 {
-  typeList << FP_SURFACE_DIFFUSION;
+  typeList << FP_SURFACE_DIFFUSION << FP_RETRIANGULATE;
   for (FilterIDType type : types())
     actionList << new QAction(filterName(type), this);
 }
@@ -54,6 +67,8 @@ QString FilterSdflowPlugin::filterName(FilterIDType filter) const
   switch (filter) {
   case FP_SURFACE_DIFFUSION:
     return "Surface diffusion N steps";
+  case FP_RETRIANGULATE:
+    return "Surface diffusion: re-triangulate";
   }
   return {};
 }
@@ -71,6 +86,9 @@ QString FilterSdflowPlugin::filterInfo(FilterIDType filter) const
            "X &larr; X - &tau; w N, with the cotangent/Voronoi Laplace-Beltrami operator, normals by Max's "
            "weights and the mean curvature as the integral of normal curvatures, exactly as the <i>sdflow</i> "
            "command line does (<tt>sdflow run</tt> gives the same surface for the same parameters).<br>"
+           "With <i>re-triangulate</i> on, the surface is re-triangulated between steps whenever it intersects "
+           "itself (a pinch-off, a hole closing, bodies touching) or its triangles degrade, by the pipeline of "
+           "<i>Surface diffusion: re-triangulate</i> (<tt>sdflow run --retriangulate</tt>).<br>"
            "The result replaces the current mesh, all connected components together in this layer. "
            "Per-vertex <b>quality holds the mean curvature H</b> (a sphere of radius R has H = -1/R) and "
            "per-vertex normals hold N, so <i>Colorize by vertex quality</i> shows the curvature.<br>"
@@ -80,6 +98,20 @@ QString FilterSdflowPlugin::filterInfo(FilterIDType filter) const
            "for triangulated surfaces\"</b>; <i>M. Meyer, M. Desbrun, P. Schr&ouml;der, A. H. Barr</i>, "
            "<b>\"Discrete differential-geometry operators for triangulated 2-manifolds\"</b>, "
            "Visualization and Mathematics III, 2003.";
+  case FP_RETRIANGULATE:
+    return "Re-triangulates the surface by the pipeline of section 3.2.1 of the paper, the one <i>Surface "
+           "diffusion N steps</i> applies between steps: components that intersect each other are joined into the "
+           "boundary of their union; the surface is remeshed isotropically to the target edge length; "
+           "self-intersecting faces are removed and, if there were any, the surface is rebuilt from its points "
+           "(jet normals oriented along a minimum spanning tree, advancing-front reconstruction) and its holes "
+           "are filled; small or flat debris components are dropped. <tt>sdflow retriangulate</tt> gives the same "
+           "surface for the same parameters.<br>"
+           "The result replaces the current mesh, all connected components together in this layer, with "
+           "per-vertex normals N and <b>quality = mean curvature H</b>.<br>"
+           "The mesh must be a manifold, consistently oriented triangle mesh; otherwise, or when nothing would be "
+           "left, the filter stops, the mesh stays unchanged and the log gives the reason.<br><br>"
+           "See: <i>Efremenko</i>, <b>\"On semi-implicit numerical method for surface diffusion equation for "
+           "triangulated surfaces\"</b>, section 3.2.1 and Appendix B.";
   }
   return {};
 }
@@ -88,8 +120,9 @@ MeshFilterInterface::FilterClass FilterSdflowPlugin::getClass(QAction* action)
 {
   switch (ID(action)) {
   case FP_SURFACE_DIFFUSION:
+  case FP_RETRIANGULATE:
     // A curvature-driven fairing flow: it belongs beside MeshLab's Laplacian, Taubin and HC
-    // smoothing filters.
+    // smoothing filters; its re-triangulation stays next to it.
     return MeshFilterInterface::Smoothing;
   }
   return MeshFilterInterface::Generic;
@@ -107,9 +140,10 @@ int FilterSdflowPlugin::postCondition(QAction*) const
 
 void FilterSdflowPlugin::initParameterSet(QAction* action, MeshModel& model, RichParameterList& parameters)
 {
+  const double mean_edge_length = sdflow::meshlab::mean_edge_length(sdflow::meshlab::to_surface(model.cm));
   switch (ID(action)) {
   case FP_SURFACE_DIFFUSION: {
-    const double natural_tau = sdflow::meshlab::natural_time_step(sdflow::meshlab::to_surface(model.cm));
+    const double natural_tau = sdflow::meshlab::natural_time_step(mean_edge_length);
     parameters.addParam(RichInt("Steps", 10, "Steps",
                                 "Number of time steps to take. Each accepted step advances the time by its "
                                 "time step τ."));
@@ -133,8 +167,36 @@ void FilterSdflowPlugin::initParameterSet(QAction* action, MeshModel& model, Ric
     parameters.addParam(RichBool("FixedBoundary", false, "Fixed boundary",
                                  "Hold the boundary vertices of open surfaces in place. Off: boundary vertices move "
                                  "like interior ones, with zero mean curvature there."));
+    parameters.addParam(RichBool("Retriangulate", false, "Re-triangulate",
+                                 "Re-triangulate between steps when the surface intersects itself (a pinch-off, a "
+                                 "hole closing, bodies touching) or its triangles degrade (an angle below 15°, an "
+                                 "edge outside [ℓ/2, 2ℓ]), by the pipeline of <i>Surface diffusion: "
+                                 "re-triangulate</i>. The number of vertices then changes."));
+    parameters.addParam(RichFloat("EdgeLength", static_cast<float>(mean_edge_length),
+                                  "Re-triangulation edge length ℓ",
+                                  "Target edge length of the re-triangulation, used only when it is on (≥ 0; 0: "
+                                  "the mesh's mean edge length at the start). The default is this mesh's mean "
+                                  "edge length."));
     break;
   }
+  case FP_RETRIANGULATE:
+    parameters.addParam(RichFloat("EdgeLength", static_cast<float>(mean_edge_length), "Target edge length ℓ",
+                                  "Edge length the surface is remeshed to (≥ 0; 0: the mesh's mean edge length). "
+                                  "The default is this mesh's mean edge length; a smaller ℓ gives more triangles."));
+    parameters.addParam(RichInt("RemeshIterations", 3, "Remesh iterations",
+                                "Rounds of isotropic remeshing towards ℓ (edge splits, collapses, flips and "
+                                "tangential smoothing); 0 keeps the triangles as they are."));
+    parameters.addParam(RichBool("AlwaysRebuild", false, "Always rebuild from points",
+                                 "On: rebuild the surface from its points (jet normals, advancing front) and fill "
+                                 "its holes even when nothing intersects. Off: rebuild only when the remeshed "
+                                 "surface intersects itself, otherwise keep it."));
+    parameters.addParam(RichBool("FillHoles", true, "Fill holes",
+                                 "Fill the holes a rebuild from points leaves: every hole of a closed surface; on "
+                                 "an open one, the loops shorter than its shortest boundary. Off: leave them open."));
+    parameters.addParam(RichInt("MinComponentFaces", 16, "Minimum component faces",
+                                "Connected components with fewer triangles are dropped as debris (≥ 1); closed "
+                                "components enclosing almost no volume are dropped too."));
+    break;
   }
 }
 
@@ -153,6 +215,9 @@ bool FilterSdflowPlugin::applyFilter(QAction* action, MeshDocument& document, co
     switch (ID(action)) {
     case FP_SURFACE_DIFFUSION:
       result = sdflow::meshlab::surface_diffusion(input, label, diffusion_settings(parameters), reporter);
+      break;
+    case FP_RETRIANGULATE:
+      result = sdflow::meshlab::retriangulate_surface(input, label, retriangulation_settings(parameters), reporter);
       break;
     default:
       throw std::logic_error("unknown filter " + name.toStdString());

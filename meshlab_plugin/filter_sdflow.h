@@ -1,6 +1,7 @@
 #pragma once
 //! \file filter_sdflow.h
-//! \brief MeshLab filter plugin: surface diffusion flow (V_N = -ΔH) from the sdflow toolbox.
+//! \brief MeshLab filter plugin: surface diffusion flow (V_N = -ΔH) and the re-triangulation of
+//! paper §3.2.1 from the sdflow toolbox.
 //!
 //! A thin adapter: it reads MeshLab's parameters into the toolbox's settings, converts the mesh
 //! (convert.h), calls the toolbox through toolbox_bridge.h, and reports. No numerics live here.
@@ -13,7 +14,7 @@ class FilterSdflowPlugin : public QObject, public MeshFilterInterface {
   Q_INTERFACES(MeshFilterInterface)
 
 public:
-  enum { FP_SURFACE_DIFFUSION };
+  enum { FP_SURFACE_DIFFUSION, FP_RETRIANGULATE };
 
   FilterSdflowPlugin();
 

@@ -6,6 +6,7 @@
 #include "sdflow/geometry/normals.h"
 #include "sdflow/geometry/quality.h"
 #include "sdflow/log.h"
+#include "sdflow/retri/pipeline.h"
 #include "sdflow/validate.h"
 
 #include <spdlog/sinks/base_sink.h>
@@ -129,10 +130,11 @@ ShadedSurface shaded(const Mesh& mesh, const SchemeOptions& scheme)
   return result;
 }
 
-//! Mean edge length of `input`, or 0 if it is not a valid surface (the filter reports why when it
-//! is applied).
+} // namespace
+
 double mean_edge_length(const Surface& input)
 {
+  // An invalid surface gets its reasons reported when a filter is applied, not here.
   const LoggerScope silent{Reporter{}};
   try {
     return mesh_quality(checked_mesh(input, "mesh")).edge_mean;
@@ -141,9 +143,7 @@ double mean_edge_length(const Surface& input)
   }
 }
 
-} // namespace
-
-double natural_time_step(const Surface& input) { return std::pow(mean_edge_length(input), 4); }
+double natural_time_step(const double mean_edge_length) { return std::pow(mean_edge_length, 4); }
 
 ShadedSurface surface_diffusion(const Surface& input, const std::string& name, const DiffusionSettings& settings,
                                 const Reporter& reporter)
@@ -166,6 +166,8 @@ ShadedSurface surface_diffusion(const Surface& input, const std::string& name, c
   p.scheme.beta = settings.beta;
   p.scheme.boundary = settings.fixed_boundary ? BoundaryMotion::fixed : BoundaryMotion::paper;
   p.conserve_volume = settings.conserve_volume;
+  p.retriangulation.enabled = settings.retriangulate;
+  p.retriangulation.pipeline.target_edge_length = settings.edge_length;
   p.snapshot_every = 0;
   p.checkpoint_every = settings.steps;
   if (reporter.progress)
@@ -178,6 +180,29 @@ ShadedSurface surface_diffusion(const Surface& input, const std::string& name, c
   logger().info("surface diffusion: {} steps to t = {:.6g} ({} rejected trial steps)", result.steps, result.time,
                 result.rejected_trials);
   return shaded(result.mesh, p.scheme);
+}
+
+ShadedSurface retriangulate_surface(const Surface& input, const std::string& name,
+                                    const RetriangulationSettings& settings, const Reporter& reporter)
+{
+  const LoggerScope scope(reporter);
+  const Mesh mesh = checked_mesh(input, name);
+  RetriangulationOptions options;
+  options.target_edge_length = settings.edge_length;
+  options.remesh_iterations = settings.remesh_iterations;
+  options.always_rebuild = settings.always_rebuild;
+  options.fill_holes = settings.fill_holes;
+  options.min_component_faces = settings.min_component_faces;
+  const RetriangulationResult r = retriangulate(mesh, options);
+  logger().info("re-triangulation to edge length {:.6g}: {} vertices, {} component(s) → {} vertices, "
+                "{} component(s); {} component(s) joined, {} intersecting face pairs, {} faces removed, {}, "
+                "{} debris component(s) dropped, {} boundary loop(s) left",
+                r.target_edge_length, mesh.n_vertices(), r.components_before, r.mesh.n_vertices(), r.components_after,
+                r.merged_components, r.intersecting_pairs, r.removed_faces,
+                r.rebuilt ? fmt::format("rebuilt from the points ({} hole(s) filled)", r.filled_holes)
+                          : std::string("not rebuilt (nothing intersected)"),
+                r.dropped_components, r.open_holes);
+  return shaded(r.mesh, SchemeOptions{});
 }
 
 } // namespace sdflow::meshlab

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the dependencies, builds sdflow and runs the whole test suite on an optimised build.
-#   scripts/test.sh              the suite (what CI runs)
-#   scripts/test.sh --sanitize   then again under AddressSanitizer + UndefinedBehaviorSanitizer
+#   scripts/test.sh              the suite (the README's test command; CI runs it first)
+#   scripts/test.sh --sanitize   the suite under AddressSanitizer + UndefinedBehaviorSanitizer (CI runs it next)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -16,9 +16,10 @@ run_suite() { # build directory, then extra CMake arguments
   ctest --test-dir "$dir" --output-on-failure -j "$jobs"
 }
 
-run_suite build/release -DCMAKE_BUILD_TYPE=Release
 if [[ "${1:-}" == "--sanitize" ]]; then
   ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     run_suite build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSDFLOW_SANITIZE=ON
+else
+  run_suite build/release -DCMAKE_BUILD_TYPE=Release
 fi
 echo "test.sh: all tests passed"

@@ -7,7 +7,16 @@
 #   headless_test.sh same-as-cli PREFIX WORKDIR MESH SDFLOW COMPARE_MESHES
 #       "Surface diffusion N steps" on MESH must give the surface `sdflow run` gives with the same
 #       parameters (same vertices and triangles, coordinates equal to float precision), with the
-#       automatic time step, and with a constant τ and volume conservation.
+#       automatic time step, with a constant τ and volume conservation, and with re-triangulation
+#       (which must change the number of vertices).
+#   headless_test.sh retriangulate-same-as-cli PREFIX WORKDIR SDFLOW COMPARE_MESHES
+#       "Surface diffusion: re-triangulate" on two overlapping spheres and a small one apart (made by
+#       `sdflow shape`) must give the surface `sdflow retriangulate` gives with the same parameters,
+#       for three settings, each changing the number of vertices.
+#   headless_test.sh nothing-left PREFIX WORKDIR MESH
+#       "Surface diffusion: re-triangulate" on MESH with a minimum component size no component
+#       reaches: meshlabserver must exit non-zero, its log must give the reason, and no output file
+#       may be written.
 set -euo pipefail
 case_name=$1 prefix=$2 work=$3
 
@@ -18,6 +27,7 @@ fail() { echo "headless_test $case_name: FAILED: $*" >&2; exit 1; }
 
 # Writes a filter script for "Surface diffusion N steps" giving every parameter (meshlabserver
 # asserts on a missing one): FILE STEPS AUTOMATIC_TAU TAU BETA CONSERVE_VOLUME FIXED_BOUNDARY
+# RETRIANGULATE EDGE_LENGTH
 write_diffusion_script() {
   cat > "$1" <<MLX
 <!DOCTYPE FilterScript>
@@ -29,9 +39,52 @@ write_diffusion_script() {
   <Param type="RichFloat" name="Beta" value="$5"/>
   <Param type="RichBool" name="ConserveVolume" value="$6"/>
   <Param type="RichBool" name="FixedBoundary" value="$7"/>
+  <Param type="RichBool" name="Retriangulate" value="$8"/>
+  <Param type="RichFloat" name="EdgeLength" value="$9"/>
  </filter>
 </FilterScript>
 MLX
+}
+
+# Writes a filter script for "Surface diffusion: re-triangulate" giving every parameter:
+# FILE EDGE_LENGTH REMESH_ITERATIONS ALWAYS_REBUILD FILL_HOLES MIN_COMPONENT_FACES
+write_retriangulation_script() {
+  cat > "$1" <<MLX
+<!DOCTYPE FilterScript>
+<FilterScript>
+ <filter name="Surface diffusion: re-triangulate">
+  <Param type="RichFloat" name="EdgeLength" value="$2"/>
+  <Param type="RichInt" name="RemeshIterations" value="$3"/>
+  <Param type="RichBool" name="AlwaysRebuild" value="$4"/>
+  <Param type="RichBool" name="FillHoles" value="$5"/>
+  <Param type="RichInt" name="MinComponentFaces" value="$6"/>
+ </filter>
+</FilterScript>
+MLX
+}
+
+# The vertex count in the header of a PLY file.
+vertex_count() { grep -a -m 1 '^element vertex' "$1" | cut -d' ' -f3; }
+
+# Fails unless the PLY file FILE has a different number of vertices than $work/input.ply.
+expect_changed() {
+  [[ $(vertex_count "$1") != $(vertex_count "$work/input.ply") ]] \
+    || fail "$1 has the input's $(vertex_count "$1") vertices: nothing was re-triangulated"
+}
+
+# Writes the OFF files A and B (as sdflow writes them: "OFF", "V F 0", points, triangles) as one
+# file OUT holding both surfaces.
+join_off() {
+  local a=$1 b=$2 out=$3 va fa vb fb
+  read -r va fa _ < <(sed -n 2p "$a")
+  read -r vb fb _ < <(sed -n 2p "$b")
+  {
+    printf 'OFF\n%d %d 0\n' $((va + vb)) $((fa + fb))
+    sed -n "3,$((2 + va))p" "$a"
+    sed -n "3,$((2 + vb))p" "$b"
+    sed -n "$((3 + va)),$((2 + va + fa))p" "$a"
+    sed -n "$((3 + vb)),$((2 + vb + fb))p" "$b" | awk -v offset="$va" '{ print 3, $2 + offset, $3 + offset, $4 + offset }'
+  } > "$out"
 }
 
 # meshlabserver ARGS... under Xvfb; sets `status` to its exit code and keeps its console output.
@@ -62,7 +115,7 @@ compare_with_cli() {
 case "$case_name" in
 nonmanifold)
   data=$4
-  write_diffusion_script "$work/diffusion.mlx" 3 true 0.001 0.5 false false
+  write_diffusion_script "$work/diffusion.mlx" 3 true 0.001 0.5 false false false 0.1
   run_meshlabserver -l "$work/log.txt" -i "$data/fins.ply" -o "$work/out.ply" -s "$work/diffusion.mlx"
   [[ $status -ne 0 ]] || fail "meshlabserver exited with 0 on a non-manifold mesh"
   grep -q "non-manifold-edge" "$work/log.txt" || fail "the log does not name the problem: $(cat "$work/log.txt")"
@@ -74,11 +127,53 @@ same-as-cli)
   # MeshLab holds coordinates as floats: both sides start from its float copy of the mesh.
   run_meshlabserver -i "$mesh" -o "$work/input.ply"
   [[ $status -eq 0 && -s "$work/input.ply" ]] || fail "meshlabserver could not convert $mesh"
-  compare_with_cli adaptive "12 true 0.001 0.5 false false" --adaptive --beta 0.5
-  compare_with_cli constant "8 false 0.05 0.5 true false" --tau 0.05 --beta 0.5 --conserve-volume
+  compare_with_cli adaptive "12 true 0.001 0.5 false false false 0.1" --adaptive --beta 0.5
+  compare_with_cli constant "8 false 0.05 0.5 true false false 0.1" --tau 0.05 --beta 0.5 --conserve-volume
+  # Half the mean edge length (0.61): the first step's surface has edges longer than 2ℓ.
+  compare_with_cli retriangulated "4 true 0.001 0.5 false false true 0.3" --adaptive --beta 0.5 \
+    --retriangulate --edge-length 0.3
+  expect_changed "$work/retriangulated.meshlab.ply"
   echo "headless_test same-as-cli: the plugin's surfaces equal sdflow run's"
   ;;
+retriangulate-same-as-cli)
+  sdflow=$4 compare=$5
+  "$sdflow" --quiet shape sphere --cx -0.6 --edge-length 0.25 -o "$work/left.off" > /dev/null || fail "sdflow shape failed"
+  "$sdflow" --quiet shape sphere --cx 0.6 --edge-length 0.25 -o "$work/right.off" > /dev/null || fail "sdflow shape failed"
+  "$sdflow" --quiet shape sphere --radius 0.4 --cy 3 --edge-length 0.25 -o "$work/small.off" > /dev/null \
+    || fail "sdflow shape failed"
+  join_off "$work/left.off" "$work/right.off" "$work/two.off"
+  join_off "$work/two.off" "$work/small.off" "$work/spheres.off"
+  run_meshlabserver -i "$work/spheres.off" -o "$work/input.ply"
+  [[ $status -eq 0 && -s "$work/input.ply" ]] || fail "meshlabserver could not convert the spheres"
+  # joined: the overlapping spheres become one; debris: the small sphere (58 triangles) is dropped as
+  # smaller than 100; rebuilt: the surface is rebuilt from its points.
+  #   NAME EDGE_LENGTH REMESH_ITERATIONS ALWAYS_REBUILD FILL_HOLES MIN_COMPONENT_FACES/the same as flags
+  for settings in "joined 0.2 3 false true 16/--edge-length 0.2 --iterations 3 --min-component-faces 16" \
+    "debris 0.3 2 false true 100/--edge-length 0.3 --iterations 2 --min-component-faces 100" \
+    "rebuilt 0.3 2 true false 16/--edge-length 0.3 --iterations 2 --always-rebuild --no-fill-holes --min-component-faces 16"; do
+    read -r name length iterations always fill faces <<< "${settings%%/*}"
+    write_retriangulation_script "$work/$name.mlx" "$length" "$iterations" "$always" "$fill" "$faces"
+    run_meshlabserver -l "$work/$name.log" -i "$work/input.ply" -o "$work/$name.meshlab.ply" -s "$work/$name.mlx"
+    [[ $status -eq 0 && -s "$work/$name.meshlab.ply" ]] || fail "$name: meshlabserver failed ($status): $(cat "$work/$name.log")"
+    # shellcheck disable=SC2086 # the flags are words on purpose
+    "$sdflow" retriangulate "$work/input.ply" -o "$work/$name.cli.ply" ${settings#*/} > /dev/null \
+      || fail "$name: sdflow retriangulate failed"
+    "$compare" "$work/$name.cli.ply" "$work/$name.meshlab.ply" \
+      || fail "$name: the plugin's surface differs from sdflow retriangulate's"
+    expect_changed "$work/$name.meshlab.ply"
+  done
+  echo "headless_test retriangulate-same-as-cli: the plugin's surfaces equal sdflow retriangulate's"
+  ;;
+nothing-left)
+  mesh=$4
+  write_retriangulation_script "$work/retriangulate.mlx" 0 3 false true 1000000
+  run_meshlabserver -l "$work/log.txt" -i "$mesh" -o "$work/out.ply" -s "$work/retriangulate.mlx"
+  [[ $status -ne 0 ]] || fail "meshlabserver exited with 0 although no component is large enough"
+  grep -q "nothing is left" "$work/log.txt" || fail "the log does not give the reason: $(cat "$work/log.txt")"
+  [[ ! -e "$work/out.ply" ]] || fail "an output file was written"
+  echo "headless_test nothing-left: exit code $status, reason logged, no output written"
+  ;;
 *)
-  fail "unknown case (nonmanifold, same-as-cli)"
+  fail "unknown case (nonmanifold, same-as-cli, retriangulate-same-as-cli, nothing-left)"
   ;;
 esac

@@ -3,7 +3,9 @@
 
 #include "filter_sdflow.h"
 
+#include <vcg/complex/algorithms/clean.h>
 #include <vcg/complex/algorithms/create/platonic.h>
+#include <vcg/complex/append.h>
 
 #include <gtest/gtest.h>
 
@@ -20,6 +22,7 @@ protected:
   void SetUp() override { plugin.setLog(&log); }
 
   QAction* action() { return plugin.AC(FilterSdflowPlugin::FP_SURFACE_DIFFUSION); }
+  QAction* retriangulate_action() { return plugin.AC(FilterSdflowPlugin::FP_RETRIANGULATE); }
 
   //! The filter's default parameters for the current mesh, with `steps` steps.
   RichParameterList parameters(int steps)
@@ -27,6 +30,14 @@ protected:
     RichParameterList list;
     plugin.initParameterSet(action(), *document.mm(), list);
     list.setValue("Steps", IntValue(steps));
+    return list;
+  }
+
+  //! The re-triangulation filter's default parameters for the current mesh.
+  RichParameterList retriangulation_parameters()
+  {
+    RichParameterList list;
+    plugin.initParameterSet(retriangulate_action(), *document.mm(), list);
     return list;
   }
 
@@ -59,6 +70,30 @@ protected:
     for (auto& v : model->cm.vert)
       v.P() *= 2;
     return model;
+  }
+
+  //! Two unit spheres centred at (±0.6, 0, 0): two components that intersect each other.
+  MeshModel* add_overlapping_spheres()
+  {
+    MeshModel* model = document.addNewMesh("", "two spheres");
+    vcg::tri::Sphere(model->cm, 3);
+    CMeshO other;
+    vcg::tri::Sphere(other, 3);
+    for (auto& v : model->cm.vert)
+      v.P()[0] -= 0.6f;
+    for (auto& v : other.vert)
+      v.P()[0] += 0.6f;
+    vcg::tri::Append<CMeshO, CMeshO>::Mesh(model->cm, other);
+    return model;
+  }
+
+  //! Connected components of the current mesh (through faces sharing an edge).
+  int component_count()
+  {
+    MeshModel* model = document.mm();
+    model->updateDataMask(MeshModel::MM_FACEFACETOPO);
+    vcg::tri::UpdateTopology<CMeshO>::FaceFace(model->cm);
+    return vcg::tri::Clean<CMeshO>::CountConnectedComponents(model->cm);
   }
 
   FilterSdflowPlugin plugin;
@@ -99,6 +134,30 @@ TEST_F(FilterTest, is_a_smoothing_filter_on_one_mesh_with_faces)
   EXPECT_TRUE(plugin.postCondition(action()) & MeshModel::MM_VERTQUALITY);
 }
 
+TEST_F(FilterTest, retriangulation_sits_beside_the_flow_on_one_mesh_with_faces)
+{
+  EXPECT_EQ(plugin.filterName(retriangulate_action()), QString("Surface diffusion: re-triangulate"));
+  EXPECT_EQ(plugin.getClass(retriangulate_action()), plugin.getClass(action()));
+  EXPECT_EQ(plugin.filterArity(retriangulate_action()), MeshFilterInterface::SINGLE_MESH);
+  EXPECT_TRUE(plugin.getPreConditions(retriangulate_action()) & MeshModel::MM_FACENUMBER);
+  EXPECT_TRUE(plugin.postCondition(retriangulate_action()) & MeshModel::MM_VERTNORMAL);
+}
+
+TEST_F(FilterTest, default_edge_lengths_are_the_mean_edge_length)
+{
+  constexpr double relative_tolerance = 1e-5; // float parameters, float coordinates
+  MeshModel* model = add_sphere();
+  // On a closed surface every edge is a side of exactly two triangles.
+  double sum = 0;
+  for (const CFaceO& f : model->cm.face)
+    for (int i = 0; i < 3; ++i)
+      sum += vcg::Distance(f.cP(i), f.cP((i + 1) % 3));
+  const double mean = sum / (3.0 * model->cm.fn);
+  EXPECT_NEAR(parameters(1).getFloat("EdgeLength"), mean, relative_tolerance * mean);
+  EXPECT_NEAR(retriangulation_parameters().getFloat("EdgeLength"), mean, relative_tolerance * mean);
+  EXPECT_FALSE(parameters(1).getBool("Retriangulate"));
+}
+
 TEST_F(FilterTest, default_time_step_scales_like_the_fourth_power_of_edge_length)
 {
   constexpr double scale = 3;
@@ -116,13 +175,18 @@ TEST_F(FilterTest, non_manifold_mesh_fails_with_the_reason_and_stays_unchanged)
 {
   MeshModel* model = add_fin_mesh();
   const Point3m before = model->cm.vert[4].cP();
-  const RichParameterList list = parameters(2);
-  EXPECT_FALSE(plugin.applyFilter(action(), document, list, nullptr));
-  EXPECT_TRUE(plugin.errorMsg().contains("fins")) << plugin.errorMsg().toStdString(); // names the mesh
-  EXPECT_TRUE(log_text().contains("non-manifold-edge")) << log_text().toStdString(); // the finding's code
-  EXPECT_EQ(model->cm.vn, 5);
-  EXPECT_EQ(model->cm.fn, 3);
-  EXPECT_EQ(model->cm.vert[4].cP(), before);
+  for (QAction* a : plugin.actions()) {
+    SCOPED_TRACE(plugin.filterName(a).toStdString());
+    log.Clear();
+    RichParameterList list;
+    plugin.initParameterSet(a, *model, list);
+    EXPECT_FALSE(plugin.applyFilter(a, document, list, nullptr));
+    EXPECT_TRUE(plugin.errorMsg().contains("fins")) << plugin.errorMsg().toStdString(); // names the mesh
+    EXPECT_TRUE(log_text().contains("non-manifold-edge")) << log_text().toStdString(); // the finding's code
+    EXPECT_EQ(model->cm.vn, 5);
+    EXPECT_EQ(model->cm.fn, 3);
+    EXPECT_EQ(model->cm.vert[4].cP(), before);
+  }
 }
 
 TEST_F(FilterTest, bad_parameter_fails_and_leaves_the_mesh_unchanged)
@@ -135,6 +199,53 @@ TEST_F(FilterTest, bad_parameter_fails_and_leaves_the_mesh_unchanged)
   EXPECT_FALSE(plugin.applyFilter(action(), document, list, nullptr));
   EXPECT_TRUE(plugin.errorMsg().contains("τ")) << plugin.errorMsg().toStdString();
   EXPECT_EQ(model->cm.vert[7].cP(), before);
+
+  list = retriangulation_parameters();
+  list.setValue("EdgeLength", FloatValue(-1.0f));
+  EXPECT_FALSE(plugin.applyFilter(retriangulate_action(), document, list, nullptr));
+  EXPECT_TRUE(plugin.errorMsg().contains("edge length")) << plugin.errorMsg().toStdString();
+  EXPECT_EQ(model->cm.vert[7].cP(), before);
+}
+
+TEST_F(FilterTest, retriangulation_leaving_nothing_fails_with_the_reason_and_leaves_the_mesh_unchanged)
+{
+  MeshModel* model = add_sphere();
+  const int vertices = model->cm.vn;
+  const Point3m before = model->cm.vert[7].cP();
+  RichParameterList list = retriangulation_parameters();
+  list.setValue("MinComponentFaces", IntValue(1000000));
+  EXPECT_FALSE(plugin.applyFilter(retriangulate_action(), document, list, nullptr));
+  EXPECT_TRUE(log_text().contains("nothing is left")) << log_text().toStdString();
+  EXPECT_EQ(model->cm.vn, vertices);
+  EXPECT_EQ(model->cm.vert[7].cP(), before);
+}
+
+TEST_F(FilterTest, retriangulation_joins_overlapping_spheres_into_one_outward_surface)
+{
+  add_overlapping_spheres();
+  ASSERT_EQ(component_count(), 2);
+  ASSERT_TRUE(plugin.applyFilter(retriangulate_action(), document, retriangulation_parameters(), nullptr))
+      << log_text().toStdString();
+  EXPECT_EQ(component_count(), 1);
+  const MeshModel* model = document.mm();
+  EXPECT_TRUE(model->hasDataMask(MeshModel::MM_VERTQUALITY));
+  for (const CVertexO& v : model->cm.vert) {
+    const Point3m centre(v.cP()[0] < 0 ? -0.6f : 0.6f, 0, 0);
+    EXPECT_GT(v.cN() * (v.cP() - centre), 0); // away from the nearer centre
+  }
+  EXPECT_TRUE(log_text().contains("1 component(s) joined")) << log_text().toStdString();
+}
+
+TEST_F(FilterTest, flow_with_retriangulation_remeshes_to_the_given_edge_length)
+{
+  MeshModel* model = add_sphere();
+  const int vertices = model->cm.vn;
+  RichParameterList list = parameters(1);
+  list.setValue("Retriangulate", BoolValue(true));
+  list.setValue("EdgeLength", FloatValue(list.getFloat("EdgeLength") / 2));
+  ASSERT_TRUE(plugin.applyFilter(action(), document, list, nullptr)) << log_text().toStdString();
+  EXPECT_GT(model->cm.vn, 2 * vertices); // about four times: a quarter of the area per triangle
+  EXPECT_TRUE(log_text().contains("re-triangulated")) << log_text().toStdString();
 }
 
 TEST_F(FilterTest, sphere_result_carries_curvature_as_quality_and_outward_normals)

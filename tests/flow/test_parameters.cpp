@@ -30,6 +30,7 @@ TEST(RunParameters, resolved_toml_reads_back_to_the_same_parameters)
   p.retriangulation.every = 3;
   p.retriangulation.min_angle_deg = 12.5;
   p.retriangulation.edge_ratio = 1.8;
+  p.retriangulation.degraded_fraction = 0.02;
   p.retriangulation.always = true;
   p.retriangulation.pipeline.target_edge_length = 0.25;
   p.retriangulation.pipeline.remesh_iterations = 5;
@@ -61,6 +62,7 @@ TEST(RunParameters, resolved_toml_reads_back_to_the_same_parameters)
   EXPECT_EQ(r.every, 3);
   EXPECT_EQ(r.min_angle_deg, 12.5);
   EXPECT_EQ(r.edge_ratio, 1.8);
+  EXPECT_EQ(r.degraded_fraction, 0.02);
   EXPECT_TRUE(r.always);
   EXPECT_EQ(r.pipeline.target_edge_length, 0.25);
   EXPECT_EQ(r.pipeline.remesh_iterations, 5);
@@ -112,6 +114,9 @@ TEST(RunParameters, validation_requires_a_stop_condition_and_sane_values)
   p.retriangulation.edge_ratio = 1;
   EXPECT_THROW(validate_run_parameters(p), InvalidParameter);
   p.retriangulation.edge_ratio = 2;
+  p.retriangulation.degraded_fraction = 1;
+  EXPECT_THROW(validate_run_parameters(p), InvalidParameter);
+  p.retriangulation.degraded_fraction = 0;
   p.retriangulation.pipeline.normals.neighbours = 2;
   EXPECT_THROW(validate_run_parameters(p), InvalidParameter);
 }

@@ -409,6 +409,26 @@ TEST(Validate, inside_out_component_is_flipped_and_logged)
   EXPECT_LT(component_volumes(kept.mesh)[0], 0);
 }
 
+TEST(Validate, cavity_inside_a_body_is_oriented_out_of_the_material)
+{
+  // A hollow ball: the outer sphere and a cavity sphere inside it. Out of the material means into
+  // the cavity: its signed volume must come out negative, whichever way its faces were given.
+  const Mesh outer = analytic::icosphere(3, 2.0);
+  const Mesh cavity = analytic::icosphere(2, 0.5, Eigen::Vector3d(0.3, 0, 0));
+  for (const bool given_into_the_cavity : {false, true}) {
+    PolygonSoup soup = soup_of(analytic::disjoint_union(outer, cavity));
+    if (given_into_the_cavity)
+      for (std::size_t f = outer.n_faces(); f < soup.polygons.size(); ++f)
+        std::swap(soup.polygons[f][1], soup.polygons[f][2]);
+    const BuiltMesh built = build_mesh(soup, "hollow");
+    const std::vector<double> volumes = component_volumes(built.mesh);
+    ASSERT_EQ(volumes.size(), 2u);
+    EXPECT_NEAR(volumes[0], enclosed_volume(outer), exact_tolerance);
+    EXPECT_NEAR(volumes[1], -enclosed_volume(cavity), exact_tolerance) << given_into_the_cavity;
+    EXPECT_EQ(built.findings.empty(), given_into_the_cavity) << "flipped only when given like a body";
+  }
+}
+
 TEST(Validate, disk_has_boundary_and_keeps_its_orientation)
 {
   const Mesh disk = analytic::disk(4);

@@ -10,6 +10,8 @@
 #include <Eigen/Geometry>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
+#include <array>
+
 namespace sdflow {
 
 //! OpenMesh traits: double points and normals, status flags for editing, previous-halfedge links.
@@ -33,6 +35,24 @@ inline Eigen::Vector3d to_eigen(const Mesh::Point& p) { return {p[0], p[1], p[2]
 
 //! Eigen vector to OpenMesh point.
 inline Mesh::Point to_point(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+//! The three corners of a triangle, in the face's orientation: vertex indices and positions.
+struct TriangleCorners {
+  std::array<int, 3> index;
+  std::array<Eigen::Vector3d, 3> point;
+};
+
+//! Corners of face f, starting at the vertex OpenMesh lists first.
+inline TriangleCorners triangle_corners(const Mesh& mesh, Mesh::FaceHandle f)
+{
+  TriangleCorners t{};
+  int k = 0;
+  for (auto v : mesh.fv_range(f)) {
+    t.index[k] = v.idx();
+    t.point[k++] = to_eigen(mesh.point(v));
+  }
+  return t;
+}
 
 //! Vertex positions as a #V by 3 matrix.
 VertexVectors vertex_positions(const Mesh& mesh);

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <cstring>
 #include <iterator>
+#include <numbers>
 #include <numeric>
 #include <span>
 #include <unordered_map>
@@ -435,6 +436,46 @@ std::vector<double> signed_volumes(const std::vector<Eigen::Vector3d>& points, c
   return volume;
 }
 
+//! How many other closed components enclose each closed component (0 for open ones): a point of
+//! the component is inside another when that one's winding number there (its triangles' solid
+//! angles, Van Oosterom & Strackee 1983, over 4π) is ±1 rather than 0. Components that cross each
+//! other have no well-defined inside; for the others one point decides for the whole component.
+std::vector<int> nesting_depths(const std::vector<Eigen::Vector3d>& points, const std::vector<Triangle>& triangles,
+                                const Components& components)
+{
+  std::vector<int> depth(components.count, 0);
+  if (components.count < 2)
+    return depth;
+  std::vector<int> probe(components.count, -1);
+  std::vector<Eigen::AlignedBox3d> box(components.count);
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const int c = components.of_triangle[t];
+    if (probe[c] < 0)
+      probe[c] = triangles[t].v[0];
+    for (const int v : triangles[t].v)
+      box[c].extend(points[v]);
+  }
+  std::vector<double> winding(components.count);
+  for (int c = 0; c < components.count; ++c) {
+    if (components.open[c])
+      continue;
+    const Eigen::Vector3d& p = points[probe[c]];
+    std::fill(winding.begin(), winding.end(), 0.0);
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      const int d = components.of_triangle[t];
+      if (d == c || components.open[d] || !box[d].contains(p))
+        continue;
+      const Eigen::Vector3d a = points[triangles[t].v[0]] - p, b = points[triangles[t].v[1]] - p,
+                            e = points[triangles[t].v[2]] - p;
+      const double la = a.norm(), lb = b.norm(), le = e.norm();
+      winding[d] += 2 * std::atan2(a.dot(b.cross(e)), la * lb * le + a.dot(b) * le + a.dot(e) * lb + b.dot(e) * la);
+    }
+    for (int d = 0; d < components.count; ++d)
+      depth[c] += std::abs(winding[d]) > 2 * std::numbers::pi;
+  }
+  return depth;
+}
+
 //! The OpenMesh mesh of `triangles` over the points kept (renumbered in file order).
 Mesh assemble(const PolygonSoup& soup, const std::vector<Triangle>& triangles, const std::vector<int>& number,
               const std::vector<bool>& flip, const std::vector<int>& component, std::string_view source)
@@ -514,21 +555,26 @@ BuiltMesh build_mesh(const PolygonSoup& soup, std::string_view source, const Bui
                            isolated.size(), listed, isolated.size() > max_listed_elements ? ", ..." : ""));
   }
 
-  // Closed components with negative signed volume are inside out (DESIGN.md §1): flip them.
+  // Closed components are oriented outward (DESIGN.md §1): out of the material they bound. That
+  // is a positive signed volume for a body, and a negative one for a cavity (a component enclosed
+  // by an odd number of others, e.g. the void left inside a sintered cluster). Flip the others.
   std::vector<bool> flip(components.count, false);
   if (options.orient_outward) {
     const std::vector<double> volume = signed_volumes(soup.points, triangles, components);
+    const std::vector<int> depth = nesting_depths(soup.points, triangles, components);
     std::vector<int> faces(components.count, 0);
     for (const int c : components.of_triangle)
       ++faces[c];
-    for (int c = 0; c < components.count; ++c)
-      if (!components.open[c] && volume[c] < 0) {
+    for (int c = 0; c < components.count; ++c) {
+      const bool cavity = depth[c] % 2 == 1;
+      if (!components.open[c] && (cavity ? volume[c] > 0 : volume[c] < 0)) {
         flip[c] = true;
         report.add(Severity::info, "orientation-flipped",
-                   fmt::format("{}: component {} ({} faces) is closed but inside out (signed volume {:.6g}); its "
-                               "faces were flipped so that its normals point outward", source, c, faces[c],
-                               volume[c]));
+                   fmt::format("{}: component {} ({} faces) is closed but inside out (signed volume {:.6g}{}); "
+                               "its faces were flipped so that its normals point out of the material",
+                               source, c, faces[c], volume[c], cavity ? ", a cavity inside another component" : ""));
       }
+    }
   }
   Mesh mesh = assemble(soup, triangles, number, flip, components.of_triangle, source);
 

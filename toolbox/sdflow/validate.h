@@ -7,7 +7,8 @@
 //! `face-repeated-index`, `zero-area-face` (also corners at one point after merging),
 //! `duplicate-vertex`, `non-manifold-edge`, `non-manifold-vertex`, `inconsistent-orientation`. Warnings (the mesh is repaired): `polygon-triangulated`,
 //! `isolated-vertex` (removed). Information: `orientation-flipped` (a closed component had inward
-//! normals), `duplicate-vertices-merged` (STL), `has-boundary`.
+//! normals: normals point out of the material, so a cavity, enclosed by an odd number of other
+//! components, has a negative signed volume), `duplicate-vertices-merged` (STL), `has-boundary`.
 //!
 //! Messages name the source, the element (vertex or face index, 0-based in the file's order, a
 //! face being one polygon of the file) and its line when known, e.g.

@@ -149,7 +149,7 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
       const toml::table* t = node.as_table();
       if (!t)
         bad(file, node, "`retriangulation` must be a table of the re-triangulation parameters");
-      check_keys(file, *t, {"enabled", "every", "min_angle", "edge_ratio", "always", "edge_length",
+      check_keys(file, *t, {"enabled", "every", "min_angle", "edge_ratio", "degraded_fraction", "always", "edge_length",
                             "remesh_iterations", "neighbours", "fill_holes", "max_hole_length", "min_component_faces",
                             "min_component_thickness"},
                  "retriangulation.");
@@ -169,6 +169,7 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
           r.pipeline.min_component_thickness = get<double>(file, n, "min_component_thickness");
         else if (name == "min_angle") r.min_angle_deg = get<double>(file, n, "min_angle");
         else if (name == "edge_ratio") r.edge_ratio = get<double>(file, n, "edge_ratio");
+        else if (name == "degraded_fraction") r.degraded_fraction = get<double>(file, n, "degraded_fraction");
         else if (name == "edge_length") r.pipeline.target_edge_length = get<double>(file, n, "edge_length");
         else r.pipeline.max_hole_length = get<double>(file, n, "max_hole_length");
       }
@@ -252,10 +253,11 @@ std::string run_parameters_toml(const RunParameters& p)
                    a.initial_tau, a.max_displacement, a.growth, a.shrink, a.safety, a.max_volume_change, a.min_tau,
                    std::isfinite(a.max_tau) ? a.max_tau : 1e300, a.max_rejections);
   const RetriangulationSchedule& r = p.retriangulation;
-  s += fmt::format("\n[retriangulation]\nenabled = {}\nevery = {}\nmin_angle = {}\nedge_ratio = {}\nalways = {}\n"
+  s += fmt::format("\n[retriangulation]\nenabled = {}\nevery = {}\nmin_angle = {}\nedge_ratio = {}\ndegraded_fraction = {}\n"
+                   "always = {}\n"
                    "edge_length = {}\nremesh_iterations = {}\nneighbours = {}\nfill_holes = {}\nmax_hole_length = {}\n"
                    "min_component_faces = {}\nmin_component_thickness = {}\n",
-                   r.enabled, r.every, r.min_angle_deg, r.edge_ratio, r.always, r.pipeline.target_edge_length,
+                   r.enabled, r.every, r.min_angle_deg, r.edge_ratio, r.degraded_fraction, r.always, r.pipeline.target_edge_length,
                    r.pipeline.remesh_iterations, r.pipeline.normals.neighbours, r.pipeline.fill_holes,
                    r.pipeline.max_hole_length, r.pipeline.min_component_faces, r.pipeline.min_component_thickness);
   s += fmt::format("\n[reference_sphere]\ncentre = [{}, {}, {}]\nradius = {}\n", p.reference_centre.x(),

@@ -34,6 +34,7 @@
 //! every = 1
 //! min_angle = 15.0             # degrees
 //! edge_ratio = 2.0
+//! degraded_fraction = 0.0
 //! always = false
 //! edge_length = 0.0            # ℓ; 0: the initial surface's mean edge length
 //! remesh_iterations = 3
@@ -61,13 +62,19 @@ namespace sdflow {
 
 //! When a run re-triangulates (retriangulation.h): every `every` steps the surface is looked at, and
 //! the pipeline of retri/pipeline.h runs when it intersects itself (a pinch-off, a hole sealing,
-//! bodies touching), when its triangles have degraded (an angle below `min_angle_deg`, an edge
-//! outside [ℓ/r, r·ℓ] with r = `edge_ratio`), or every time with `always` (the paper's practice).
+//! bodies touching), when its triangles have degraded (more than `degraded_fraction` of the
+//! triangle count are triangles with an angle below `min_angle_deg` or edges outside [ℓ/r, r·ℓ]
+//! with r = `edge_ratio`), or every time with `always` (the paper's practice).
 struct RetriangulationSchedule {
   bool enabled = false;
   long every = 1;             //!< look at the surface after every k-th step (≥ 1)
   double min_angle_deg = 15;  //!< re-triangulate when a triangle's smallest angle is below this
   double edge_ratio = 2;      //!< ... or an edge is longer than r·ℓ or shorter than ℓ/r (r > 1)
+  //! ... counting such triangles and edges: more than this fraction of the triangle count. The
+  //! default 0 reacts to a single one: a thinning neck shows only a few, and without remeshing it
+  //! stalls instead of pinching off. Larger values save remeshings on large surfaces with a few
+  //! edges the remesher cannot fix (beside boundary corners).
+  double degraded_fraction = 0;
   bool always = false;        //!< run the whole pipeline after every k-th step (the paper's practice)
   //! The pipeline; its ℓ (0 = automatic) is fixed when the run starts, to the initial surface's
   //! mean edge length, so that it stays the same for the whole run and its resumption.

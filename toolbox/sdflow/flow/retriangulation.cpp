@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
+#include <optional>
 #include <numbers>
 
 namespace sdflow {
@@ -16,10 +18,7 @@ namespace {
 //! Smallest corner angle of face f, in degrees.
 double smallest_angle_deg(const Mesh& mesh, Mesh::FaceHandle f)
 {
-  std::array<Eigen::Vector3d, 3> x;
-  int k = 0;
-  for (const auto v : mesh.fv_range(f))
-    x[k++] = to_eigen(mesh.point(v));
+  const auto x = triangle_corners(mesh, f).point;
   double smallest = 180;
   for (int i = 0; i < 3; ++i) {
     const Eigen::Vector3d a = x[(i + 1) % 3] - x[i], b = x[(i + 2) % 3] - x[i];
@@ -28,23 +27,48 @@ double smallest_angle_deg(const Mesh& mesh, Mesh::FaceHandle f)
   return smallest;
 }
 
+//! The self-intersections of the surface from step to step: a SelfIntersectionTracker refitted
+//! while the connectivity stays the same, rebuilt when it changes. Its pairs are exactly those of
+//! self_intersections(), so the cache changes the cost of a check, never its answer.
+class IntersectionWatch {
+public:
+  std::size_t count(const Mesh& mesh)
+  {
+    Triangles triangles = face_indices(mesh);
+    if (tracker_ && vertices_ == mesh.n_vertices() && triangles.rows() == triangles_.rows() && triangles == triangles_)
+      return tracker_->update(mesh).size();
+    tracker_.emplace(mesh);
+    triangles_ = std::move(triangles);
+    vertices_ = mesh.n_vertices();
+    return tracker_->pairs().size();
+  }
+
+private:
+  using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+  std::optional<SelfIntersectionTracker> tracker_;
+  Triangles triangles_;
+  std::size_t vertices_ = 0;
+};
+
 //! Why the surface needs the pipeline now (empty: it does not).
-std::string reason_to_retriangulate(const Mesh& mesh, const RetriangulationSchedule& s)
+std::string reason_to_retriangulate(const Mesh& mesh, const RetriangulationSchedule& s, IntersectionWatch& watch)
 {
   if (s.always)
     return "scheduled";
-  const auto pairs = self_intersections(mesh);
-  if (!pairs.empty())
-    return fmt::format("{} intersecting face pairs", pairs.size());
+  if (const std::size_t pairs = watch.count(mesh); pairs > 0)
+    return fmt::format("{} intersecting face pairs", pairs);
   const double ell = s.pipeline.target_edge_length;
+  long long_or_short = 0, sharp = 0;
   for (const auto e : mesh.edges()) {
     const double length = mesh.calc_edge_length(e);
-    if (length > s.edge_ratio * ell || length * s.edge_ratio < ell)
-      return fmt::format("edge {} has length {:.3g} (target {:.3g})", e.idx(), length, ell);
+    long_or_short += length > s.edge_ratio * ell || length * s.edge_ratio < ell;
   }
   for (const auto f : mesh.faces())
-    if (const double angle = smallest_angle_deg(mesh, f); angle < s.min_angle_deg)
-      return fmt::format("face {} has an angle of {:.1f}°", f.idx(), angle);
+    sharp += smallest_angle_deg(mesh, f) < s.min_angle_deg;
+  const double allowed = s.degraded_fraction * static_cast<double>(mesh.n_faces());
+  if (static_cast<double>(long_or_short + sharp) > allowed)
+    return fmt::format("{} edges outside [ℓ/{}, {}ℓ] and {} triangles with an angle below {}°", long_or_short,
+                       s.edge_ratio, s.edge_ratio, sharp, s.min_angle_deg);
   return {};
 }
 
@@ -70,6 +94,9 @@ void validate_retriangulation_schedule(const RetriangulationSchedule& s)
     throw InvalidParameter(fmt::format("retriangulation.every must be ≥ 1, got {}", s.every));
   if (!(s.min_angle_deg >= 0 && s.min_angle_deg < 60))
     throw InvalidParameter(fmt::format("retriangulation.min_angle must be in [0, 60) degrees, got {}", s.min_angle_deg));
+  if (!(s.degraded_fraction >= 0 && s.degraded_fraction < 1))
+    throw InvalidParameter(
+        fmt::format("retriangulation.degraded_fraction must be in [0, 1), got {}", s.degraded_fraction));
   if (!(s.edge_ratio > 1) || !std::isfinite(s.edge_ratio))
     throw InvalidParameter(fmt::format("retriangulation.edge_ratio must be a finite number > 1, got {}", s.edge_ratio));
   validate_retriangulation_options(s.pipeline);
@@ -80,11 +107,12 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
   validate_retriangulation_schedule(schedule);
   if (!(schedule.pipeline.target_edge_length > 0))
     throw InvalidParameter("the re-triangulation hook needs a resolved target edge length (> 0)");
-  return [schedule](Mesh& mesh, const RetriangulationContext& context) {
+  auto watch = std::make_shared<IntersectionWatch>();
+  return [schedule, watch](Mesh& mesh, const RetriangulationContext& context) {
     RetriangulationReport report;
     if (context.step % schedule.every != 0)
       return report;
-    const std::string reason = reason_to_retriangulate(mesh, schedule);
+    const std::string reason = reason_to_retriangulate(mesh, schedule, *watch);
     if (reason.empty())
       return report;
     RetriangulationResult r = retriangulate(mesh, schedule.pipeline);

@@ -18,13 +18,7 @@ Eigen::VectorXd mean_curvature(const Mesh& mesh, const VertexVectors& normals, c
   Eigen::VectorXd weighted = Eigen::VectorXd::Zero(mesh.n_vertices());
   Eigen::VectorXd angle_sum = Eigen::VectorXd::Zero(mesh.n_vertices());
   for (auto f : mesh.faces()) {
-    std::array<int, 3> idx{};
-    std::array<Eigen::Vector3d, 3> p;
-    int k = 0;
-    for (auto v : f.vertices()) {
-      idx[k] = v.idx();
-      p[k++] = to_eigen(mesh.point(v));
-    }
+    const auto [idx, p] = triangle_corners(mesh, f);
     for (int c = 0; c < 3; ++c) {
       const Eigen::Vector3d n = normals.row(idx[c]).transpose();
       const Eigen::Vector3d ei = p[(c + 1) % 3] - p[c];

@@ -8,39 +8,20 @@
 #include <vector>
 
 namespace sdflow {
-namespace {
-
-struct Corner {
-  std::array<int, 3> idx;
-  std::array<Eigen::Vector3d, 3> p;
-};
-
-Corner triangle(const Mesh& mesh, Mesh::FaceHandle f)
-{
-  Corner t{};
-  int k = 0;
-  for (auto v : mesh.fv_range(f)) {
-    t.idx[k] = v.idx();
-    t.p[k++] = to_eigen(mesh.point(v));
-  }
-  return t;
-}
-
-} // namespace
 
 SparseMatrix cotangent_laplacian(const Mesh& mesh)
 {
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(12 * mesh.n_faces());
   for (auto f : mesh.faces()) {
-    const Corner t = triangle(mesh, f);
-    const double twice_area = (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]).norm();
+    const TriangleCorners t = triangle_corners(mesh, f);
+    const double twice_area = (t.point[1] - t.point[0]).cross(t.point[2] - t.point[0]).norm();
     if (!(twice_area > 0))
       throw InvalidMesh(fmt::format("cotangent_laplacian: triangle {} has zero area", f.idx()));
     for (int c = 0; c < 3; ++c) {
-      const int j = t.idx[(c + 1) % 3], k = t.idx[(c + 2) % 3];
-      const Eigen::Vector3d a = t.p[(c + 1) % 3] - t.p[c];
-      const Eigen::Vector3d b = t.p[(c + 2) % 3] - t.p[c];
+      const int j = t.index[(c + 1) % 3], k = t.index[(c + 2) % 3];
+      const Eigen::Vector3d a = t.point[(c + 1) % 3] - t.point[c];
+      const Eigen::Vector3d b = t.point[(c + 2) % 3] - t.point[c];
       const double half_cot = 0.5 * a.dot(b) / twice_area; // cot of the corner opposite edge jk, halved
       entries.emplace_back(j, k, half_cot);
       entries.emplace_back(k, j, half_cot);
@@ -57,23 +38,23 @@ Eigen::VectorXd mixed_voronoi_areas(const Mesh& mesh)
 {
   Eigen::VectorXd areas = Eigen::VectorXd::Zero(mesh.n_vertices());
   for (auto f : mesh.faces()) {
-    const Corner t = triangle(mesh, f);
-    const double twice_area = (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]).norm();
+    const TriangleCorners t = triangle_corners(mesh, f);
+    const double twice_area = (t.point[1] - t.point[0]).cross(t.point[2] - t.point[0]).norm();
     const double area = 0.5 * twice_area;
     std::array<double, 3> dots{}; // (p[c+1]-p[c])·(p[c+2]-p[c]): negative at an obtuse corner
     for (int c = 0; c < 3; ++c)
-      dots[c] = (t.p[(c + 1) % 3] - t.p[c]).dot(t.p[(c + 2) % 3] - t.p[c]);
+      dots[c] = (t.point[(c + 1) % 3] - t.point[c]).dot(t.point[(c + 2) % 3] - t.point[c]);
     const int obtuse = dots[0] < 0 ? 0 : dots[1] < 0 ? 1 : dots[2] < 0 ? 2 : -1;
     if (obtuse >= 0) {
       for (int c = 0; c < 3; ++c)
-        areas[t.idx[c]] += c == obtuse ? area / 2 : area / 4;
+        areas[t.index[c]] += c == obtuse ? area / 2 : area / 4;
       continue;
     }
     // Voronoi part of corner c: (|p c+1 - p c|² cot(angle at c+2) + |p c+2 - p c|² cot(angle at c+1)) / 8.
     for (int c = 0; c < 3; ++c) {
       const int n1 = (c + 1) % 3, n2 = (c + 2) % 3;
       const double cot1 = dots[n1] / twice_area, cot2 = dots[n2] / twice_area;
-      areas[t.idx[c]] += ((t.p[n1] - t.p[c]).squaredNorm() * cot2 + (t.p[n2] - t.p[c]).squaredNorm() * cot1) / 8.0;
+      areas[t.index[c]] += ((t.point[n1] - t.point[c]).squaredNorm() * cot2 + (t.point[n2] - t.point[c]).squaredNorm() * cot1) / 8.0;
     }
   }
   return areas;

@@ -16,13 +16,7 @@ VertexVectors vertex_normals(const Mesh& mesh, const NormalOptions& options)
   const bool equal_weights = options.boundary == BoundaryNormalRule::equal_weights;
 
   for (auto f : mesh.faces()) {
-    std::array<int, 3> idx{};
-    std::array<Eigen::Vector3d, 3> p;
-    int k = 0;
-    for (auto v : f.vertices()) {
-      idx[k] = v.idx();
-      p[k++] = to_eigen(mesh.point(v));
-    }
+    const auto [idx, p] = triangle_corners(mesh, f);
     for (int c = 0; c < 3; ++c) {
       // Around corner c the star order is e_i = next - p, e_{i+1} = prev - p.
       const Eigen::Vector3d ei = p[(c + 1) % 3] - p[c];
