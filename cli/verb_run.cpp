@@ -1,5 +1,5 @@
 //! `sdflow run`: evolve a surface by surface diffusion flow into a run directory (flow/simulation.h).
-//!   sdflow run --input MESH --out DIR [--steps N] [--t-end T] [--tau T | --schedule FILE | --adaptive]
+//!   sdflow run --input MESH --out DIR [--steps N] [--t-end T] [--tau T | --schedule FILE [--schedule-retries N] | --adaptive]
 //!              [--beta B] [--solver cholmod|qr] [--snapshot-every K] [--checkpoint-every K]
 //!              [--conserve-volume] [--fixed-boundary] [--retriangulate [--edge-length L]] [--quiet]
 //!   sdflow run SCENARIO.toml [flags]     (flags override the file's keys)
@@ -26,6 +26,7 @@ namespace {
 struct RunArguments {
   std::string scenario, input, out, resume, schedule, solver;
   long steps = 0, snapshot_every = 0, checkpoint_every = 0;
+  int schedule_retries = 0;
   double end_time = 0, tau = 0, beta = 0, edge_length = 0;
   bool adaptive = false, conserve_volume = false, fixed_boundary = false, retriangulate = false, quiet = false;
   std::map<std::string, CLI::Option*> given;
@@ -118,6 +119,7 @@ void apply_flags(const RunArguments& a, RunParameters& p)
   if (a.has("--retriangulate")) p.retriangulation.enabled = true;
   if (a.has("--edge-length")) p.retriangulation.pipeline.target_edge_length = a.edge_length;
   if (a.has("--solver")) p.solver.kind = a.solver == "qr" ? SolverKind::qr : SolverKind::cholmod;
+  if (a.has("--schedule-retries")) p.time_step.schedule_retries = a.schedule_retries;
   if (a.has("--tau")) {
     p.time_step.mode = TimeStepMode::constant;
     p.time_step.tau = a.tau;
@@ -136,6 +138,7 @@ void run(const RunArguments& a)
   const bool resuming = a.has("--resume");
   if (resuming) {
     if (a.has("--input") || a.has("--tau") || a.has("--schedule") || a.has("--adaptive") || a.has("--beta") ||
+        a.has("--schedule-retries") ||
         a.has("--solver") || a.has("--retriangulate") || a.has("--edge-length") || !a.scenario.empty())
       throw InvalidParameter("--resume continues a run with its own parameters (run.toml): only --steps, --t-end, "
                              "--snapshot-every and --checkpoint-every may be changed");
@@ -189,6 +192,10 @@ void add_run_verb(CLI::App& app)
   g["--tau"] = verb->add_option("--tau", args->tau, "Constant time step τ")->check(CLI::PositiveNumber);
   g["--schedule"] = verb->add_option("--schedule", args->schedule, "τ schedule (CSV first,last,tau or TOML)")
                         ->check(CLI::ExistingFile);
+  g["--schedule-retries"] = verb->add_option("--schedule-retries", args->schedule_retries,
+                                             "Halve a schedule's τ up to N times when a step turns triangles over "
+                                             "(default 0: stop)")
+                                 ->check(CLI::Range(0, 60));
   g["--adaptive"] = verb->add_flag("--adaptive", args->adaptive, "Adaptive τ (the default)");
   g["--tau"]->excludes(g["--schedule"])->excludes(g["--adaptive"]);
   g["--schedule"]->excludes(g["--adaptive"]);

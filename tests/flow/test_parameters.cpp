@@ -18,6 +18,7 @@ TEST(RunParameters, resolved_toml_reads_back_to_the_same_parameters)
   p.end_time = 774.5;
   p.time_step.mode = TimeStepMode::schedule;
   p.time_step.schedule = TauSchedule({{1, 50, 0.01}, {51, 100, 0.02}});
+  p.time_step.schedule_retries = 3;
   p.time_step.adaptive.max_displacement = 0.1;
   p.scheme.beta = 0.75;
   p.scheme.boundary = BoundaryMotion::fixed;
@@ -49,6 +50,7 @@ TEST(RunParameters, resolved_toml_reads_back_to_the_same_parameters)
   EXPECT_EQ(q.end_time, p.end_time);
   EXPECT_EQ(q.time_step.mode, TimeStepMode::schedule);
   EXPECT_EQ(q.time_step.schedule.tau_for_step(60), 0.02);
+  EXPECT_EQ(q.time_step.schedule_retries, 3);
   EXPECT_EQ(q.time_step.adaptive.max_displacement, 0.1);
   EXPECT_EQ(q.scheme.beta, 0.75);
   EXPECT_EQ(q.scheme.boundary, BoundaryMotion::fixed);

@@ -7,11 +7,13 @@
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/mesher.h"
 #include "io/temp_dir.h"
+#include "support/analytic_meshes.h"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <limits>
+#include <numbers>
 #include <set>
 #include <sstream>
 
@@ -119,6 +121,57 @@ TEST(RetriangulatingRun, edge_length_is_fixed_from_the_initial_surface_in_run_to
   read_run_parameters(dir / "run/run.toml", q);
   EXPECT_TRUE(q.retriangulation.enabled);
   EXPECT_NEAR(q.retriangulation.pipeline.target_edge_length, 0.5, 0.1);
+}
+
+//! Edges outside [ℓ/2, 2ℓ] and triangles with an angle below 15°, counted here independently of the hook.
+long degraded_elements(const Mesh& mesh, double ell)
+{
+  long n = 0;
+  for (const auto e : mesh.edges()) {
+    const double length = mesh.calc_edge_length(e);
+    n += length > 2 * ell || length < ell / 2;
+  }
+  for (const auto f : mesh.faces()) {
+    const auto x = triangle_corners(mesh, f).point;
+    bool sharp = false;
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d a = (x[(i + 1) % 3] - x[i]).normalized(), b = (x[(i + 2) % 3] - x[i]).normalized();
+      sharp |= a.dot(b) > std::cos(15 * std::numbers::pi / 180);
+    }
+    n += sharp;
+  }
+  return n;
+}
+
+TEST(RetriangulationHook, tolerates_what_the_last_retriangulation_left_until_more_appear)
+{
+  Mesh mesh = analytic::icosphere(3);
+  double ell = 0;
+  for (const auto e : mesh.edges())
+    ell += mesh.calc_edge_length(e) / static_cast<double>(mesh.n_edges());
+  // Pull one vertex most of the way to a neighbour: a short edge and sharp triangles around it.
+  const auto v = *mesh.vertices().begin();
+  const auto w = *mesh.vv_iter(v);
+  mesh.set_point(v, mesh.point(v) + 0.9 * (mesh.point(w) - mesh.point(v)));
+  const long degraded = degraded_elements(mesh, ell);
+  ASSERT_GT(degraded, 1);
+
+  RetriangulationSchedule schedule;
+  schedule.enabled = true;
+  schedule.pipeline.target_edge_length = ell;
+  const RetriangulationHook hook = make_retriangulation_hook(schedule);
+
+  Mesh tolerated = mesh;
+  const RetriangulationReport idle = hook(tolerated, {.step = 1, .time = 0, .tolerated_degraded = degraded});
+  EXPECT_FALSE(idle.changed());
+  EXPECT_EQ(idle.degraded_left, -1);
+  EXPECT_EQ(tolerated.point(v), mesh.point(v));
+
+  Mesh repaired = mesh;
+  const RetriangulationReport acted = hook(repaired, {.step = 1, .time = 0, .tolerated_degraded = degraded - 1});
+  EXPECT_TRUE(acted.remeshed);
+  EXPECT_EQ(acted.degraded_left, degraded_elements(repaired, ell));
+  EXPECT_LT(acted.degraded_left, degraded);
 }
 
 } // namespace

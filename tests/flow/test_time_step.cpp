@@ -103,5 +103,50 @@ TEST(TimeStepController, constant_tau_stops_at_the_first_unstable_step)
   EXPECT_THROW(TimeStepController({.mode = TimeStepMode::constant, .tau = 0}), InvalidParameter);
 }
 
+TEST(TimeStepController, schedule_retries_halve_the_tables_tau_then_return_to_it)
+{
+  TimeStepOptions options{.mode = TimeStepMode::schedule,
+                          .schedule = TauSchedule({{1, 10, 0.2}}),
+                          .schedule_retries = 2};
+  TimeStepController controller(options);
+  StepCheck inverted;
+  inverted.inverted_triangles = 3;
+  EXPECT_DOUBLE_EQ(controller.propose(4, 0.0, 100.0), 0.2);
+  EXPECT_FALSE(controller.judge(4, 0.2, inverted));
+  EXPECT_DOUBLE_EQ(controller.propose(4, 0.0, 100.0), 0.1);
+  EXPECT_FALSE(controller.judge(4, 0.1, inverted));
+  EXPECT_DOUBLE_EQ(controller.propose(4, 0.0, 100.0), 0.05);
+  EXPECT_TRUE(controller.judge(4, 0.05, StepCheck{}));
+  EXPECT_EQ(controller.state().rejections, 0);
+  EXPECT_DOUBLE_EQ(controller.propose(5, 0.0, 100.0), 0.2); // back to the table
+
+  // A third failure in a row is one more than allowed: the run stops, naming the halvings.
+  EXPECT_FALSE(controller.judge(5, 0.2, inverted));
+  EXPECT_FALSE(controller.judge(5, 0.1, inverted));
+  try {
+    controller.judge(5, 0.05, inverted);
+    FAIL() << "expected SolverFailure";
+  } catch (const SolverFailure& e) {
+    EXPECT_NE(std::string(e.what()).find("after 2 halvings"), std::string::npos) << e.what();
+  }
+}
+
+TEST(TimeStepController, schedule_retries_apply_to_schedules_only_and_are_bounded)
+{
+  // Without retries a schedule stops at the first unstable step, as the paper's tables would.
+  TimeStepController strict({.mode = TimeStepMode::schedule, .schedule = TauSchedule({{1, 10, 0.2}})});
+  StepCheck nan;
+  nan.non_finite = true;
+  EXPECT_THROW(strict.judge(1, 0.2, nan), SolverFailure);
+  // A displacement beyond the adaptive bound is not a failure of a table's step.
+  StepCheck far;
+  far.displacement_ratio = 10;
+  far.displacement_exceeded = true;
+  EXPECT_TRUE(strict.judge(1, 0.2, far));
+  EXPECT_THROW(TimeStepController({.mode = TimeStepMode::schedule, .schedule = TauSchedule({{1, 10, 0.2}}),
+                                   .schedule_retries = -1}),
+               InvalidParameter);
+}
+
 } // namespace
 } // namespace sdflow

@@ -19,7 +19,7 @@ namespace {
 static_assert(std::endian::native == std::endian::little, "checkpoints are written on little-endian machines");
 
 constexpr char magic[8] = {'S', 'D', 'F', 'L', 'O', 'W', 'C', 'K'};
-constexpr std::uint32_t version = 1;
+constexpr std::uint32_t version = 2;
 
 std::uint64_t fnv1a(const char* data, std::size_t size)
 {
@@ -136,6 +136,7 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file)
     w.put(s.time);
     w.put_string(s.file.generic_string());
   }
+  w.put<std::int64_t>(c.tolerated_degraded);
   w.put(fnv1a(w.bytes().data(), w.bytes().size()));
   write_atomically(file, [&](std::ostream& out) { out.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size())); });
 }
@@ -155,8 +156,10 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
 
   Reader r(bytes, file);
   r.get<std::array<char, sizeof magic>>();
-  if (const auto v = r.get<std::uint32_t>(); v != version)
-    throw IoError(fmt::format("{}: checkpoint version {} (this sdflow reads version {})", file.string(), v, version));
+  const auto file_version = r.get<std::uint32_t>();
+  if (file_version != version && file_version != 1)
+    throw IoError(fmt::format("{}: checkpoint version {} (this sdflow reads versions 1 to {})", file.string(),
+                              file_version, version));
   Checkpoint c;
   c.step = r.get<std::int64_t>();
   c.time = r.get<double>();
@@ -184,6 +187,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
     s.file = r.get_string();
     c.snapshots.push_back(std::move(s));
   }
+  if (file_version >= 2)
+    c.tolerated_degraded = r.get<std::int64_t>();
   return c;
 }
 

@@ -26,13 +26,14 @@ struct Checkpoint {
   VertexVectors anchor_positions;      //!< the surface whose system was factorised
   double anchor_tau_beta = 0;          //!< and its τβ
   std::vector<SeriesEntry> snapshots;  //!< the series written so far
+  long tolerated_degraded = 0;         //!< RetriangulationContext::tolerated_degraded (version ≥ 2)
 };
 
 //! Write `checkpoint` atomically (little-endian binary, FNV-1a checksum at the end).
 void write_checkpoint(const Checkpoint& checkpoint, const std::filesystem::path& file);
 
-//! Read a checkpoint; throws IoError if the file is missing, truncated, of another version or
-//! fails its checksum.
+//! Read a checkpoint (this version or version 1, which had no re-triangulation state); throws
+//! IoError if the file is missing, truncated, of another version or fails its checksum.
 Checkpoint read_checkpoint(const std::filesystem::path& file);
 
 } // namespace sdflow

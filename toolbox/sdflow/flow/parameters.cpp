@@ -82,7 +82,7 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
     throw IoError(fmt::format("{}:{}: {}", file.string(), e.source().begin.line, e.description()));
   }
   check_keys(file, table,
-             {"input", "out", "steps", "t_end", "time_step", "tau", "schedule", "beta", "solver", "factorisation",
+             {"input", "out", "steps", "t_end", "time_step", "tau", "schedule", "schedule_retries", "beta", "solver", "factorisation",
               "cg_tolerance", "snapshot_every", "checkpoint_every", "conserve_volume", "fixed_boundary", "adaptive",
               "retriangulation", "reference_sphere"},
              "");
@@ -97,6 +97,8 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
     else if (key == "tau") {
       p.time_step.tau = get<double>(file, node, "tau");
       p.time_step.mode = TimeStepMode::constant;
+    } else if (key == "schedule_retries") {
+      p.time_step.schedule_retries = static_cast<int>(get<long>(file, node, "schedule_retries"));
     } else if (key == "schedule") {
       if (const toml::array* rows = node.as_array()) {
         p.time_step.schedule = inline_schedule(file, *rows);
@@ -239,6 +241,7 @@ std::string run_parameters_toml(const RunParameters& p)
     for (const auto& e : p.time_step.schedule.entries())
       s += fmt::format("[{}, {}, {}], ", e.first_step, e.last_step, e.tau);
     s += "]\n";
+    s += fmt::format("schedule_retries = {}\n", p.time_step.schedule_retries);
   }
   s += fmt::format("beta = {}\n", p.scheme.beta);
   s += fmt::format("solver = \"{}\"\n", p.solver.kind == SolverKind::qr ? "qr" : "cholmod");

@@ -64,7 +64,8 @@ namespace sdflow {
 //! the pipeline of retri/pipeline.h runs when it intersects itself (a pinch-off, a hole sealing,
 //! bodies touching), when its triangles have degraded (more than `degraded_fraction` of the
 //! triangle count are triangles with an angle below `min_angle_deg` or edges outside [ℓ/r, r·ℓ]
-//! with r = `edge_ratio`), or every time with `always` (the paper's practice).
+//! with r = `edge_ratio`, and more than the last re-triangulation left behind), or every time with
+//! `always` (the paper's practice).
 struct RetriangulationSchedule {
   bool enabled = false;
   long every = 1;             //!< look at the surface after every k-th step (≥ 1)
@@ -72,8 +73,8 @@ struct RetriangulationSchedule {
   double edge_ratio = 2;      //!< ... or an edge is longer than r·ℓ or shorter than ℓ/r (r > 1)
   //! ... counting such triangles and edges: more than this fraction of the triangle count. The
   //! default 0 reacts to a single one: a thinning neck shows only a few, and without remeshing it
-  //! stalls instead of pinching off. Larger values save remeshings on large surfaces with a few
-  //! edges the remesher cannot fix (beside boundary corners).
+  //! stalls instead of pinching off. Elements the remesher could not fix are tolerated until more
+  //! appear; larger values save remeshings on large surfaces.
   double degraded_fraction = 0;
   bool always = false;        //!< run the whole pipeline after every k-th step (the paper's practice)
   //! The pipeline; its ℓ (0 = automatic) is fixed when the run starts, to the initial surface's

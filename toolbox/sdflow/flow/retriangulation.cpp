@@ -50,25 +50,41 @@ private:
   std::size_t vertices_ = 0;
 };
 
-//! Why the surface needs the pipeline now (empty: it does not).
-std::string reason_to_retriangulate(const Mesh& mesh, const RetriangulationSchedule& s, IntersectionWatch& watch)
+//! Edges outside [ℓ/r, rℓ] and triangles with an angle below the schedule's minimum.
+struct Degraded {
+  long edges = 0, triangles = 0;
+  long total() const { return edges + triangles; }
+};
+
+Degraded degraded_elements(const Mesh& mesh, const RetriangulationSchedule& s)
+{
+  const double ell = s.pipeline.target_edge_length;
+  Degraded d;
+  for (const auto e : mesh.edges()) {
+    const double length = mesh.calc_edge_length(e);
+    d.edges += length > s.edge_ratio * ell || length * s.edge_ratio < ell;
+  }
+  for (const auto f : mesh.faces())
+    d.triangles += smallest_angle_deg(mesh, f) < s.min_angle_deg;
+  return d;
+}
+
+//! Why the surface needs the pipeline now (empty: it does not). Degraded elements trigger it when
+//! they exceed both the schedule's allowance and what the last re-triangulation left behind, so
+//! elements the remesher cannot improve (beside a thin neck, say) do not call it after every step.
+std::string reason_to_retriangulate(const Mesh& mesh, const RetriangulationSchedule& s, long tolerated,
+                                    IntersectionWatch& watch)
 {
   if (s.always)
     return "scheduled";
   if (const std::size_t pairs = watch.count(mesh); pairs > 0)
     return fmt::format("{} intersecting face pairs", pairs);
-  const double ell = s.pipeline.target_edge_length;
-  long long_or_short = 0, sharp = 0;
-  for (const auto e : mesh.edges()) {
-    const double length = mesh.calc_edge_length(e);
-    long_or_short += length > s.edge_ratio * ell || length * s.edge_ratio < ell;
-  }
-  for (const auto f : mesh.faces())
-    sharp += smallest_angle_deg(mesh, f) < s.min_angle_deg;
-  const double allowed = s.degraded_fraction * static_cast<double>(mesh.n_faces());
-  if (static_cast<double>(long_or_short + sharp) > allowed)
-    return fmt::format("{} edges outside [ℓ/{}, {}ℓ] and {} triangles with an angle below {}°", long_or_short,
-                       s.edge_ratio, s.edge_ratio, sharp, s.min_angle_deg);
+  const Degraded d = degraded_elements(mesh, s);
+  const double allowed = std::max(s.degraded_fraction * static_cast<double>(mesh.n_faces()),
+                                  static_cast<double>(tolerated));
+  if (static_cast<double>(d.total()) > allowed)
+    return fmt::format("{} edges outside [ℓ/{}, {}ℓ] and {} triangles with an angle below {}°", d.edges,
+                       s.edge_ratio, s.edge_ratio, d.triangles, s.min_angle_deg);
   return {};
 }
 
@@ -112,7 +128,7 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     RetriangulationReport report;
     if (context.step % schedule.every != 0)
       return report;
-    const std::string reason = reason_to_retriangulate(mesh, schedule, *watch);
+    const std::string reason = reason_to_retriangulate(mesh, schedule, context.tolerated_degraded, *watch);
     if (reason.empty())
       return report;
     RetriangulationResult r = retriangulate(mesh, schedule.pipeline);
@@ -120,7 +136,8 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     report.surgery = r.rebuilt;
     report.split = r.components_after > r.components_before - r.merged_components;
     report.merged = r.merged_components > 0;
-    report.detail = reason + ": " + describe(r);
+    report.degraded_left = degraded_elements(r.mesh, schedule).total();
+    report.detail = fmt::format("{}: {}; {} degraded elements left", reason, describe(r), report.degraded_left);
     mesh = std::move(r.mesh);
     return report;
   };

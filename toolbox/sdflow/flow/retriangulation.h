@@ -14,7 +14,8 @@ void validate_retriangulation_schedule(const RetriangulationSchedule& schedule);
 
 //! The hook for SimulationOptions::retriangulate. `schedule.pipeline.target_edge_length` must be
 //! resolved (> 0). Deterministic: its only state is a cache of the self-intersection search
-//! (refitted between steps), so a resumed run re-triangulates exactly as the original.
+//! (refitted between steps), and what it reports in RetriangulationReport::degraded_left comes back
+//! through the context (and the checkpoint), so a resumed run re-triangulates exactly as the original.
 RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& schedule);
 
 } // namespace sdflow

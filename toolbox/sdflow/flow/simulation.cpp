@@ -142,6 +142,7 @@ public:
                   ? c.previous_w
                   : Eigen::VectorXd::Zero(mesh_.n_vertices());
     controller_ = TimeStepController(p_.time_step, c.time_step);
+    tolerated_degraded_ = c.tolerated_degraded;
     snapshots_ = c.snapshots;
     if (c.has_anchor) {
       // Refactorise the anchor's system: the preconditioner is then the one the uninterrupted run
@@ -208,7 +209,10 @@ private:
   RetriangulationReport call_retriangulation()
   {
     try {
-      return retriangulate_(mesh_, {step_, time_});
+      RetriangulationReport report = retriangulate_(mesh_, {step_, time_, tolerated_degraded_});
+      if (report.degraded_left >= 0)
+        tolerated_degraded_ = report.degraded_left;
+      return report;
     } catch (const SolverFailure&) {
       throw;
     } catch (const Error& e) {
@@ -399,6 +403,7 @@ private:
       c.anchor_positions = anchor_positions_;
     c.anchor_tau_beta = anchor_tau_beta_;
     c.snapshots = snapshots_;
+    c.tolerated_degraded = tolerated_degraded_;
     write_checkpoint(c, dir_ / "checkpoint.bin");
   }
 
@@ -423,6 +428,7 @@ private:
   VertexVectors positions_;
   long step_ = 0;
   double time_ = 0;
+  long tolerated_degraded_ = 0; // see RetriangulationContext
   Eigen::VectorXd previous_w_, last_w_;
   bool has_anchor_ = false;
   VertexVectors anchor_positions_;

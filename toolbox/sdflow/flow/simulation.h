@@ -30,6 +30,9 @@ inline constexpr const char* metrics_header =
 struct RetriangulationContext {
   long step = 0;
   double time = 0;
+  //! Degraded elements (short or long edges, sharp triangles) that the last re-triangulation could
+  //! not remove: the hook tolerates that many until more appear (kept in checkpoints).
+  long tolerated_degraded = 0;
 };
 
 //! What a re-triangulation hook did to the mesh (each flag becomes an event of the step's row).
@@ -39,6 +42,7 @@ struct RetriangulationReport {
   bool split = false;    //!< a component broke into several
   bool merged = false;   //!< components were joined
   std::string detail;    //!< one line for events.log
+  long degraded_left = -1; //!< degraded elements left by the pipeline when it ran (-1: it did not)
   bool changed() const { return remeshed || surgery || split || merged; }
 };
 

@@ -155,6 +155,8 @@ TimeStepController::TimeStepController(const TimeStepOptions& options, TimeStepS
   case TimeStepMode::schedule:
     if (options_.schedule.entries().empty())
       throw InvalidParameter("τ schedule mode without a schedule");
+    if (options_.schedule_retries < 0 || options_.schedule_retries > 60)
+      throw InvalidParameter(fmt::format("schedule_retries must be in [0, 60], got {}", options_.schedule_retries));
     break;
   case TimeStepMode::adaptive:
     if (!(a.max_displacement > 0) || !(a.safety > 0 && a.safety <= 1) || !(a.growth >= 1) ||
@@ -174,7 +176,7 @@ double TimeStepController::propose(long step, double automatic_tau, double time_
   double tau = 0;
   switch (options_.mode) {
   case TimeStepMode::constant: tau = options_.tau; break;
-  case TimeStepMode::schedule: tau = options_.schedule.tau_for_step(step); break;
+  case TimeStepMode::schedule: tau = std::ldexp(options_.schedule.tau_for_step(step), -state_.rejections); break;
   case TimeStepMode::adaptive:
     if (state_.next_tau == 0)
       state_.next_tau = options_.adaptive.initial_tau > 0 ? options_.adaptive.initial_tau : automatic_tau;
@@ -189,10 +191,19 @@ double TimeStepController::propose(long step, double automatic_tau, double time_
 bool TimeStepController::judge(long step, double tau, const StepCheck& check)
 {
   if (options_.mode != TimeStepMode::adaptive) {
-    if (check.non_finite || check.inverted_triangles > 0)
-      throw SolverFailure(fmt::format("step {} with τ = {:g} is unstable: {}. Use a smaller τ, β ≥ 1/2, or "
-                                      "adaptive time steps", step, tau, check.describe()));
-    return true;
+    if (!check.non_finite && check.inverted_triangles == 0) {
+      state_.rejections = 0;
+      return true;
+    }
+    const int retries = options_.mode == TimeStepMode::schedule ? options_.schedule_retries : 0;
+    if (state_.rejections < retries) {
+      ++state_.rejections;
+      return false;
+    }
+    throw SolverFailure(fmt::format("step {} with τ = {:g} is unstable: {}{}. Use a smaller τ, β ≥ 1/2, {}or "
+                                    "adaptive time steps", step, tau, check.describe(),
+                                    retries > 0 ? fmt::format(" after {} halvings of the table's τ", retries) : "",
+                                    options_.mode == TimeStepMode::schedule ? "schedule retries, " : ""));
   }
   const AdaptiveOptions& a = options_.adaptive;
   if (!check.failed()) {

@@ -13,7 +13,10 @@
 //!   (relative): τ is then multiplied by `shrink`.
 //! - After `max_rejections` rejections in a row, or when τ would fall below `min_tau`, the run stops
 //!   with SolverFailure: the flow cannot be continued stably from this surface.
-//! With constant τ or a schedule, any of these failures stops the run at once (SolverFailure).
+//! With constant τ or a schedule, a step that turns a triangle over or produces a non-finite
+//! position stops the run at once (SolverFailure), unless `schedule_retries` > 0: then a schedule's
+//! step is tried again with τ halved, up to that many times in a row, and the next step returns to
+//! the table's τ (the step count follows the table; the time falls behind it by what was halved).
 
 #include <filesystem>
 #include <limits>
@@ -67,6 +70,7 @@ struct TimeStepOptions {
   double tau = 0;                  //!< the constant τ (mode constant)
   TauSchedule schedule;            //!< mode schedule
   std::filesystem::path schedule_file; //!< where the schedule came from (recorded in run.toml)
+  int schedule_retries = 0;        //!< halvings of a schedule's τ allowed for one step (0: stop at once)
   AdaptiveOptions adaptive;
 };
 
