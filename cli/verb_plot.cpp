@@ -2,6 +2,7 @@
 //! and 22: area and volume relative to the initial surface, and the curvature deviation, against
 //! time, with topology events (remeshed, surgery, split, merged) marked by vertical lines.
 
+#include "gnuplot.h"
 #include "verbs.h"
 
 #include "sdflow/errors.h"
@@ -10,7 +11,6 @@
 
 #include <fmt/format.h>
 
-#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -68,14 +68,6 @@ void scan_metrics(const std::filesystem::path& file, double& area0, double& volu
     throw IoError(fmt::format("{}: no rows to plot", file.string()));
 }
 
-std::string quoted(const std::filesystem::path& p)
-{
-  std::string s = p.string(), out = "'";
-  for (char c : s)
-    out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
-
 void plot(const PlotArguments& a)
 {
   const std::filesystem::path dir = a.run_dir;
@@ -92,24 +84,25 @@ void plot(const PlotArguments& a)
     script += fmt::format("set arrow from {},graph 0 to {},graph 1 nohead dashtype 2 linecolor rgb '#c03030'\n"
                           "set label '{}' at {},graph 0.97 rotate by 90 right font ',9' textcolor rgb '#c03030'\n",
                           e.time, e.time, e.name, e.time);
-  const std::string data = quoted(dir / "metrics.csv");
+  const std::string data = gnuplot_quoted((dir / "metrics.csv").string());
   script += fmt::format("set output {}\nset title 'Area and volume relative to the initial surface'\n"
                         "set ylabel 'relative to t = 0'\n"
                         "plot {} using 2:($8/{}) skip 1 with lines linewidth 2 title 'area', "
                         "'' using 2:($9/{}) skip 1 with lines linewidth 2 title 'volume'\n",
-                        quoted(out / "area_volume.png"), data, area0, volume0 == 0 ? 1.0 : volume0);
+                        gnuplot_quoted((out / "area_volume.png").string()), data, area0, volume0 == 0 ? 1.0 : volume0);
   script += fmt::format("set output {}\nset title 'Mean curvature deviation'\nset ylabel 'H_{{dev}} / |H̃| (%)'\n"
                         "plot {} using 2:11 skip 1 with lines linewidth 2 title 'curvature deviation'\n",
-                        quoted(out / "curvature_deviation.png"), data);
+                        gnuplot_quoted((out / "curvature_deviation.png").string()), data);
   script += fmt::format("set output {}\nset title 'Time step'\nset ylabel 'τ'\nset logscale y\n"
                         "plot {} using 2:3 skip 2 with steps linewidth 2 title 'τ'\n",
-                        quoted(out / "time_step.png"), data);
+                        gnuplot_quoted((out / "time_step.png").string()), data);
   const std::filesystem::path script_file = out / "plots.gnuplot";
   write_atomically(script_file, [&](std::ostream& s) { s << script; });
-  const int status = std::system(fmt::format("gnuplot {} 2>&1", quoted(script_file)).c_str());
-  if (status != 0)
-    throw IoError(fmt::format("gnuplot failed on {} (exit status {}); is gnuplot installed "
-                              "(Debian package gnuplot-nox)?", script_file.string(), status));
+  try {
+    run_gnuplot(script_file, out / "gnuplot.log");
+  } catch (const std::runtime_error& e) {
+    throw IoError(fmt::format("{}: {}", script_file.string(), e.what()));
+  }
   std::cout << fmt::format("{} rows, {} events: {}, {}, {}\n", rows, events.size(), (out / "area_volume.png").string(),
                            (out / "curvature_deviation.png").string(), (out / "time_step.png").string());
 }

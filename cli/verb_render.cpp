@@ -2,6 +2,7 @@
 //! [--title TEXT]`: a shaded picture of a triangulated surface drawn by gnuplot (pngcairo), each
 //! triangle coloured by the mean of its vertices' mean curvature H (eq. 9 with the normals of eq. 8).
 
+#include "gnuplot.h"
 #include "verbs.h"
 
 #include "sdflow/errors.h"
@@ -14,22 +15,14 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
-#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <iterator>
-#include <spawn.h>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <vector>
-
-extern char** environ;
 
 namespace sdflow::cli {
 namespace {
@@ -76,15 +69,6 @@ public:
 private:
   fs::path path_;
 };
-
-//! A string literal for a gnuplot script (single quotes, a quote doubled).
-std::string gnuplot_quoted(const std::string& text)
-{
-  std::string out = "'";
-  for (char c : text)
-    out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
 
 std::string read_whole_file(const fs::path& file)
 {
@@ -234,36 +218,6 @@ std::string gnuplot_script(const RenderArguments& a, const fs::path& data, const
   }
   s += fmt::format("splot {} using 1:2:3:4 with pm3d\n", gnuplot_quoted(data.string()));
   return s;
-}
-
-//! Run `gnuplot SCRIPT` without a shell; its stderr goes to `log` and into any error message.
-void run_gnuplot(const fs::path& script, const fs::path& log)
-{
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  std::string program = "gnuplot", script_argument = script.string();
-  char* argv[] = {program.data(), script_argument.data(), nullptr};
-  pid_t pid = 0;
-  const int spawned = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0)
-    throw std::runtime_error(fmt::format("cannot run gnuplot ({}); install it (Debian package gnuplot-nox)",
-                                         std::strerror(spawned)));
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR)
-      throw std::runtime_error(fmt::format("waiting for gnuplot failed ({})", std::strerror(errno)));
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    std::string message = read_whole_file(log);
-    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
-      message.pop_back();
-    const std::string how = WIFEXITED(status) ? fmt::format("exit status {}", WEXITSTATUS(status))
-                                              : fmt::format("signal {}", WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-    throw std::runtime_error(fmt::format("gnuplot failed ({}){}{}", how, message.empty() ? "" : ":\n", message));
-  }
 }
 
 void render(RenderArguments a)

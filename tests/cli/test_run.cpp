@@ -58,6 +58,14 @@ TEST(PlotCommand, topology_events_are_marked_and_a_bad_table_is_refused)
   EXPECT_NE(script.find("set arrow from 1,graph 0"), std::string::npos) << script;
   EXPECT_NE(script.find("set label 'split'"), std::string::npos) << script;
   EXPECT_EQ(script.find("set arrow from 0.5,"), std::string::npos) << "rejections are not topology events";
+
+  // gnuplot runs without a shell: a quote in the run's path is just a character.
+  const fs::path quoted = dir / "Bob's run";
+  fs::create_directories(quoted);
+  fs::copy_file(dir / "run/metrics.csv", quoted / "metrics.csv");
+  const auto q = analytic::run_sdflow("plot \"" + quoted.string() + "\"");
+  ASSERT_EQ(q.exit_code, 0) << q.output;
+  EXPECT_GT(fs::file_size(quoted / "plots/area_volume.png"), 1000u);
   test::write_file(dir / "run/metrics.csv", "step,time\n");
   EXPECT_EQ(analytic::run_sdflow("plot " + (dir / "run").string()).exit_code, 2);
 }

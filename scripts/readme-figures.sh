@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Draws README's figures from finished sample runs (samples/reproduce.sh NAME first): for each run in
+# runs/NAME, its plots (sdflow plot) and four snapshots with sdflow render, coloured by H:
+#   docs/images/NAME_start.png         the initial surface
+#   docs/images/NAME_before_event.png  the last snapshot before the first surgery (if any)
+#   docs/images/NAME_after_event.png   the first snapshot after it (if any)
+#   docs/images/NAME_end.png           the last snapshot
+# and docs/images/NAME_area_volume.png, NAME_curvature_deviation.png.
+#   scripts/readme-figures.sh torus dumbbell sintering sintering_late
+set -euo pipefail
+cd "$(dirname "$0")/.."
+sdflow=${SDFLOW:-$PWD/build/release/cli/sdflow}
+[[ -x $sdflow ]] || { echo "readme-figures: build sdflow first ($sdflow)" >&2; exit 1; }
+[[ $# -gt 0 ]] || { echo "usage: $0 RUN_NAME..." >&2; exit 2; }
+
+for name in "$@"; do
+  run=runs/$name
+  [[ -f $run/metrics.csv ]] || { echo "readme-figures: $run/metrics.csv is missing" >&2; exit 1; }
+  # Snapshot steps on disk, and the step of the first surgery in metrics.csv.
+  mapfile -t steps < <(ls "$run/snapshots" | sed -n 's/^step_0*\([0-9][0-9]*\)\.ply$/\1/p; s/^step_000000\.ply$/0/p' | sort -n -u)
+  surgery=$(awk -F, 'NR > 1 && $14 ~ /surgery/ { print $1; exit }' "$run/metrics.csv")
+  time_of() { awk -F, -v s="$1" 'NR > 1 && $1 == s { printf "%.4g", $2; exit }' "$run/metrics.csv"; }
+  draw() { # step, picture name
+    local file
+    file=$(printf '%s/snapshots/step_%06d.ply' "$run" "$1")
+    "$sdflow" render "$file" -o "docs/images/${name}_$2.png" --size 480,360 --title "$name, t = $(time_of "$1")"
+  }
+  draw "${steps[0]}" start
+  draw "${steps[-1]}" end
+  if [[ -n $surgery ]]; then
+    before=${steps[0]} after=""
+    for s in "${steps[@]}"; do
+      if (( s < surgery )); then before=$s; elif [[ -z $after ]]; then after=$s; fi
+    done
+    draw "$before" before_event
+    [[ -n $after ]] && draw "$after" after_event
+  fi
+  "$sdflow" plot "$run" > /dev/null   # into $run/plots
+  for plot in area_volume curvature_deviation; do
+    cp "$run/plots/$plot.png" "docs/images/${name}_$plot.png"
+  done
+  echo "readme-figures: $name (first surgery at step ${surgery:-none})"
+done
