@@ -12,6 +12,7 @@
 //! time_step = "adaptive"       # "constant" (needs tau), "schedule" (needs schedule) or "adaptive"
 //! tau = 0.01                   # implies time_step = "constant" when time_step is absent
 //! schedule = "tables.csv"      # or inline: [[1, 50, 0.01], [51, 100, 0.02]]; implies "schedule"
+//! schedule_retries = 0         # halvings of the table's τ allowed for an unstable step
 //! beta = 0.5
 //! solver = "cholmod"           # or "qr"
 //! factorisation = "reuse"      # or "every_step"
