@@ -1,7 +1,8 @@
 //! Side by side: sdflow against Surface Evolver (`evolver-nox`, method laplacian_mean_curvature,
 //! explicit) carrying the l = 2 mode of a perturbed unit sphere to t = 0.05. Each reports the decay
 //! rate it measured (exact: (l-1)l(l+1)(l+2)/2 = 12, DESIGN.md §1), its relative error and its time,
-//! so the two can be compared at equal accuracy. `cpu_s` is the CPU time (the Evolver process's own for
+//! so the two can be compared at equal accuracy; sdflow runs with the paper's eq. (9) H and with the
+//! cotangent H (docs/flow.md). `cpu_s` is the CPU time (the Evolver process's own for
 //! Evolver), meaningful when the machine is shared; Time is wall-clock. The Evolver rows are skipped when `evolver-nox-d` is
 //! not installed (scripts/install-deps.sh --bench).
 //!   bench_flow_decay --benchmark_counters_tabular=true
@@ -80,10 +81,16 @@ void report(benchmark::State& state, double a0, double a1, double seconds, int v
   state.counters["rate_error_pct"] = 100 * std::abs(rate - exact_rate) / exact_rate;
 }
 
-//! sdflow: `steps` semi-implicit steps of constant τ (β = 1/2) from t = 0 to t = 0.05.
+//! sdflow: `steps` semi-implicit steps of constant τ (β = 1/2) from t = 0 to t = 0.05, with H by
+//! eq. (9) (third argument 0, the default) or the cotangent H (1).
 void Sdflow(benchmark::State& state)
 {
   const int level = static_cast<int>(state.range(0)), steps = static_cast<int>(state.range(1));
+  const bool cotangent = state.range(2) == 1;
+  const sdflow::SchemeOptions scheme{
+      .curvature = {.method = cotangent ? sdflow::CurvatureMethod::cotangent
+                                        : sdflow::CurvatureMethod::normal_curvature_integral}};
+  state.SetLabel(cotangent ? "cotangent H" : "eq. 9 H");
   const Mesh start = perturbed_sphere(level);
   for (auto _ : state) {
     Mesh mesh = start;
@@ -93,7 +100,8 @@ void Sdflow(benchmark::State& state)
     sdflow::FlowSolver solver;
     Eigen::VectorXd w;
     for (int s = 0; s < steps; ++s) {
-      auto step = sdflow::solve_step(mesh, sdflow::flow_operators(mesh, {}, &cache), end_time / steps, 0.5, solver, w);
+      auto step =
+          sdflow::solve_step(mesh, sdflow::flow_operators(mesh, scheme, &cache), end_time / steps, 0.5, solver, w);
       sdflow::set_vertex_positions(mesh, step.positions);
       w = std::move(step.w);
     }
@@ -167,7 +175,19 @@ void Evolver(benchmark::State& state)
 
 } // namespace
 
-BENCHMARK(Sdflow)->Args({2, 50})->Args({3, 100})->Args({4, 200})->Args({5, 400})
-    ->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
+//! Both H at levels 2..5 with the steps of the Evolver comparison, then the cotangent H with fewer
+//! and more steps at levels 2 and 3 (is the time-step error or the mesh's the larger there?).
+void sdflow_cases(benchmark::internal::Benchmark* b)
+{
+  for (int cotangent : {0, 1})
+    for (int level = 2; level <= 5; ++level)
+      b->Args({level, 50 << (level - 2), cotangent});
+  for (int steps : {6, 12, 25, 100, 200})
+    b->Args({2, steps, 1});
+  for (int steps : {12, 25, 50, 200, 400})
+    b->Args({3, steps, 1});
+}
+
+BENCHMARK(Sdflow)->Apply(sdflow_cases)->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(Evolver)->Arg(2)->Arg(3)->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -1,7 +1,8 @@
 //! `sdflow run`: evolve a surface by surface diffusion flow into a run directory (flow/simulation.h).
-//!   sdflow run --input MESH --out DIR [--steps N] [--t-end T] [--tau T | --schedule FILE [--schedule-retries N] | --adaptive]
-//!              [--beta B] [--solver cholmod|qr] [--snapshot-every K] [--checkpoint-every K]
-//!              [--conserve-volume] [--fixed-boundary] [--retriangulate [--edge-length L]] [--quiet]
+//!   sdflow run --input MESH --out DIR [--steps N] [--t-end T]
+//!              [--tau T | --schedule FILE [--schedule-retries N] | --adaptive]
+//!              [--beta B] [--curvature NAME] [--solver cholmod|qr] [--snapshot-every K]
+//!              [--checkpoint-every K] [--conserve-volume] [--fixed-boundary] [--retriangulate [--edge-length L]] [--quiet]
 //!   sdflow run SCENARIO.toml [flags]     (flags override the file's keys)
 //!   sdflow run --resume DIR [--steps N] [--t-end T]
 
@@ -24,7 +25,7 @@ namespace sdflow::cli {
 namespace {
 
 struct RunArguments {
-  std::string scenario, input, out, resume, schedule, solver;
+  std::string scenario, input, out, resume, schedule, solver, curvature;
   long steps = 0, snapshot_every = 0, checkpoint_every = 0;
   int schedule_retries = 0;
   double end_time = 0, tau = 0, beta = 0, edge_length = 0;
@@ -112,6 +113,7 @@ void apply_flags(const RunArguments& a, RunParameters& p)
   if (a.has("--steps")) p.steps = a.steps;
   if (a.has("--t-end")) p.end_time = a.end_time;
   if (a.has("--beta")) p.scheme.beta = a.beta;
+  if (a.has("--curvature")) p.scheme.curvature = curvature_options(a.curvature);
   if (a.has("--snapshot-every")) p.snapshot_every = a.snapshot_every;
   if (a.has("--checkpoint-every")) p.checkpoint_every = a.checkpoint_every;
   if (a.has("--conserve-volume")) p.conserve_volume = true;
@@ -138,8 +140,8 @@ void run(const RunArguments& a)
   const bool resuming = a.has("--resume");
   if (resuming) {
     if (a.has("--input") || a.has("--tau") || a.has("--schedule") || a.has("--adaptive") || a.has("--beta") ||
-        a.has("--schedule-retries") ||
-        a.has("--solver") || a.has("--retriangulate") || a.has("--edge-length") || !a.scenario.empty())
+        a.has("--schedule-retries") || a.has("--curvature") || a.has("--solver") || a.has("--retriangulate") ||
+        a.has("--edge-length") || !a.scenario.empty())
       throw InvalidParameter("--resume continues a run with its own parameters (run.toml): only --steps, --t-end, "
                              "--snapshot-every and --checkpoint-every may be changed");
     read_run_parameters(std::filesystem::path(a.resume) / "run.toml", p);
@@ -201,6 +203,9 @@ void add_run_verb(CLI::App& app)
   g["--schedule"]->excludes(g["--adaptive"]);
   g["--beta"] = verb->add_option("--beta", args->beta, "Implicitness β (default 0.5; 0 = explicit)")
                     ->check(CLI::NonNegativeNumber);
+  g["--curvature"] =
+      verb->add_option("--curvature", args->curvature,
+                       "Mean curvature: normal_integral (eq. 9, default), normal_integral_angle_sum or cotangent");
   g["--solver"] = verb->add_option("--solver", args->solver, "Linear solver: cholmod (default) or qr (paper's, slow)")
                       ->check(CLI::IsMember({"cholmod", "qr"}));
   g["--snapshot-every"] = verb->add_option("--snapshot-every", args->snapshot_every,

@@ -84,6 +84,19 @@ TEST(RunCommand, unstable_explicit_run_exits_3_and_bad_input_exits_2)
   EXPECT_EQ(no_stop.exit_code, 2) << no_stop.output;
 }
 
+TEST(RunCommand, curvature_flag_reaches_run_toml_and_an_unknown_one_exits_2)
+{
+  test::TempDir dir;
+  write_mesh(analytic::ellipsoid(2, 5, 4, 3), dir / "e.ply", {.encoding = Encoding::binary});
+  const std::string run = "run --input " + (dir / "e.ply").string() + " --tau 0.01 --steps 2 --quiet --out ";
+  const auto r = analytic::run_sdflow(run + (dir / "c").string() + " --curvature cotangent");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(test::read_file(dir / "c/run.toml").find("curvature = \"cotangent\"\n"), std::string::npos);
+  const auto bad = analytic::run_sdflow(run + (dir / "d").string() + " --curvature laplacian");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("curvature must be"), std::string::npos) << bad.output;
+}
+
 TEST(RunCommand, killed_run_leaves_complete_files_and_resumes_bit_for_bit)
 {
   test::TempDir dir;

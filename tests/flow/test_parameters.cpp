@@ -22,6 +22,7 @@ TEST(RunParameters, resolved_toml_reads_back_to_the_same_parameters)
   p.time_step.adaptive.max_displacement = 0.1;
   p.scheme.beta = 0.75;
   p.scheme.boundary = BoundaryMotion::fixed;
+  p.scheme.curvature.method = CurvatureMethod::cotangent;
   p.solver.kind = SolverKind::qr;
   p.conserve_volume = true;
   p.snapshot_every = 7;
@@ -54,6 +55,7 @@ TEST(RunParameters, resolved_toml_reads_back_to_the_same_parameters)
   EXPECT_EQ(q.time_step.adaptive.max_displacement, 0.1);
   EXPECT_EQ(q.scheme.beta, 0.75);
   EXPECT_EQ(q.scheme.boundary, BoundaryMotion::fixed);
+  EXPECT_EQ(q.scheme.curvature.method, CurvatureMethod::cotangent);
   EXPECT_EQ(q.solver.kind, SolverKind::qr);
   EXPECT_TRUE(q.conserve_volume);
   EXPECT_EQ(q.snapshot_every, 7);
@@ -75,6 +77,26 @@ TEST(RunParameters, resolved_toml_reads_back_to_the_same_parameters)
   EXPECT_EQ(r.pipeline.min_component_thickness, 0.125);
 }
 
+TEST(RunParameters, every_curvature_name_reads_back_to_its_options)
+{
+  test::TempDir dir;
+  for (const char* name : {"normal_integral", "normal_integral_angle_sum", "cotangent"}) {
+    SCOPED_TRACE(name);
+    RunParameters p;
+    p.scheme.curvature = curvature_options(name);
+    EXPECT_EQ(curvature_name(p.scheme.curvature), name);
+    test::write_file(dir / "run.toml", run_parameters_toml(p));
+    RunParameters q;
+    q.scheme.curvature = {.method = CurvatureMethod::cotangent, .normalisation = AngleNormalisation::angle_sum};
+    read_run_parameters(dir / "run.toml", q);
+    EXPECT_EQ(q.scheme.curvature.method, p.scheme.curvature.method);
+    EXPECT_EQ(q.scheme.curvature.normalisation, p.scheme.curvature.normalisation);
+  }
+  const RunParameters defaults;
+  EXPECT_EQ(curvature_name(defaults.scheme.curvature), "normal_integral") << "the paper's eq. (9) stays the default";
+  EXPECT_THROW(curvature_options("Cotangent"), InvalidParameter);
+}
+
 TEST(RunParameters, scenario_errors_name_the_file_line_and_key)
 {
   test::TempDir dir;
@@ -92,6 +114,7 @@ TEST(RunParameters, scenario_errors_name_the_file_line_and_key)
   expect_error("steps = 10\nstpes = 20\n", "s.toml:2: unknown key `stpes`");
   expect_error("beta = \"half\"\n", "`beta` has the wrong type");
   expect_error("solver = \"lu\"\n", "solver must be");
+  expect_error("steps = 1\ncurvature = \"laplacian\"\n", "s.toml:2: curvature must be \"normal_integral\"");
   expect_error("[adaptive]\ngrowht = 2\n", "unknown key `adaptive.growht`");
   expect_error("steps = [\n", "s.toml:");
   expect_error("[retriangulation]\neverey = 2\n", "s.toml:2: unknown key `retriangulation.everey`");

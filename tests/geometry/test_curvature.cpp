@@ -4,6 +4,7 @@
 #include "sdflow/geometry/normals.h"
 #include "support/analytic_meshes.h"
 #include "support/convergence.h"
+#include "support/curvature_errors.h"
 
 #include <gtest/gtest.h>
 
@@ -16,25 +17,8 @@ namespace {
 
 constexpr double kSecondOrder = 1.85; // observed order must reach this for a second-order quantity
 
-struct Errors {
-  double max = 0;
-  double rms = 0; // area-weighted root mean square
-};
-
-Errors curvature_errors(const Mesh& mesh, const std::function<double(const Eigen::Vector3d&)>& exact)
-{
-  const VertexVectors n = vertex_normals(mesh);
-  const Eigen::VectorXd h = mean_curvature(mesh, n);
-  const Eigen::VectorXd a = mixed_voronoi_areas(mesh);
-  Errors e;
-  for (auto v : mesh.vertices()) {
-    const double err = std::abs(h[v.idx()] - exact(to_eigen(mesh.point(v))));
-    e.max = std::max(e.max, err);
-    e.rms += err * err * a[v.idx()];
-  }
-  e.rms = std::sqrt(e.rms / a.sum());
-  return e;
-}
+using analytic::curvature_errors;
+using Errors = analytic::CurvatureErrors;
 
 double torus_tube_angle(const Eigen::Vector3d& p, double major)
 {

@@ -73,6 +73,25 @@ std::string quoted(const std::string& s)
 
 } // namespace
 
+std::string curvature_name(const CurvatureOptions& options)
+{
+  if (options.method == CurvatureMethod::cotangent)
+    return "cotangent";
+  return options.normalisation == AngleNormalisation::angle_sum ? "normal_integral_angle_sum" : "normal_integral";
+}
+
+CurvatureOptions curvature_options(const std::string& name)
+{
+  if (name == "normal_integral")
+    return {};
+  if (name == "normal_integral_angle_sum")
+    return {.normalisation = AngleNormalisation::angle_sum};
+  if (name == "cotangent")
+    return {.method = CurvatureMethod::cotangent};
+  throw InvalidParameter(fmt::format("curvature must be \"normal_integral\", \"normal_integral_angle_sum\" or "
+                                     "\"cotangent\", got \"{}\"", name));
+}
+
 void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
 {
   toml::table table;
@@ -82,9 +101,9 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
     throw IoError(fmt::format("{}:{}: {}", file.string(), e.source().begin.line, e.description()));
   }
   check_keys(file, table,
-             {"input", "out", "steps", "t_end", "time_step", "tau", "schedule", "schedule_retries", "beta", "solver", "factorisation",
-              "cg_tolerance", "snapshot_every", "checkpoint_every", "conserve_volume", "fixed_boundary", "adaptive",
-              "retriangulation", "reference_sphere"},
+             {"input", "out", "steps", "t_end", "time_step", "tau", "schedule", "schedule_retries", "beta", "curvature",
+              "solver", "factorisation", "cg_tolerance", "snapshot_every", "checkpoint_every", "conserve_volume",
+              "fixed_boundary", "adaptive", "retriangulation", "reference_sphere"},
              "");
   std::optional<std::string> mode;
   for (const auto& [key_view, node] : table) {
@@ -109,6 +128,13 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
       }
       p.time_step.mode = TimeStepMode::schedule;
     } else if (key == "beta") p.scheme.beta = get<double>(file, node, "beta");
+    else if (key == "curvature") {
+      try {
+        p.scheme.curvature = curvature_options(get<std::string>(file, node, "curvature"));
+      } catch (const InvalidParameter& e) {
+        bad(file, node, e.what());
+      }
+    }
     else if (key == "solver") {
       const std::string s = get<std::string>(file, node, "solver");
       if (s != "cholmod" && s != "qr")
@@ -244,6 +270,7 @@ std::string run_parameters_toml(const RunParameters& p)
     s += fmt::format("schedule_retries = {}\n", p.time_step.schedule_retries);
   }
   s += fmt::format("beta = {}\n", p.scheme.beta);
+  s += fmt::format("curvature = \"{}\"\n", curvature_name(p.scheme.curvature));
   s += fmt::format("solver = \"{}\"\n", p.solver.kind == SolverKind::qr ? "qr" : "cholmod");
   s += fmt::format("factorisation = \"{}\"\n", p.solver.policy == FactorisationPolicy::reuse ? "reuse" : "every_step");
   s += fmt::format("cg_tolerance = {}\n", p.solver.cg_tolerance);

@@ -14,6 +14,7 @@
 //! schedule = "tables.csv"      # or inline: [[1, 50, 0.01], [51, 100, 0.02]]; implies "schedule"
 //! schedule_retries = 0         # halvings of the table's τ allowed for an unstable step
 //! beta = 0.5
+//! curvature = "normal_integral" # H by eq. (9); "normal_integral_angle_sum" (Σα, not 2π) or "cotangent"
 //! solver = "cholmod"           # or "qr"
 //! factorisation = "reuse"      # or "every_step"
 //! snapshot_every = 10
@@ -98,6 +99,13 @@ struct RunParameters {
   double reference_radius = 1.0;
   RetriangulationSchedule retriangulation;
 };
+
+//! The names of the `curvature` key: "normal_integral" (eq. 9, the default), "normal_integral_angle_sum"
+//! (eq. 9 divided by the angle sum), "cotangent" (H = ½ N·ΔX).
+std::string curvature_name(const CurvatureOptions& options);
+
+//! The options a `curvature` name stands for; throws InvalidParameter, listing the names, on another.
+CurvatureOptions curvature_options(const std::string& name);
 
 //! Read a scenario or run.toml into `parameters`, overwriting only the keys present. Relative
 //! paths are resolved against the file's folder. Throws IoError (file, line) on a syntax error,

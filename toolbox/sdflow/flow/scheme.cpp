@@ -1,6 +1,7 @@
 #include "sdflow/flow/scheme.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/geometry/cotangent_curvature.h"
 
 #include <fmt/format.h>
 
@@ -16,7 +17,6 @@ FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options, con
     throw InvalidMesh("flow step: the mesh has no triangles");
   FlowOperators op;
   op.normals = vertex_normals(mesh, options.normals);
-  op.curvature = mean_curvature(mesh, op.normals, options.curvature);
   if (cache) {
     cache->assemble(mesh, op.laplacian, op.areas);
   } else {
@@ -26,6 +26,10 @@ FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options, con
   for (Eigen::Index i = 0; i < op.areas.size(); ++i)
     if (!(op.areas[i] > 0))
       throw InvalidMesh(fmt::format("flow step: vertex {} has no area (isolated or degenerate star)", i));
+  // The cotangent H is built from the L and M just assembled rather than assembling them again.
+  op.curvature = options.curvature.method == CurvatureMethod::cotangent
+                     ? cotangent_mean_curvature(mesh, op.normals, op.laplacian, op.areas)
+                     : mean_curvature(mesh, op.normals, options.curvature);
   op.rhs = op.laplacian * op.curvature;
   if (options.boundary == BoundaryMotion::fixed) {
     bool any = false;

@@ -26,13 +26,13 @@ struct SchemeOptions {
   double beta = 0.5;
   BoundaryMotion boundary = BoundaryMotion::paper;
   NormalOptions normals;       //!< eq. (8); `equal_weights` is the paper's §4.3 boundary variant
-  CurvatureOptions curvature;  //!< eq. (9)
+  CurvatureOptions curvature;  //!< eq. (9) by default, or the cotangent H (curvature.h)
 };
 
 //! The operators of the current surface; they do not depend on τ, so a rejected step reuses them.
 struct FlowOperators {
   VertexVectors normals;       //!< N (#V by 3), eq. (8)
-  Eigen::VectorXd curvature;   //!< H, eq. (9), 0 on the boundary
+  Eigen::VectorXd curvature;   //!< H (eq. 9 or cotangent, per SchemeOptions::curvature), 0 on the boundary
   SparseMatrix laplacian;      //!< L, eq. (10) in symmetric form
   Eigen::VectorXd areas;       //!< M, mixed Voronoi areas
   Eigen::VectorXd rhs;         //!< L H

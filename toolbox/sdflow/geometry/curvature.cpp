@@ -1,6 +1,8 @@
 #include "sdflow/geometry/curvature.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/geometry/cotangent_curvature.h"
+#include "sdflow/geometry/laplacian.h"
 
 #include <fmt/format.h>
 
@@ -14,6 +16,8 @@ Eigen::VectorXd mean_curvature(const Mesh& mesh, const VertexVectors& normals, c
 {
   if (normals.rows() != static_cast<Eigen::Index>(mesh.n_vertices()))
     throw InvalidParameter(fmt::format("mean_curvature: {} normals for {} vertices", normals.rows(), mesh.n_vertices()));
+  if (options.method == CurvatureMethod::cotangent)
+    return cotangent_mean_curvature(mesh, normals, cotangent_laplacian(mesh), mixed_voronoi_areas(mesh));
 
   Eigen::VectorXd weighted = Eigen::VectorXd::Zero(mesh.n_vertices());
   Eigen::VectorXd angle_sum = Eigen::VectorXd::Zero(mesh.n_vertices());
