@@ -60,6 +60,40 @@ TEST(Pipeline, always_rebuild_reconstructs_a_torus_with_its_genus)
   EXPECT_NEAR(enclosed_volume(r.mesh), enclosed_volume(torus), 0.02 * enclosed_volume(torus));
 }
 
+//! The upper half of an icosphere: a cap whose boundary loop zigzags along the equator.
+Mesh zigzag_hemisphere(int level)
+{
+  Mesh mesh = analytic::icosphere(level);
+  for (const auto f : mesh.faces()) {
+    double z = 0;
+    for (const auto v : mesh.fv_range(f))
+      z += mesh.point(v)[2];
+    if (z < 0)
+      mesh.delete_face(f, true);
+  }
+  mesh.garbage_collection();
+  return mesh;
+}
+
+TEST(Pipeline, a_true_boundary_that_the_rebuild_shortens_stays_open)
+{
+  // Remeshing at three times the input's edge straightens the zigzag boundary, so the rebuilt
+  // surface's loop is shorter than the input's: it must still be kept as the true boundary, not
+  // filled with a second sheet (as happened to the plane of the three spheres on a plane).
+  const Mesh cap = zigzag_hemisphere(4);
+  const auto before = component_topology(cap);
+  ASSERT_EQ(before.size(), 1u);
+  ASSERT_EQ(before[0].boundary_loops, 1);
+  const RetriangulationResult r =
+      retriangulate(cap, {.target_edge_length = 3 * checks::mean_edge_length(cap), .always_rebuild = true});
+  EXPECT_TRUE(r.rebuilt);
+  const auto after = component_topology(r.mesh);
+  ASSERT_EQ(after.size(), 1u);
+  EXPECT_EQ(after[0].boundary_loops, 1);
+  EXPECT_EQ(r.filled_holes, 0);
+  EXPECT_NEAR(surface_area(r.mesh), 2 * std::numbers::pi, 0.05 * 2 * std::numbers::pi);
+}
+
 TEST(Pipeline, intersecting_components_are_joined_into_the_boundary_of_their_union)
 {
   // Two unit spheres whose centres are 1.2 apart: the union's volume is 2·(4π/3) minus the lens.

@@ -78,14 +78,16 @@ std::vector<double> boundary_loop_lengths(const Mesh& mesh)
   return lengths;
 }
 
-//! The paper's bound for stage 5: every hole of a closed surface, otherwise the loops shorter than
-//! the shortest true boundary loop.
-double automatic_hole_bound(const Mesh& input)
+//! The bound for stage 5 (the paper's, with a margin): every hole of a closed surface, otherwise the
+//! loops shorter than half the shortest true boundary loop of the remeshed surface. A rebuilt true
+//! boundary comes out shorter than the input's (remeshing straightens it, the front cuts corners
+//! where points were dropped) and must not be taken for a hole.
+double automatic_hole_bound(const Mesh& remeshed)
 {
-  const std::vector<double> loops = boundary_loop_lengths(input);
+  const std::vector<double> loops = boundary_loop_lengths(remeshed);
   if (loops.empty())
     return std::numeric_limits<double>::infinity();
-  return *std::min_element(loops.begin(), loops.end());
+  return 0.5 * *std::min_element(loops.begin(), loops.end());
 }
 
 //! Stage 0 (Appendix B): replace every set of mutually intersecting components by the boundary of
@@ -152,7 +154,6 @@ RetriangulationResult retriangulate(const Mesh& input, const RetriangulationOpti
   int count = 0;
   face_component_ids(input, &count);
   r.components_before = count;
-  const double hole_bound = options.max_hole_length > 0 ? options.max_hole_length : automatic_hole_bound(input);
   r.target_edge_length = options.target_edge_length > 0 ? options.target_edge_length : mean_edge_length(input);
 
   const ComponentOptions debris{.min_faces = options.min_component_faces,
@@ -173,6 +174,7 @@ RetriangulationResult retriangulate(const Mesh& input, const RetriangulationOpti
     r.seconds.remesh = seconds_since(start);
   }
 
+  const double hole_bound = options.max_hole_length > 0 ? options.max_hole_length : automatic_hole_bound(mesh);
   start = Clock::now();
   RemovalResult removal = remove_self_intersections(mesh);
   r.intersecting_pairs = static_cast<int>(removal.intersecting_pairs.size());

@@ -32,8 +32,9 @@ struct RetriangulationOptions {
   //! Stage 5 on or off.
   bool fill_holes = true;
   //! Holes whose boundary is longer than this stay open; 0: automatic, i.e. every hole of a
-  //! closed input, and on an input with boundary only the loops shorter than its shortest boundary
-  //! loop (the paper's bound: a new hole is shorter than the true boundary).
+  //! closed input, and on an input with boundary only the loops shorter than half the shortest
+  //! boundary loop after remeshing (the paper's bound, "a new hole is shorter than the true
+  //! boundary", with a margin: a rebuilt true boundary comes out somewhat shorter).
   double max_hole_length = 0;
   //! Stage 6: components with fewer triangles are dropped (debris of a surgery).
   int min_component_faces = 16;
