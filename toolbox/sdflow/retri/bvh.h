@@ -94,9 +94,62 @@ struct RayHit {
 
 //! Barycentric weights of the point of triangle abc nearest to p, by the Voronoi regions of its
 //! corners, edges and interior (Ericson 2005, Real-Time Collision Detection §5.1.5); a collinear
-//! triangle's nearest point is on one of its edges. Every closest-point query here uses it.
-Eigen::Vector3d nearest_barycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                    const Eigen::Vector3d& c);
+//! triangle's nearest point is on one of its edges. Every closest-point query here uses it
+//! (inline: called for most triangles a query meets).
+inline Eigen::Vector3d nearest_barycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                           const Eigen::Vector3d& c)
+{
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0)
+    return {1, 0, 0};
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3)
+    return {0, 1, 0};
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    return {1 - v, v, 0};
+  }
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6)
+    return {0, 0, 1};
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    return {1 - w, 0, w};
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return {0, 1 - w, w};
+  }
+  const double sum = va + vb + vc;
+  if (sum > 0) {
+    const double v = vb / sum, w = vc / sum;
+    return {1 - v - w, v, w};
+  }
+  // A degenerate (collinear) triangle: its nearest point lies on one of its edges.
+  Eigen::Vector3d best(1, 0, 0);
+  double best_d = (p - a).squaredNorm();
+  const Eigen::Vector3d corners[3] = {a, b, c};
+  for (int e = 0; e < 3; ++e) {
+    const Eigen::Vector3d& s = corners[e];
+    const Eigen::Vector3d d = corners[(e + 1) % 3] - s;
+    const double len2 = d.squaredNorm();
+    const double t = len2 > 0 ? std::clamp((p - s).dot(d) / len2, 0.0, 1.0) : 0.0;
+    const double dist = (s + t * d - p).squaredNorm();
+    if (dist < best_d) {
+      best_d = dist;
+      best.setZero();
+      best[e] = 1 - t;
+      best[(e + 1) % 3] = t;
+    }
+  }
+  return best;
+}
 
 //! Axis-aligned bounding-box tree over triangles (a class: it is kept and refitted across steps).
 class Bvh {

@@ -43,9 +43,12 @@ private:
   //! Integer cell coordinate along axis k, -1 outside the grid (monotone in x, so the cells of
   //! a box's corners bracket the cells of its points).
   std::int64_t coordinate(double x, int k) const;
+  //! Cells are stored in 4 × 4 × 4 tiles, one tile after the other: a run of nearby queries
+  //! (the remesher's, in Morton order) reads a few tiles of the table instead of many rows.
   std::size_t cell_index(std::int64_t i, std::int64_t j, std::int64_t k) const
   {
-    return static_cast<std::size_t>((i * size_[1] + j) * size_[2] + k);
+    const std::int64_t tile = ((i >> 2) * tiles_[1] + (j >> 2)) * tiles_[2] + (k >> 2);
+    return static_cast<std::size_t>(tile * 64 + ((i & 3) << 4 | (j & 3) << 2 | (k & 3)));
   }
   //! Cell range of triangle t: low and high coordinate along each axis.
   std::array<std::int64_t, 6> cell_range(int t) const;
@@ -59,14 +62,22 @@ private:
 
   VertexVectors points_;
   Bvh::Triangles triangles_;
-  std::vector<std::array<float, 6>> boxes_; //!< triangle boxes, rounded outward (lo, hi)
+  //! What a query reads of a triangle, in one place: its box rounded outward (lo, hi) and its
+  //! corners (the index rows and the scattered points they name cost a cache miss each).
+  struct Record {
+    std::array<float, 6> box;
+    std::array<Eigen::Vector3d, 3> corners;
+  };
+  std::vector<Record> records_; //!< in the order of the first cell that lists them (see build())
+  std::vector<std::int32_t> face_; //!< the face index of each record
   std::array<double, 3> origin_{};
-  std::array<std::int64_t, 3> size_{}; //!< cells along each axis
+  std::array<std::int64_t, 3> size_{};  //!< cells along each axis
+  std::array<std::int64_t, 3> tiles_{}; //!< tiles along each axis
   double cell_ = 0;
   double inverse_cell_ = 0;
   double slack_ = 0; //!< rounding allowance of the tests against cell walls
   std::vector<std::uint32_t> first_;  //!< cell c lists entries_[first_[c], first_[c + 1])
-  std::vector<std::int32_t> entries_; //!< triangle indices
+  std::vector<std::int32_t> entries_; //!< record indices
   mutable std::once_flag tree_built_;
   mutable std::unique_ptr<Bvh> tree_;
 };

@@ -12,12 +12,14 @@
 #include <fmt/format.h>
 #include <nanoflann.hpp>
 #include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <numbers>
 #include <vector>
@@ -39,6 +41,21 @@ constexpr double kMinNormalCosine = 0.25;
 constexpr double kDegenerateArea = 1e-10;
 
 Eigen::Vector3d point(const Mesh& mesh, Mesh::VertexHandle v) { return to_eigen(mesh.point(v)); }
+
+//! The midpoint of an edge, as the splits and collapses compute it (the same bits either way
+//! round: floating-point addition commutes).
+Eigen::Vector3d midpoint(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return 0.5 * (a + b); }
+
+//! Bit-for-bit equality (== would equate 0 and -0).
+bool same_bits(const Eigen::Vector3d& a, const Eigen::Vector3d& b)
+{
+  return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
+}
+
+//! A projection computed ahead of need: valid for a query with exactly the same bits.
+struct CachedProjection {
+  Eigen::Vector3d query, result;
+};
 
 //! Twice-area normal of the triangle abc.
 Eigen::Vector3d area_normal(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c)
@@ -143,6 +160,12 @@ private:
     locked_.swap(locked);
   }
 
+  //! The midpoint of h's edge.
+  Eigen::Vector3d edge_midpoint(Mesh::HalfedgeHandle h) const
+  {
+    return midpoint(point(mesh_, mesh_.from_vertex_handle(h)), point(mesh_, mesh_.to_vertex_handle(h)));
+  }
+
   bool movable_on_boundary() const { return options_.boundary == BoundaryMode::remesh; }
 
   Eigen::Vector3d project(Mesh::VertexHandle v, const Eigen::Vector3d& p) const
@@ -189,14 +212,26 @@ private:
       if (queue.empty())
         break;
       std::sort(queue.begin(), queue.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
-      for (const auto& [ratio, e] : queue) {
+      // Splits move no vertex, so the midpoints of a pass are known at its start: project them
+      // all at once (on TBB threads when the projections allow it).
+      std::vector<CachedProjection> projected(queue.size());
+      for_each_index(static_cast<int>(queue.size()), parallel_projection_, [&](int k) {
+        const auto e = queue[k].second;
+        const auto h = mesh_.halfedge_handle(e, 0);
+        const Eigen::Vector3d mid = edge_midpoint(h);
+        projected[k] = {mid, mesh_.is_boundary(e) ? project_boundary_(mid) : project_(mid)};
+      });
+      for (std::size_t k = 0; k < queue.size(); ++k) {
+        const auto e = queue[k].second;
         const auto h = mesh_.halfedge_handle(e, 0);
         const auto a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
         const Eigen::Vector3d pa = point(mesh_, a), pb = point(mesh_, b);
         if ((pb - pa).norm() <= kSplitRatio * edge_target(a, b))
           continue; // an earlier split in this pass already shortened it
-        const Eigen::Vector3d mid = 0.5 * (pa + pb);
-        const Eigen::Vector3d p = mesh_.is_boundary(e) ? project_boundary_(mid) : project_(mid);
+        const Eigen::Vector3d mid = midpoint(pa, pb);
+        const Eigen::Vector3d p = same_bits(mid, projected[k].query)
+                                      ? projected[k].result
+                                      : (mesh_.is_boundary(e) ? project_boundary_(mid) : project_(mid));
         mesh_.split(e, mesh_.add_vertex(to_point(p)));
         target_.push_back(options_.sizing ? target_at(p) : ell_);
         locked_.push_back(0);
@@ -214,7 +249,38 @@ private:
     const Eigen::Vector3d p1 = point(mesh_, v1);
     if (locked_[v1.idx()] || mesh_.is_boundary(v1) != mesh_.is_boundary(v0))
       return p1;
-    return project(v1, 0.5 * (point(mesh_, v0) + p1));
+    const Eigen::Vector3d mid = midpoint(point(mesh_, v0), p1);
+    const int slot = mesh_.is_boundary(v1) ? -1 : collapse_slot_[mesh_.edge_handle(h).idx()];
+    if (slot >= 0 && same_bits(mid, collapse_cache_[slot].query))
+      return collapse_cache_[slot].result;
+    return project(v1, mid);
+  }
+
+  //! With several threads, the collapses' projections of interior midpoints are computed ahead,
+  //! in parallel, for the edges short at the start; a collapse that moved an end since then
+  //! projects its new midpoint itself. One thread projects only where a collapse is allowed.
+  void project_collapse_midpoints()
+  {
+    collapse_slot_.assign(mesh_.n_edges(), -1);
+    collapse_cache_.clear();
+    if (!parallel_projection_ || tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) < 2)
+      return;
+    std::vector<int> short_edges;
+    for (auto e : mesh_.edges()) {
+      const auto v0 = e.v0(), v1 = e.v1();
+      if (mesh_.is_boundary(v0) || mesh_.is_boundary(v1) || (locked_[v0.idx()] && locked_[v1.idx()]))
+        continue;
+      if ((point(mesh_, v0) - point(mesh_, v1)).norm() < kCollapseRatio * edge_target(v0, v1)) {
+        collapse_slot_[e.idx()] = static_cast<int>(short_edges.size());
+        short_edges.push_back(e.idx());
+      }
+    }
+    collapse_cache_.resize(short_edges.size());
+    for_each_index(static_cast<int>(short_edges.size()), true, [&](int k) {
+      const auto h = mesh_.halfedge_handle(Mesh::EdgeHandle(short_edges[k]), 0);
+      const Eigen::Vector3d mid = edge_midpoint(h);
+      collapse_cache_[k] = {mid, project_(mid)};
+    });
   }
 
   //! OpenMesh's is_collapse_ok (the link condition, which keeps the topology), on marks of our
@@ -295,6 +361,7 @@ private:
 
   void collapse_short_edges()
   {
+    project_collapse_midpoints();
     const std::size_t edges = mesh_.n_edges();
     for (std::size_t i = 0; i < edges; ++i) {
       const Mesh::EdgeHandle e(static_cast<int>(i));
@@ -530,6 +597,8 @@ private:
   std::vector<char> locked_;   //!< corners and kept boundaries: never moved or removed
   std::vector<unsigned> mark_; //!< link_condition()'s marks: vertex → stamp of its last marking
   unsigned stamp_ = 0;
+  std::vector<int> collapse_slot_; //!< edge → its entry in collapse_cache_, -1 for none
+  std::vector<CachedProjection> collapse_cache_;
   RemeshStatistics statistics_;
 };
 
