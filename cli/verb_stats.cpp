@@ -111,8 +111,10 @@ void print_text(const std::string& file, const BuiltMesh& built, const MeshStati
   if (s.tetgen_volume)
     std::cout << fmt::format("  (TetGen {:.10g}, relative difference {:.2e})", *s.tetgen_volume,
                              s.volume != 0 ? std::abs(*s.tetgen_volume - s.volume) / std::abs(s.volume) : 0.0);
-  std::cout << fmt::format("\n  mean curvature H̃ {:.8g}, deviation H_dev {:.6g} ({:.4g}% of |H̃|)\n", s.curvature.mean,
-                           s.curvature.deviation, s.curvature.deviation_pct);
+  std::cout << fmt::format("\n  mean curvature H̃ {:.8g}, deviation H_dev {:.6g} ({})\n", s.curvature.mean,
+                           s.curvature.deviation,
+                           std::isfinite(s.curvature.deviation_pct) ? fmt::format("{:.4g}% of |H̃|", s.curvature.deviation_pct)
+                                                                    : std::string("no relative deviation: H̃ = 0"));
   const MeshQuality& q = s.quality;
   std::cout << fmt::format("  angles {:.2f}°..{:.2f}° (5% of triangles below {:.2f}°), {:.2f}% obtuse\n", q.min_angle_deg,
                            q.max_angle_deg, q.min_angle_p05_deg, 100 * q.obtuse_triangle_fraction);

@@ -56,6 +56,11 @@ TEST_F(StatsCommand, disk_is_reported_with_its_boundary)
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("has-boundary"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("\"boundary_loops\" : 1"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("curvature_deviation_pct"), std::string::npos) << "H̃ = 0: no relative deviation";
+  const auto text = analytic::run_sdflow("stats " + (dir / "disk.obj").string());
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("no relative deviation: H̃ = 0"), std::string::npos) << text.output;
+  EXPECT_EQ(text.output.find("inf%"), std::string::npos) << text.output;
 }
 
 TEST_F(StatsCommand, bad_input_exits_with_code_two_and_says_why)
