@@ -3,7 +3,7 @@
 # initial surfaces (samples/make_meshes.sh), runs each scenario into runs/NAME, plots it, and prints
 # one line per run: steps, final time, area and volume change, final curvature deviation, the
 # topology (components/genus, first -> last) and the re-triangulation events.
-#   samples/reproduce.sh                    every experiment (about an hour on 2 cores)
+#   samples/reproduce.sh                    every experiment (a few hours on 2 cores)
 #   samples/reproduce.sh torus dumbbell     only these scenarios
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,7 +14,7 @@ samples/make_meshes.sh "$sdflow"
 
 names=("$@")
 [[ ${#names[@]} -gt 0 ]] || names=(sphere_accuracy ellipsoid_relax ellipsoid_quarter_beta ellipsoid_explicit torus
-                                   dumbbell sintering sintering_late spheres_on_plane)
+                                   dumbbell sintering sintering_late spheres_on_plane spheres_on_plane_late)
 for name in "${names[@]}"; do
   rm -rf "runs/$name"
   status=0
