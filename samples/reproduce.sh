@@ -3,7 +3,7 @@
 # initial surfaces (samples/make_meshes.sh), runs each scenario into runs/NAME, plots it, and prints
 # one line per run: steps, final time, area and volume change, final curvature deviation, the
 # topology (components/genus, first -> last) and the re-triangulation events.
-#   samples/reproduce.sh                    every experiment (a few hours on 2 cores)
+#   samples/reproduce.sh                    every experiment (about an hour on 2 cores)
 #   samples/reproduce.sh torus dumbbell     only these scenarios
 set -euo pipefail
 cd "$(dirname "$0")/.."
