@@ -192,7 +192,8 @@ void FilterSdflowPlugin::initParameterSet(QAction* action, MeshModel& model, Ric
                                  "surface intersects itself, otherwise keep it."));
     parameters.addParam(RichBool("FillHoles", true, "Fill holes",
                                  "Fill the holes a rebuild from points leaves: every hole of a closed surface; on "
-                                 "an open one, the loops shorter than its shortest boundary. Off: leave them open."));
+                                 "an open one, the loops shorter than half its shortest boundary. Off: leave them "
+                                 "open."));
     parameters.addParam(RichInt("MinComponentFaces", 16, "Minimum component faces",
                                 "Connected components with fewer triangles are dropped as debris (≥ 1); closed "
                                 "components enclosing almost no volume are dropped too."));

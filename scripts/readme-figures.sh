@@ -17,7 +17,7 @@ for name in "$@"; do
   run=runs/$name
   [[ -f $run/metrics.csv ]] || { echo "readme-figures: $run/metrics.csv is missing" >&2; exit 1; }
   # Snapshot steps on disk, and the step of the first surgery in metrics.csv.
-  mapfile -t steps < <(ls "$run/snapshots" | sed -n 's/^step_0*\([0-9][0-9]*\)\.ply$/\1/p; s/^step_000000\.ply$/0/p' | sort -n -u)
+  mapfile -t steps < <(ls "$run/snapshots" | sed -n 's/^step_0*\([0-9][0-9]*\)\.ply$/\1/p' | sort -n -u)
   surgery=$(awk -F, 'NR > 1 && $14 ~ /surgery/ { print $1; exit }' "$run/metrics.csv")
   time_of() { awk -F, -v s="$1" 'NR > 1 && $1 == s { printf "%.4g", $2; exit }' "$run/metrics.csv"; }
   draw() { # step, picture name
