@@ -1,8 +1,9 @@
 //! Side by side: sdflow against Surface Evolver (`evolver-nox`, method laplacian_mean_curvature,
 //! explicit) carrying the l = 2 mode of a perturbed unit sphere to t = 0.05. Each reports the decay
 //! rate it measured (exact: (l-1)l(l+1)(l+2)/2 = 12, DESIGN.md §1), its relative error and its time,
-//! so the two can be compared at equal accuracy; sdflow runs with the paper's eq. (9) H and with the
-//! cotangent H (docs/flow.md). `cpu_s` is the CPU time (the Evolver process's own for
+//! so the two can be compared at equal accuracy; sdflow runs with the paper's eq. (9) H, with the
+//! cotangent H, and with the cotangent H over volume-gradient areas (`mass = "volume_gradient"`, the
+//! spatial discretisation Evolver's method uses), docs/flow.md. `cpu_s` is the CPU time (the Evolver process's own for
 //! Evolver), meaningful when the machine is shared; Time is wall-clock. The Evolver rows are skipped when `evolver-nox-d` is
 //! not installed (scripts/install-deps.sh --bench).
 //!   bench_flow_decay --benchmark_counters_tabular=true
@@ -82,15 +83,20 @@ void report(benchmark::State& state, double a0, double a1, double seconds, int v
 }
 
 //! sdflow: `steps` semi-implicit steps of constant τ (β = 1/2) from t = 0 to t = 0.05, with H by
-//! eq. (9) (third argument 0, the default) or the cotangent H (1).
+//! eq. (9) (third argument 0, the default), the cotangent H (1), or the cotangent H over
+//! volume-gradient areas (2); the fourth argument 1 Richardson-extrapolates each step (3 solves).
 void Sdflow(benchmark::State& state)
 {
   const int level = static_cast<int>(state.range(0)), steps = static_cast<int>(state.range(1));
-  const bool cotangent = state.range(2) == 1;
+  const int variant = static_cast<int>(state.range(2));
+  const bool extrapolate = state.range(3) == 1;
   const sdflow::SchemeOptions scheme{
-      .curvature = {.method = cotangent ? sdflow::CurvatureMethod::cotangent
-                                        : sdflow::CurvatureMethod::normal_curvature_integral}};
-  state.SetLabel(cotangent ? "cotangent H" : "eq. 9 H");
+      .curvature = {.method = variant == 0 ? sdflow::CurvatureMethod::normal_curvature_integral
+                                           : sdflow::CurvatureMethod::cotangent},
+      .mass = variant == 2 ? sdflow::VertexMass::volume_gradient : sdflow::VertexMass::voronoi,
+      .extrapolate = extrapolate};
+  state.SetLabel(fmt::format("{}{}", variant == 0 ? "eq. 9 H" : variant == 1 ? "cotangent H" : "cotangent H, volume-gradient M",
+                             extrapolate ? ", extrapolated" : ""));
   const Mesh start = perturbed_sphere(level);
   for (auto _ : state) {
     Mesh mesh = start;
@@ -100,8 +106,9 @@ void Sdflow(benchmark::State& state)
     sdflow::FlowSolver solver;
     Eigen::VectorXd w;
     for (int s = 0; s < steps; ++s) {
-      auto step =
-          sdflow::solve_step(mesh, sdflow::flow_operators(mesh, scheme, &cache), end_time / steps, 0.5, solver, w);
+      const auto operators = sdflow::flow_operators(mesh, scheme, &cache);
+      auto step = extrapolate ? sdflow::extrapolated_step(mesh, operators, end_time / steps, scheme, solver, &cache, w)
+                              : sdflow::solve_step(mesh, operators, end_time / steps, 0.5, solver, w);
       sdflow::set_vertex_positions(mesh, step.positions);
       w = std::move(step.w);
     }
@@ -176,16 +183,25 @@ void Evolver(benchmark::State& state)
 } // namespace
 
 //! Both H at levels 2..5 with the steps of the Evolver comparison, then the cotangent H with fewer
-//! and more steps at levels 2 and 3 (is the time-step error or the mesh's the larger there?).
+//! and more steps at levels 2 and 3 (is the time-step error or the mesh's the larger there?), then
+//! the volume-gradient areas at levels 2..4 from 25 to 1600 steps, then extrapolated steps (3 to 96)
+//! with eq. (9) and with the volume-gradient areas.
 void sdflow_cases(benchmark::internal::Benchmark* b)
 {
-  for (int cotangent : {0, 1})
+  for (int variant : {0, 1})
     for (int level = 2; level <= 5; ++level)
-      b->Args({level, 50 << (level - 2), cotangent});
+      b->Args({level, 50 << (level - 2), variant, 0});
   for (int steps : {6, 12, 25, 100, 200})
-    b->Args({2, steps, 1});
+    b->Args({2, steps, 1, 0});
   for (int steps : {12, 25, 50, 200, 400})
-    b->Args({3, steps, 1});
+    b->Args({3, steps, 1, 0});
+  for (int level = 2; level <= 4; ++level)
+    for (int steps = 25; steps <= 1600; steps *= 2)
+      b->Args({level, steps, 2, 0});
+  for (int variant : {0, 2})
+    for (int level = 2; level <= 4; ++level)
+      for (int steps = 3; steps <= 100; steps *= 2)
+        b->Args({level, steps, variant, 1});
 }
 
 BENCHMARK(Sdflow)->Apply(sdflow_cases)->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);

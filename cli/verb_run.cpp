@@ -1,7 +1,7 @@
 //! `sdflow run`: evolve a surface by surface diffusion flow into a run directory (flow/simulation.h).
 //!   sdflow run --input MESH --out DIR [--steps N] [--t-end T]
 //!              [--tau T | --schedule FILE [--schedule-retries N] | --adaptive]
-//!              [--beta B] [--curvature NAME] [--solver cholmod|qr] [--snapshot-every K]
+//!              [--beta B] [--curvature NAME] [--mass NAME] [--extrapolate] [--solver cholmod|qr] [--snapshot-every K]
 //!              [--checkpoint-every K] [--conserve-volume] [--fixed-boundary] [--retriangulate [--edge-length L]] [--quiet]
 //!   sdflow run SCENARIO.toml [flags]     (flags override the file's keys)
 //!   sdflow run --resume DIR [--steps N] [--t-end T]
@@ -25,11 +25,11 @@ namespace sdflow::cli {
 namespace {
 
 struct RunArguments {
-  std::string scenario, input, out, resume, schedule, solver, curvature;
+  std::string scenario, input, out, resume, schedule, solver, curvature, mass;
   long steps = 0, snapshot_every = 0, checkpoint_every = 0;
   int schedule_retries = 0;
   double end_time = 0, tau = 0, beta = 0, edge_length = 0;
-  bool adaptive = false, conserve_volume = false, fixed_boundary = false, retriangulate = false, quiet = false;
+  bool adaptive = false, extrapolate = false, conserve_volume = false, fixed_boundary = false, retriangulate = false, quiet = false;
   std::map<std::string, CLI::Option*> given;
   bool has(const std::string& name) const { return given.at(name)->count() > 0; }
 };
@@ -114,6 +114,8 @@ void apply_flags(const RunArguments& a, RunParameters& p)
   if (a.has("--t-end")) p.end_time = a.end_time;
   if (a.has("--beta")) p.scheme.beta = a.beta;
   if (a.has("--curvature")) p.scheme.curvature = curvature_options(a.curvature);
+  if (a.has("--mass")) p.scheme.mass = vertex_mass(a.mass);
+  if (a.has("--extrapolate")) p.scheme.extrapolate = true;
   if (a.has("--snapshot-every")) p.snapshot_every = a.snapshot_every;
   if (a.has("--checkpoint-every")) p.checkpoint_every = a.checkpoint_every;
   if (a.has("--conserve-volume")) p.conserve_volume = true;
@@ -140,7 +142,7 @@ void run(const RunArguments& a)
   const bool resuming = a.has("--resume");
   if (resuming) {
     if (a.has("--input") || a.has("--tau") || a.has("--schedule") || a.has("--adaptive") || a.has("--beta") ||
-        a.has("--schedule-retries") || a.has("--curvature") || a.has("--solver") || a.has("--retriangulate") ||
+        a.has("--schedule-retries") || a.has("--curvature") || a.has("--mass") || a.has("--extrapolate") || a.has("--solver") || a.has("--retriangulate") ||
         a.has("--edge-length") || !a.scenario.empty())
       throw InvalidParameter("--resume continues a run with its own parameters (run.toml): only --steps, --t-end, "
                              "--snapshot-every and --checkpoint-every may be changed");
@@ -206,6 +208,11 @@ void add_run_verb(CLI::App& app)
   g["--curvature"] =
       verb->add_option("--curvature", args->curvature,
                        "Mean curvature: normal_integral (eq. 9, default), normal_integral_angle_sum or cotangent");
+  g["--mass"] = verb->add_option("--mass", args->mass,
+                                 "Vertex areas of the Laplacian: voronoi (eq. 10, default) or volume_gradient")
+                     ->check(CLI::IsMember({"voronoi", "volume_gradient"}));
+  g["--extrapolate"] = verb->add_flag("--extrapolate", args->extrapolate,
+                                      "Richardson-extrapolate each step: second order in τ, three solves a step");
   g["--solver"] = verb->add_option("--solver", args->solver, "Linear solver: cholmod (default) or qr (paper's, slow)")
                       ->check(CLI::IsMember({"cholmod", "qr"}));
   g["--snapshot-every"] = verb->add_option("--snapshot-every", args->snapshot_every,

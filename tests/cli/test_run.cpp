@@ -84,17 +84,23 @@ TEST(RunCommand, unstable_explicit_run_exits_3_and_bad_input_exits_2)
   EXPECT_EQ(no_stop.exit_code, 2) << no_stop.output;
 }
 
-TEST(RunCommand, curvature_flag_reaches_run_toml_and_an_unknown_one_exits_2)
+TEST(RunCommand, scheme_flags_reach_run_toml_and_unknown_values_exit_2)
 {
   test::TempDir dir;
   write_mesh(analytic::ellipsoid(2, 5, 4, 3), dir / "e.ply", {.encoding = Encoding::binary});
   const std::string run = "run --input " + (dir / "e.ply").string() + " --tau 0.01 --steps 2 --quiet --out ";
-  const auto r = analytic::run_sdflow(run + (dir / "c").string() + " --curvature cotangent");
+  const auto r = analytic::run_sdflow(run + (dir / "c").string() + " --curvature cotangent --mass volume_gradient --extrapolate");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(test::read_file(dir / "c/run.toml").find("curvature = \"cotangent\"\n"), std::string::npos);
+  const std::string toml = test::read_file(dir / "c/run.toml");
+  EXPECT_NE(toml.find("curvature = \"cotangent\"\n"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("mass = \"volume_gradient\"\n"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("extrapolate = true\n"), std::string::npos) << toml;
   const auto bad = analytic::run_sdflow(run + (dir / "d").string() + " --curvature laplacian");
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("curvature must be"), std::string::npos) << bad.output;
+  const auto bad_mass = analytic::run_sdflow(run + (dir / "m").string() + " --mass lumped");
+  EXPECT_EQ(bad_mass.exit_code, 2) << bad_mass.output;
+  EXPECT_NE(bad_mass.output.find("--mass"), std::string::npos) << bad_mass.output;
 }
 
 TEST(RunCommand, killed_run_leaves_complete_files_and_resumes_bit_for_bit)

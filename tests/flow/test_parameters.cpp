@@ -23,6 +23,8 @@ TEST(RunParameters, resolved_toml_reads_back_to_the_same_parameters)
   p.scheme.beta = 0.75;
   p.scheme.boundary = BoundaryMotion::fixed;
   p.scheme.curvature.method = CurvatureMethod::cotangent;
+  p.scheme.mass = VertexMass::volume_gradient;
+  p.scheme.extrapolate = true;
   p.solver.kind = SolverKind::qr;
   p.conserve_volume = true;
   p.snapshot_every = 7;
@@ -56,6 +58,8 @@ TEST(RunParameters, resolved_toml_reads_back_to_the_same_parameters)
   EXPECT_EQ(q.scheme.beta, 0.75);
   EXPECT_EQ(q.scheme.boundary, BoundaryMotion::fixed);
   EXPECT_EQ(q.scheme.curvature.method, CurvatureMethod::cotangent);
+  EXPECT_EQ(q.scheme.mass, VertexMass::volume_gradient);
+  EXPECT_TRUE(q.scheme.extrapolate);
   EXPECT_EQ(q.solver.kind, SolverKind::qr);
   EXPECT_TRUE(q.conserve_volume);
   EXPECT_EQ(q.snapshot_every, 7);
@@ -95,6 +99,9 @@ TEST(RunParameters, every_curvature_name_reads_back_to_its_options)
   const RunParameters defaults;
   EXPECT_EQ(curvature_name(defaults.scheme.curvature), "normal_integral") << "the paper's eq. (9) stays the default";
   EXPECT_THROW(curvature_options("Cotangent"), InvalidParameter);
+  EXPECT_EQ(mass_name(defaults.scheme.mass), "voronoi") << "eq. (10)'s areas stay the default";
+  EXPECT_EQ(vertex_mass(mass_name(VertexMass::volume_gradient)), VertexMass::volume_gradient);
+  EXPECT_THROW(vertex_mass("Voronoi"), InvalidParameter);
 }
 
 TEST(RunParameters, scenario_errors_name_the_file_line_and_key)
@@ -115,6 +122,7 @@ TEST(RunParameters, scenario_errors_name_the_file_line_and_key)
   expect_error("beta = \"half\"\n", "`beta` has the wrong type");
   expect_error("solver = \"lu\"\n", "solver must be");
   expect_error("steps = 1\ncurvature = \"laplacian\"\n", "s.toml:2: curvature must be \"normal_integral\"");
+  expect_error("mass = \"barycentric\"\n", "s.toml:1: mass must be \"voronoi\" or \"volume_gradient\"");
   expect_error("[adaptive]\ngrowht = 2\n", "unknown key `adaptive.growht`");
   expect_error("steps = [\n", "s.toml:");
   expect_error("[retriangulation]\neverey = 2\n", "s.toml:2: unknown key `retriangulation.everey`");

@@ -8,7 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace sdflow {
 namespace {
@@ -47,6 +49,49 @@ TEST(Laplacian, mixed_voronoi_areas_sum_to_the_surface_area)
     const Eigen::VectorXd areas = mixed_voronoi_areas(mesh);
     EXPECT_NEAR(areas.sum(), surface_area(mesh), kExact * surface_area(mesh));
     EXPECT_GT(areas.minCoeff(), 0.0);
+  }
+}
+
+TEST(Laplacian, volume_gradient_areas_sum_to_three_volumes_over_the_radius_on_a_sphere)
+{
+  // Σ_v x_v·∂V/∂x_v = 3V (V is homogeneous of degree 3); with every x_v = R N_v this is R Σ_v A_v.
+  // So the sum is exact on an inscribed polyhedron and tends to the sphere's area 4πR² at O(h²).
+  constexpr double radius = 2.0;
+  std::vector<double> h, errors;
+  for (int level = 1; level <= 4; ++level) {
+    Mesh mesh = analytic::icosphere(level);
+    for (auto v : mesh.vertices())
+      mesh.set_point(v, radius * mesh.point(v));
+    VertexVectors radial = vertex_positions(mesh) / radius;
+    const Eigen::VectorXd areas = volume_gradient_areas(mesh, radial);
+    EXPECT_NEAR(areas.sum(), 3 * enclosed_volume(mesh) / radius, kExact * areas.sum());
+    EXPECT_GT(areas.minCoeff(), 0.0);
+    h.push_back(std::ldexp(1.0, -level));
+    errors.push_back(std::abs(areas.sum() - 4 * std::numbers::pi * radius * radius));
+  }
+  EXPECT_GT(analytic::observed_order(h, errors), 1.9);
+}
+
+TEST(Laplacian, volume_gradient_areas_give_the_volume_a_normal_motion_sweeps)
+{
+  // V(X + ε w N) = V(X) + ε Σ_v A_v w_v + O(ε²) on closed meshes, with eq. (8) normals.
+  for (const Mesh& mesh : sample_meshes()) {
+    if (std::ranges::any_of(mesh.vertices(), [&](auto v) { return mesh.is_boundary(v); }))
+      continue;
+    SCOPED_TRACE(mesh.n_vertices());
+    const VertexVectors normals = vertex_normals(mesh);
+    const Eigen::VectorXd areas = volume_gradient_areas(mesh, normals);
+    const Eigen::VectorXd w = Eigen::VectorXd::Random(mesh.n_vertices());
+    const auto swept = [&](double epsilon) {
+      Mesh moved = mesh;
+      set_vertex_positions(moved, vertex_positions(mesh) + epsilon * w.asDiagonal() * normals);
+      return (enclosed_volume(moved) - enclosed_volume(mesh)) / epsilon;
+    };
+    // The remainder is O(ε): it halves with ε. A wrong A (a Voronoi area, a factor) leaves an O(1) one.
+    const double predicted = areas.dot(w);
+    const double coarse = std::abs(swept(1e-4) - predicted), fine = std::abs(swept(5e-5) - predicted);
+    EXPECT_NEAR(fine / coarse, 0.5, 0.05) << "the volume's first-order change is not Σ A w";
+    EXPECT_LT(fine, 1e-3 * areas.cwiseAbs().sum());
   }
 }
 

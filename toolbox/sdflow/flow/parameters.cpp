@@ -92,6 +92,20 @@ CurvatureOptions curvature_options(const std::string& name)
                                      "\"cotangent\", got \"{}\"", name));
 }
 
+std::string mass_name(VertexMass mass)
+{
+  return mass == VertexMass::volume_gradient ? "volume_gradient" : "voronoi";
+}
+
+VertexMass vertex_mass(const std::string& name)
+{
+  if (name == "voronoi")
+    return VertexMass::voronoi;
+  if (name == "volume_gradient")
+    return VertexMass::volume_gradient;
+  throw InvalidParameter(fmt::format("mass must be \"voronoi\" or \"volume_gradient\", got \"{}\"", name));
+}
+
 void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
 {
   toml::table table;
@@ -102,7 +116,7 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
   }
   check_keys(file, table,
              {"input", "out", "steps", "t_end", "time_step", "tau", "schedule", "schedule_retries", "beta", "curvature",
-              "solver", "factorisation", "cg_tolerance", "snapshot_every", "checkpoint_every", "conserve_volume",
+              "mass", "extrapolate",              "solver", "factorisation", "cg_tolerance", "snapshot_every", "checkpoint_every", "conserve_volume",
               "fixed_boundary", "adaptive", "retriangulation", "reference_sphere"},
              "");
   std::optional<std::string> mode;
@@ -131,6 +145,14 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
     else if (key == "curvature") {
       try {
         p.scheme.curvature = curvature_options(get<std::string>(file, node, "curvature"));
+      } catch (const InvalidParameter& e) {
+        bad(file, node, e.what());
+      }
+    }
+    else if (key == "extrapolate") p.scheme.extrapolate = get<bool>(file, node, "extrapolate");
+    else if (key == "mass") {
+      try {
+        p.scheme.mass = vertex_mass(get<std::string>(file, node, "mass"));
       } catch (const InvalidParameter& e) {
         bad(file, node, e.what());
       }
@@ -271,6 +293,8 @@ std::string run_parameters_toml(const RunParameters& p)
   }
   s += fmt::format("beta = {}\n", p.scheme.beta);
   s += fmt::format("curvature = \"{}\"\n", curvature_name(p.scheme.curvature));
+  s += fmt::format("mass = \"{}\"\n", mass_name(p.scheme.mass));
+  s += fmt::format("extrapolate = {}\n", p.scheme.extrapolate);
   s += fmt::format("solver = \"{}\"\n", p.solver.kind == SolverKind::qr ? "qr" : "cholmod");
   s += fmt::format("factorisation = \"{}\"\n", p.solver.policy == FactorisationPolicy::reuse ? "reuse" : "every_step");
   s += fmt::format("cg_tolerance = {}\n", p.solver.cg_tolerance);

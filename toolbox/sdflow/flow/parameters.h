@@ -15,6 +15,8 @@
 //! schedule_retries = 0         # halvings of the table's τ allowed for an unstable step
 //! beta = 0.5
 //! curvature = "normal_integral" # H by eq. (9); "normal_integral_angle_sum" (Σα, not 2π) or "cotangent"
+//! mass = "voronoi"             # vertex areas of Δ = M⁻¹L: eq. (10)'s, or "volume_gradient" (scheme.h)
+//! extrapolate = false          # local Richardson extrapolation: second order in τ, 3 solves a step
 //! solver = "cholmod"           # or "qr"
 //! factorisation = "reuse"      # or "every_step"
 //! snapshot_every = 10
@@ -106,6 +108,12 @@ std::string curvature_name(const CurvatureOptions& options);
 
 //! The options a `curvature` name stands for; throws InvalidParameter, listing the names, on another.
 CurvatureOptions curvature_options(const std::string& name);
+
+//! The names of the `mass` key: "voronoi" (eq. 10, the default) and "volume_gradient".
+std::string mass_name(VertexMass mass);
+
+//! The mass a `mass` name stands for; throws InvalidParameter, listing the names, on another.
+VertexMass vertex_mass(const std::string& name);
 
 //! Read a scenario or run.toml into `parameters`, overwriting only the keys present. Relative
 //! paths are resolved against the file's folder. Throws IoError (file, line) on a syntax error,

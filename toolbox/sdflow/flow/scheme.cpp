@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace sdflow {
@@ -23,9 +24,12 @@ FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options, con
     op.laplacian = cotangent_laplacian(mesh);
     op.areas = mixed_voronoi_areas(mesh);
   }
+  if (options.mass == VertexMass::volume_gradient)
+    op.areas = volume_gradient_areas(mesh, op.normals);
   for (Eigen::Index i = 0; i < op.areas.size(); ++i)
     if (!(op.areas[i] > 0))
-      throw InvalidMesh(fmt::format("flow step: vertex {} has no area (isolated or degenerate star)", i));
+      throw InvalidMesh(fmt::format("flow step: vertex {} has no area {} (isolated, degenerate or folded star)", i,
+                                    op.areas[i]));
   // The cotangent H is built from the L and M just assembled rather than assembling them again.
   op.curvature = options.curvature.method == CurvatureMethod::cotangent
                      ? cotangent_mean_curvature(mesh, op.normals, op.laplacian, op.areas)
@@ -52,14 +56,50 @@ StepResult solve_step(const Mesh& mesh, const FlowOperators& op, double tau, dou
   const FlowSystem system{op.laplacian, op.areas, op.held, tau * beta};
   result.w = solver.solve(system, op.rhs, guess, &result.solve);
   result.positions = vertex_positions(mesh);
+  if (result.solve.factorised) {
+    result.factorisations = 1;
+    result.factorised_positions = result.positions;
+    result.factorised_tau_beta = tau * beta;
+  }
   result.positions -= (tau * result.w).asDiagonal() * op.normals;
+  return result;
+}
+
+StepResult extrapolated_step(const Mesh& mesh, const FlowOperators& op, double tau, const SchemeOptions& options,
+                             FlowSolver& solver, const CotangentCache* cache, const Eigen::VectorXd& guess)
+{
+  StepResult result;
+  const auto absorb = [&result](const StepResult& part) {
+    result.solve.analysed |= part.solve.analysed;
+    result.solve.iterations += part.solve.iterations;
+    result.solve.relative_residual = std::max(result.solve.relative_residual, part.solve.relative_residual);
+    result.factorisations += part.factorisations;
+    if (part.solve.factorised) {
+      result.solve.factorised = true;
+      result.factorised_positions = part.factorised_positions;
+      result.factorised_tau_beta = part.factorised_tau_beta;
+    }
+  };
+  const StepResult whole = solve_step(mesh, op, tau, options.beta, solver, guess);
+  absorb(whole);
+  const StepResult first_half = solve_step(mesh, op, tau / 2, options.beta, solver, whole.w);
+  absorb(first_half);
+  Mesh halfway = mesh;
+  set_vertex_positions(halfway, first_half.positions);
+  const StepResult second_half =
+      solve_step(halfway, flow_operators(halfway, options, cache), tau / 2, options.beta, solver, first_half.w);
+  absorb(second_half);
+  result.positions = 2 * second_half.positions - whole.positions;
+  result.w = first_half.w + second_half.w - whole.w;
   return result;
 }
 
 StepResult flow_step(const Mesh& mesh, double tau, const SchemeOptions& options, const SolverOptions& solver_options)
 {
   FlowSolver solver(solver_options);
-  return solve_step(mesh, flow_operators(mesh, options), tau, options.beta, solver);
+  const FlowOperators operators = flow_operators(mesh, options);
+  return options.extrapolate ? extrapolated_step(mesh, operators, tau, options, solver)
+                             : solve_step(mesh, operators, tau, options.beta, solver);
 }
 
 } // namespace sdflow

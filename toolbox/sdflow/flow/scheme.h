@@ -21,12 +21,21 @@ enum class BoundaryMotion {
   fixed  //!< held in place (w = 0 on every boundary vertex)
 };
 
+//! The vertex areas M of Δ = M⁻¹L (and of the cotangent H).
+enum class VertexMass {
+  voronoi,        //!< mixed Voronoi areas, eq. (10) (default)
+  volume_gradient //!< N·∂V/∂x (laplacian.h): first-order volume conservation, Surface Evolver's choice
+};
+
 struct SchemeOptions {
   //! Implicitness β of eq. (6): 1/2 is the paper's (stable) choice, 0 the explicit scheme.
   double beta = 0.5;
   BoundaryMotion boundary = BoundaryMotion::paper;
   NormalOptions normals;       //!< eq. (8); `equal_weights` is the paper's §4.3 boundary variant
   CurvatureOptions curvature;  //!< eq. (9) by default, or the cotangent H (curvature.h)
+  VertexMass mass = VertexMass::voronoi;
+  //! Local Richardson extrapolation (`extrapolated_step`): second order in τ instead of first.
+  bool extrapolate = false;
 };
 
 //! The operators of the current surface; they do not depend on τ, so a rejected step reuses them.
@@ -34,7 +43,7 @@ struct FlowOperators {
   VertexVectors normals;       //!< N (#V by 3), eq. (8)
   Eigen::VectorXd curvature;   //!< H (eq. 9 or cotangent, per SchemeOptions::curvature), 0 on the boundary
   SparseMatrix laplacian;      //!< L, eq. (10) in symmetric form
-  Eigen::VectorXd areas;       //!< M, mixed Voronoi areas
+  Eigen::VectorXd areas;       //!< M: mixed Voronoi or volume-gradient areas (SchemeOptions::mass)
   Eigen::VectorXd rhs;         //!< L H
   std::vector<bool> held;      //!< vertices with w = 0 (empty if none)
 };
@@ -48,7 +57,12 @@ FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options = {}
 struct StepResult {
   Eigen::VectorXd w;        //!< solution of (I + τβΔ²) w = ΔH; the normal velocity is -w
   VertexVectors positions;  //!< X - τ w N
-  SolveReport solve;
+  SolveReport solve;        //!< of the step's solves together: iterations summed, `factorised` if any did
+  int factorisations = 0;   //!< numeric factorisations the step made
+  //! The system of the step's last numeric factorisation, if it made one (`solve.factorised`): the
+  //! positions its operators were taken at and its τβ, so a resumed run can rebuild that factor.
+  VertexVectors factorised_positions;
+  double factorised_tau_beta = 0;
 };
 
 //! Solve the step for `tau` (> 0) with `solver`; `guess` (empty or #V) warm-starts iterative solves.
@@ -56,6 +70,14 @@ struct StepResult {
 //! the system is block diagonal by component and one solve steps every component independently.
 StepResult solve_step(const Mesh& mesh, const FlowOperators& operators, double tau, double beta,
                       FlowSolver& solver, const Eigen::VectorXd& guess = {});
+
+//! Local Richardson extrapolation of the step (step doubling, Hairer, Nørsett, Wanner I §II.4):
+//! 2·S_{τ/2}(S_{τ/2}(X)) − S_τ(X). The step S_τ is first order in τ (τβΔ² is not the linearised
+//! operator of ΔH), the combination second order. Costs three solves and the operators of the
+//! half-step surface (`cache`, optional, must fit `mesh`); `w` returned is w_{τ/2} + w'_{τ/2} − w_τ.
+StepResult extrapolated_step(const Mesh& mesh, const FlowOperators& operators, double tau,
+                             const SchemeOptions& options, FlowSolver& solver, const CotangentCache* cache = nullptr,
+                             const Eigen::VectorXd& guess = {});
 
 //! A complete step with a fresh solver: operators, solve, update. For tests and one-off use.
 StepResult flow_step(const Mesh& mesh, double tau, const SchemeOptions& options = {},

@@ -289,14 +289,15 @@ private:
     double tau = 0;
     for (;;) {
       tau = controller_.propose(next_step, automatic, time_left);
-      trial = solve_step(mesh_, op_, tau, p_.scheme.beta, solver_, previous_w_);
+      trial = p_.scheme.extrapolate ? extrapolated_step(mesh_, op_, tau, p_.scheme, solver_, &*cache_, previous_w_)
+                                    : solve_step(mesh_, op_, tau, p_.scheme.beta, solver_, previous_w_);
       record.cg_iterations += trial.solve.iterations;
       if (trial.solve.factorised) {
-        ++result_.factorisations;
+        result_.factorisations += trial.factorisations;
         record.factorised = true;
         has_anchor_ = p_.solver.kind == SolverKind::cholmod;
-        anchor_positions_ = positions_;
-        anchor_tau_beta_ = tau * p_.scheme.beta;
+        anchor_positions_ = trial.factorised_positions;
+        anchor_tau_beta_ = trial.factorised_tau_beta;
         logger().debug("step {}: factorised (τ = {})", next_step, tau);
       }
       const StepCheck c = check(trial.positions, trial.w, tau, edge_lengths, volumes);

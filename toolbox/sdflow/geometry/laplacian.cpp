@@ -60,6 +60,22 @@ Eigen::VectorXd mixed_voronoi_areas(const Mesh& mesh)
   return areas;
 }
 
+Eigen::VectorXd volume_gradient_areas(const Mesh& mesh, const VertexVectors& normals)
+{
+  if (normals.rows() != static_cast<Eigen::Index>(mesh.n_vertices()))
+    throw InvalidParameter(fmt::format("volume_gradient_areas: {} normals for {} vertices", normals.rows(),
+                                       mesh.n_vertices()));
+  VertexVectors gradient = VertexVectors::Zero(mesh.n_vertices(), 3);
+  for (auto f : mesh.faces()) {
+    const TriangleCorners t = triangle_corners(mesh, f);
+    const Eigen::RowVector3d third_of_vector_area =
+        (t.point[1] - t.point[0]).cross(t.point[2] - t.point[0]).transpose() / 6.0;
+    for (int c = 0; c < 3; ++c)
+      gradient.row(t.index[c]) += third_of_vector_area;
+  }
+  return gradient.cwiseProduct(normals).rowwise().sum();
+}
+
 SparseMatrix laplace_beltrami(const Mesh& mesh)
 {
   const Eigen::VectorXd areas = mixed_voronoi_areas(mesh);
