@@ -7,6 +7,8 @@
 
 #include <exception>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -25,6 +27,36 @@ sdflow::meshlab::Reporter reporter_for(MeshLabInterface& plugin, vcg::CallBackPo
   return reporter;
 }
 
+//! The choices of an enum parameter.
+QStringList choices(const std::vector<std::string>& names)
+{
+  QStringList list;
+  for (const std::string& name : names)
+    list << QString::fromStdString(name);
+  return list;
+}
+
+//! The indices of `names` with each name, for messages: "0 (a), 1 (b) or 2 (c)".
+std::string numbered(const std::vector<std::string>& names)
+{
+  std::string list;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + std::to_string(i) + " (" + names[i] + ")";
+  return list;
+}
+
+//! The name the enum parameter `parameter` selects among `names`; throws InvalidParameter on another
+//! index (meshlabserver passes a script's index unchecked).
+std::string chosen_name(const RichParameterList& parameters, const QString& parameter,
+                        const std::vector<std::string>& names)
+{
+  const int index = parameters.getEnum(parameter);
+  if (index < 0 || index >= static_cast<int>(names.size()))
+    throw sdflow::InvalidParameter(parameter.toStdString() + " must be " + numbered(names) + ", got " +
+                                   std::to_string(index));
+  return names[index];
+}
+
 sdflow::meshlab::DiffusionSettings diffusion_settings(const RichParameterList& parameters)
 {
   using sdflow::meshlab::intended_double;
@@ -37,6 +69,9 @@ sdflow::meshlab::DiffusionSettings diffusion_settings(const RichParameterList& p
   s.fixed_boundary = parameters.getBool("FixedBoundary");
   s.retriangulate = parameters.getBool("Retriangulate");
   s.edge_length = intended_double(parameters.getFloat("EdgeLength"));
+  s.curvature = chosen_name(parameters, "Curvature", sdflow::meshlab::curvature_names());
+  s.mass = chosen_name(parameters, "Mass", sdflow::meshlab::mass_names());
+  s.extrapolate = parameters.getBool("Extrapolate");
   return s;
 }
 
@@ -84,8 +119,10 @@ QString FilterSdflowPlugin::filterInfo(FilterIDType filter) const
            "evolution).<br>"
            "Each step solves the semi-implicit scheme (I + &tau;&beta;&Delta;&sup2;) w = &Delta;H, "
            "X &larr; X - &tau; w N, with the cotangent/Voronoi Laplace-Beltrami operator, normals by Max's "
-           "weights and the mean curvature as the integral of normal curvatures, exactly as the <i>sdflow</i> "
-           "command line does (<tt>sdflow run</tt> gives the same surface for the same parameters).<br>"
+           "weights and the mean curvature as the integral of normal curvatures (the paper's choices; the mean "
+           "curvature, the vertex areas and a second-order extrapolated step are options), exactly as the "
+           "<i>sdflow</i> command line does (<tt>sdflow run</tt> gives the same surface for the same "
+           "parameters).<br>"
            "With <i>re-triangulate</i> on, the surface is re-triangulated between steps whenever it intersects "
            "itself (a pinch-off, a hole closing, bodies touching) or its triangles degrade, by the pipeline of "
            "<i>Surface diffusion: re-triangulate</i> (<tt>sdflow run --retriangulate</tt>).<br>"
@@ -177,6 +214,18 @@ void FilterSdflowPlugin::initParameterSet(QAction* action, MeshModel& model, Ric
                                   "Target edge length of the re-triangulation, used only when it is on (≥ 0; 0: "
                                   "the mesh's mean edge length at the start). The default is this mesh's mean "
                                   "edge length."));
+    parameters.addParam(RichEnum("Curvature", 0, choices(sdflow::meshlab::curvature_names()), "Mean curvature H",
+                                 "How H is computed: normal_integral is eq. (9), the integral of normal curvatures "
+                                 "divided by 2π (the paper's, default); normal_integral_angle_sum divides by the "
+                                 "vertex's angle sum instead; cotangent takes H = ½ N·ΔX, more accurate on coarse "
+                                 "meshes. The result's quality holds this H."));
+    parameters.addParam(RichEnum("Mass", 0, choices(sdflow::meshlab::mass_names()), "Vertex areas",
+                                 "The vertex areas M of the Laplacian Δ = M⁻¹L: voronoi is eq. (10)'s mixed Voronoi "
+                                 "areas (the paper's, default); volume_gradient is the volume a vertex sweeps per "
+                                 "unit normal motion, which conserves volume to first order in τ."));
+    parameters.addParam(RichBool("Extrapolate", false, "Extrapolated steps",
+                                 "Richardson-extrapolate each step from one full and two half steps: second order in "
+                                 "τ instead of first, at three solves a step. Off: the paper's scheme."));
     break;
   }
   case FP_RETRIANGULATE:

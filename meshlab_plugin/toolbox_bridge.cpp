@@ -1,6 +1,8 @@
 #include "toolbox_bridge.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/flow/parameters.h"
+#include "sdflow/flow/scheme.h"
 #include "sdflow/flow/simulation.h"
 #include "sdflow/geometry/curvature.h"
 #include "sdflow/geometry/normals.h"
@@ -113,10 +115,9 @@ Mesh checked_mesh(const Surface& surface, const std::string& name)
   return std::move(built.mesh);
 }
 
-ShadedSurface shaded(const Mesh& mesh, const SchemeOptions& scheme)
+//! `mesh` with the given per-vertex normals and mean curvature.
+ShadedSurface shaded(const Mesh& mesh, const VertexVectors& normals, const Eigen::VectorXd& curvature)
 {
-  const VertexVectors normals = vertex_normals(mesh, scheme.normals);
-  const Eigen::VectorXd curvature = mean_curvature(mesh, normals, scheme.curvature);
   ShadedSurface result;
   const VertexVectors positions = vertex_positions(mesh);
   const auto triangles = face_indices(mesh);
@@ -145,6 +146,14 @@ double mean_edge_length(const Surface& input)
 
 double natural_time_step(const double mean_edge_length) { return std::pow(mean_edge_length, 4); }
 
+std::vector<std::string> curvature_names()
+{
+  return {curvature_name({}), curvature_name({.normalisation = AngleNormalisation::angle_sum}),
+          curvature_name({.method = CurvatureMethod::cotangent})};
+}
+
+std::vector<std::string> mass_names() { return {mass_name(VertexMass::voronoi), mass_name(VertexMass::volume_gradient)}; }
+
 ShadedSurface surface_diffusion(const Surface& input, const std::string& name, const DiffusionSettings& settings,
                                 const Reporter& reporter)
 {
@@ -165,6 +174,9 @@ ShadedSurface surface_diffusion(const Surface& input, const std::string& name, c
   p.time_step.tau = settings.automatic_tau ? 0.0 : settings.tau;
   p.scheme.beta = settings.beta;
   p.scheme.boundary = settings.fixed_boundary ? BoundaryMotion::fixed : BoundaryMotion::paper;
+  p.scheme.curvature = curvature_options(settings.curvature);
+  p.scheme.mass = vertex_mass(settings.mass);
+  p.scheme.extrapolate = settings.extrapolate;
   p.conserve_volume = settings.conserve_volume;
   p.retriangulation.enabled = settings.retriangulate;
   p.retriangulation.pipeline.target_edge_length = settings.edge_length;
@@ -179,7 +191,9 @@ ShadedSurface surface_diffusion(const Surface& input, const std::string& name, c
   const SimulationResult result = run_simulation(initial, options);
   logger().info("surface diffusion: {} steps to t = {:.6g} ({} rejected trial steps)", result.steps, result.time,
                 result.rejected_trials);
-  return shaded(result.mesh, p.scheme);
+  // The H the run steps with and `sdflow run` writes: the cotangent H divides by the run's vertex areas.
+  const FlowOperators final_operators = flow_operators(result.mesh, p.scheme);
+  return shaded(result.mesh, final_operators.normals, final_operators.curvature);
 }
 
 ShadedSurface retriangulate_surface(const Surface& input, const std::string& name,
@@ -202,7 +216,8 @@ ShadedSurface retriangulate_surface(const Surface& input, const std::string& nam
                 r.rebuilt ? fmt::format("rebuilt from the points ({} hole(s) filled)", r.filled_holes)
                           : std::string("not rebuilt (nothing intersected)"),
                 r.dropped_components, r.open_holes);
-  return shaded(r.mesh, SchemeOptions{});
+  const VertexVectors normals = vertex_normals(r.mesh);
+  return shaded(r.mesh, normals, mean_curvature(r.mesh, normals));
 }
 
 } // namespace sdflow::meshlab

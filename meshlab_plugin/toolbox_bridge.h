@@ -12,6 +12,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace sdflow::meshlab {
 
@@ -33,7 +34,16 @@ struct DiffusionSettings {
   bool fixed_boundary = false;    //!< hold boundary vertices in place
   bool retriangulate = false;     //!< re-triangulate between steps when needed (`--retriangulate`)
   double edge_length = 0;         //!< ℓ of the re-triangulation; 0: the initial mean edge length
+  std::string curvature = "normal_integral"; //!< H, one of curvature_names(); eq. (9) by default
+  std::string mass = "voronoi";   //!< vertex areas of Δ = M⁻¹L, one of mass_names(); eq. (10) by default
+  bool extrapolate = false;       //!< Richardson-extrapolated steps: second order in τ, three solves a step
 };
+
+//! The names `DiffusionSettings::curvature` takes (`sdflow run --curvature`), the default first.
+std::vector<std::string> curvature_names();
+
+//! The names `DiffusionSettings::mass` takes (`sdflow run --mass`), the default first.
+std::vector<std::string> mass_names();
 
 //! Settings of "Surface diffusion: re-triangulate"; each maps to one option of `sdflow retriangulate`.
 struct RetriangulationSettings {
@@ -55,8 +65,9 @@ double natural_time_step(double mean_edge_length);
 //! Validate and orient `input` exactly as `sdflow` validates a mesh file (`name`, the mesh's file
 //! or label, names it in messages and in the run's recorded parameters), run the surface diffusion
 //! flow for `settings.steps` steps, and return the final surface with its normals and mean
-//! curvature. All connected components evolve together, each stepped on its own (Appendix A of the
-//! paper); with `settings.retriangulate` the run re-triangulates as `sdflow run --retriangulate` does.
+//! curvature (the H the run steps with). All connected components evolve together, each stepped on
+//! its own (Appendix A of the paper); with `settings.retriangulate` the run re-triangulates as
+//! `sdflow run --retriangulate` does.
 ShadedSurface surface_diffusion(const Surface& input, const std::string& name, const DiffusionSettings& settings,
                                 const Reporter& reporter = {});
 

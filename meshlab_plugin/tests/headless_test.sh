@@ -8,7 +8,9 @@
 #       "Surface diffusion N steps" on MESH must give the surface `sdflow run` gives with the same
 #       parameters (same vertices and triangles, coordinates equal to float precision), with the
 #       automatic time step, with a constant τ and volume conservation, and with re-triangulation
-#       (which must change the number of vertices).
+#       (which must change the number of vertices); and, from the constant-τ case, with each other
+#       mean curvature, the volume-gradient vertex areas and extrapolated steps (each of which must
+#       change the surface).
 #   headless_test.sh retriangulate-same-as-cli PREFIX WORKDIR SDFLOW COMPARE_MESHES
 #       "Surface diffusion: re-triangulate" on two overlapping spheres and a small one apart (made by
 #       `sdflow shape`) must give the surface `sdflow retriangulate` gives with the same parameters,
@@ -17,6 +19,10 @@
 #       "Surface diffusion: re-triangulate" on MESH with a minimum component size no component
 #       reaches: meshlabserver must exit non-zero, its log must give the reason, and no output file
 #       may be written.
+#   headless_test.sh bad-choice PREFIX WORKDIR MESH
+#       "Surface diffusion N steps" on MESH with a mean curvature index past the last choice:
+#       meshlabserver must exit non-zero, its log must name the choices, and no output file may be
+#       written.
 set -euo pipefail
 case_name=$1 prefix=$2 work=$3
 
@@ -27,7 +33,9 @@ fail() { echo "headless_test $case_name: FAILED: $*" >&2; exit 1; }
 
 # Writes a filter script for "Surface diffusion N steps" giving every parameter (meshlabserver
 # asserts on a missing one): FILE STEPS AUTOMATIC_TAU TAU BETA CONSERVE_VOLUME FIXED_BOUNDARY
-# RETRIANGULATE EDGE_LENGTH
+# RETRIANGULATE EDGE_LENGTH CURVATURE MASS EXTRAPOLATE. CURVATURE and MASS are indices of the
+# choices (0: the paper's); an enum parameter needs its choices in the script, or meshlabserver
+# drops it and aborts as on a missing one.
 write_diffusion_script() {
   cat > "$1" <<MLX
 <!DOCTYPE FilterScript>
@@ -41,6 +49,10 @@ write_diffusion_script() {
   <Param type="RichBool" name="FixedBoundary" value="$7"/>
   <Param type="RichBool" name="Retriangulate" value="$8"/>
   <Param type="RichFloat" name="EdgeLength" value="$9"/>
+  <Param type="RichEnum" name="Curvature" value="${10}" enum_cardinality="3" enum_val0="normal_integral"
+         enum_val1="normal_integral_angle_sum" enum_val2="cotangent"/>
+  <Param type="RichEnum" name="Mass" value="${11}" enum_cardinality="2" enum_val0="voronoi" enum_val1="volume_gradient"/>
+  <Param type="RichBool" name="Extrapolate" value="${12}"/>
  </filter>
 </FilterScript>
 MLX
@@ -70,6 +82,13 @@ vertex_count() { grep -a -m 1 '^element vertex' "$1" | cut -d' ' -f3; }
 expect_changed() {
   [[ $(vertex_count "$1") != $(vertex_count "$work/input.ply") ]] \
     || fail "$1 has the input's $(vertex_count "$1") vertices: nothing was re-triangulated"
+}
+
+# Fails unless the surfaces of the filter's runs NAME and OTHER differ (beyond float precision).
+expect_different() {
+  local status=0
+  "$compare" "$work/$1.meshlab.ply" "$work/$2.meshlab.ply" > /dev/null 2>&1 || status=$?
+  [[ $status -eq 1 ]] || fail "$2: the same surface as $1 (compare_meshes exit $status): the option did not reach the run"
 }
 
 # Writes the OFF files A and B (as sdflow writes them: "OFF", "V F 0", points, triangles) as one
@@ -115,7 +134,7 @@ compare_with_cli() {
 case "$case_name" in
 nonmanifold)
   data=$4
-  write_diffusion_script "$work/diffusion.mlx" 3 true 0.001 0.5 false false false 0.1
+  write_diffusion_script "$work/diffusion.mlx" 3 true 0.001 0.5 false false false 0.1 0 0 false
   run_meshlabserver -l "$work/log.txt" -i "$data/fins.ply" -o "$work/out.ply" -s "$work/diffusion.mlx"
   [[ $status -ne 0 ]] || fail "meshlabserver exited with 0 on a non-manifold mesh"
   grep -q "non-manifold-edge" "$work/log.txt" || fail "the log does not name the problem: $(cat "$work/log.txt")"
@@ -127,12 +146,24 @@ same-as-cli)
   # MeshLab holds coordinates as floats: both sides start from its float copy of the mesh.
   run_meshlabserver -i "$mesh" -o "$work/input.ply"
   [[ $status -eq 0 && -s "$work/input.ply" ]] || fail "meshlabserver could not convert $mesh"
-  compare_with_cli adaptive "12 true 0.001 0.5 false false false 0.1" --adaptive --beta 0.5
-  compare_with_cli constant "8 false 0.05 0.5 true false false 0.1" --tau 0.05 --beta 0.5 --conserve-volume
+  compare_with_cli adaptive "12 true 0.001 0.5 false false false 0.1 0 0 false" --adaptive --beta 0.5
+  compare_with_cli constant "8 false 0.05 0.5 true false false 0.1 0 0 false" --tau 0.05 --beta 0.5 --conserve-volume
   # Half the mean edge length (0.61): the first step's surface has edges longer than 2ℓ.
-  compare_with_cli retriangulated "4 true 0.001 0.5 false false true 0.3" --adaptive --beta 0.5 \
+  compare_with_cli retriangulated "4 true 0.001 0.5 false false true 0.3 0 0 false" --adaptive --beta 0.5 \
     --retriangulate --edge-length 0.3
   expect_changed "$work/retriangulated.meshlab.ply"
+  # The constant case with one scheme option changed.
+  compare_with_cli angle_sum "8 false 0.05 0.5 true false false 0.1 1 0 false" --tau 0.05 --beta 0.5 \
+    --conserve-volume --curvature normal_integral_angle_sum
+  compare_with_cli cotangent "8 false 0.05 0.5 true false false 0.1 2 0 false" --tau 0.05 --beta 0.5 \
+    --conserve-volume --curvature cotangent
+  compare_with_cli volume_gradient "8 false 0.05 0.5 true false false 0.1 0 1 false" --tau 0.05 --beta 0.5 \
+    --conserve-volume --mass volume_gradient
+  compare_with_cli extrapolated "8 false 0.05 0.5 true false false 0.1 0 0 true" --tau 0.05 --beta 0.5 \
+    --conserve-volume --extrapolate
+  for name in angle_sum cotangent volume_gradient extrapolated; do
+    expect_different constant "$name"
+  done
   echo "headless_test same-as-cli: the plugin's surfaces equal sdflow run's"
   ;;
 retriangulate-same-as-cli)
@@ -173,7 +204,17 @@ nothing-left)
   [[ ! -e "$work/out.ply" ]] || fail "an output file was written"
   echo "headless_test nothing-left: exit code $status, reason logged, no output written"
   ;;
+bad-choice)
+  mesh=$4
+  write_diffusion_script "$work/diffusion.mlx" 3 true 0.001 0.5 false false false 0.1 3 0 false
+  run_meshlabserver -l "$work/log.txt" -i "$mesh" -o "$work/out.ply" -s "$work/diffusion.mlx"
+  [[ $status -ne 0 ]] || fail "meshlabserver exited with 0 on a mean curvature index past the last choice"
+  grep -qF "Curvature must be 0 (normal_integral), 1 (normal_integral_angle_sum) or 2 (cotangent), got 3" \
+    "$work/log.txt" || fail "the log does not name the choices: $(cat "$work/log.txt")"
+  [[ ! -e "$work/out.ply" ]] || fail "an output file was written"
+  echo "headless_test bad-choice: exit code $status, choices logged, no output written"
+  ;;
 *)
-  fail "unknown case (nonmanifold, same-as-cli, retriangulate-same-as-cli, nothing-left)"
+  fail "unknown case (nonmanifold, same-as-cli, retriangulate-same-as-cli, nothing-left, bad-choice)"
   ;;
 esac

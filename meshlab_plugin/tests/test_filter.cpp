@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -16,6 +17,9 @@ namespace {
 
 constexpr double curvature_tolerance = 0.02; // relative, eq. (9) on a subdivided icosahedron
 constexpr double normal_tolerance = 1e-3;    // radial unit normals on the same sphere
+// A coordinate difference far above float rounding (3.6e-7 at 3): each scheme option moves the
+// ellipsoid's 3 steps by 5e-5 (volume-gradient areas) to 2e-3 (cotangent H).
+constexpr double least_option_effect = 1e-5;
 
 class FilterTest : public ::testing::Test {
 protected:
@@ -72,6 +76,28 @@ protected:
     return model;
   }
 
+  //! An ellipsoid with semi-axes 3, 2, 2 (a stretched subdivided icosahedron, 642 vertices).
+  MeshModel* add_ellipsoid()
+  {
+    MeshModel* model = add_sphere();
+    for (auto& v : model->cm.vert)
+      v.P()[0] *= 1.5f;
+    return model;
+  }
+
+  //! The vertex positions after 3 steps of the flow on a new ellipsoid, with parameter `name` set to `value`.
+  std::vector<Point3m> flowed_ellipsoid(const QString& name, const Value& value)
+  {
+    add_ellipsoid();
+    RichParameterList list = parameters(3);
+    list.setValue(name, value);
+    EXPECT_TRUE(plugin.applyFilter(action(), document, list, nullptr)) << log_text().toStdString();
+    std::vector<Point3m> positions;
+    for (const CVertexO& v : document.mm()->cm.vert)
+      positions.push_back(v.cP());
+    return positions;
+  }
+
   //! Two unit spheres centred at (±0.6, 0, 0): two components that intersect each other.
   MeshModel* add_overlapping_spheres()
   {
@@ -107,6 +133,17 @@ bool record_progress(const int percent, const char*)
 {
   progress_seen.push_back(percent);
   return true;
+}
+
+//! The largest coordinate difference between two surfaces with the same vertices.
+double largest_difference(const std::vector<Point3m>& a, const std::vector<Point3m>& b)
+{
+  EXPECT_EQ(a.size(), b.size());
+  double largest = 0;
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i)
+    for (int c = 0; c < 3; ++c)
+      largest = std::max(largest, std::abs(double(a[i][c]) - double(b[i][c])));
+  return largest;
 }
 
 TEST_F(FilterTest, every_parameter_has_a_label_and_a_tooltip)
@@ -158,6 +195,28 @@ TEST_F(FilterTest, default_edge_lengths_are_the_mean_edge_length)
   EXPECT_FALSE(parameters(1).getBool("Retriangulate"));
 }
 
+TEST_F(FilterTest, scheme_options_offer_the_command_line_names_and_default_to_the_papers)
+{
+  add_sphere();
+  const RichParameterList list = parameters(1);
+  EXPECT_EQ(dynamic_cast<const RichEnum&>(list.getParameterByName("Curvature")).enumvalues,
+            QStringList({"normal_integral", "normal_integral_angle_sum", "cotangent"}));
+  EXPECT_EQ(dynamic_cast<const RichEnum&>(list.getParameterByName("Mass")).enumvalues,
+            QStringList({"voronoi", "volume_gradient"}));
+  EXPECT_EQ(list.getEnum("Curvature"), 0);
+  EXPECT_EQ(list.getEnum("Mass"), 0);
+  EXPECT_FALSE(list.getBool("Extrapolate"));
+}
+
+TEST_F(FilterTest, each_scheme_option_changes_the_flow)
+{
+  const std::vector<Point3m> paper = flowed_ellipsoid("Curvature", EnumValue(0));
+  EXPECT_GT(largest_difference(paper, flowed_ellipsoid("Curvature", EnumValue(1))), least_option_effect);
+  EXPECT_GT(largest_difference(paper, flowed_ellipsoid("Curvature", EnumValue(2))), least_option_effect);
+  EXPECT_GT(largest_difference(paper, flowed_ellipsoid("Mass", EnumValue(1))), least_option_effect);
+  EXPECT_GT(largest_difference(paper, flowed_ellipsoid("Extrapolate", BoolValue(true))), least_option_effect);
+}
+
 TEST_F(FilterTest, default_time_step_scales_like_the_fourth_power_of_edge_length)
 {
   constexpr double scale = 3;
@@ -204,6 +263,27 @@ TEST_F(FilterTest, bad_parameter_fails_and_leaves_the_mesh_unchanged)
   list.setValue("EdgeLength", FloatValue(-1.0f));
   EXPECT_FALSE(plugin.applyFilter(retriangulate_action(), document, list, nullptr));
   EXPECT_TRUE(plugin.errorMsg().contains("edge length")) << plugin.errorMsg().toStdString();
+  EXPECT_EQ(model->cm.vert[7].cP(), before);
+}
+
+TEST_F(FilterTest, choice_out_of_range_fails_naming_the_choices_and_leaves_the_mesh_unchanged)
+{
+  MeshModel* model = add_sphere();
+  const Point3m before = model->cm.vert[7].cP();
+  RichParameterList list = parameters(3);
+  list.setValue("Curvature", EnumValue(3)); // meshlabserver takes any index from a script
+  EXPECT_FALSE(plugin.applyFilter(action(), document, list, nullptr));
+  EXPECT_TRUE(plugin.errorMsg().contains(
+      "Curvature must be 0 (normal_integral), 1 (normal_integral_angle_sum) or 2 (cotangent), got 3"))
+      << plugin.errorMsg().toStdString();
+  EXPECT_TRUE(log_text().contains("Curvature must be")) << log_text().toStdString();
+  EXPECT_EQ(model->cm.vert[7].cP(), before);
+
+  list = parameters(3);
+  list.setValue("Mass", EnumValue(-1));
+  EXPECT_FALSE(plugin.applyFilter(action(), document, list, nullptr));
+  EXPECT_TRUE(plugin.errorMsg().contains("Mass must be 0 (voronoi) or 1 (volume_gradient), got -1"))
+      << plugin.errorMsg().toStdString();
   EXPECT_EQ(model->cm.vert[7].cP(), before);
 }
 
