@@ -3,9 +3,10 @@
 //! rate it measured (exact: (l-1)l(l+1)(l+2)/2 = 12, DESIGN.md §1), its relative error and its time,
 //! so the two can be compared at equal accuracy; sdflow runs with the paper's eq. (9) H, with the
 //! cotangent H, and with the cotangent H over volume-gradient areas (`mass = "volume_gradient"`, the
-//! spatial discretisation Evolver's method uses), docs/flow.md. `cpu_s` is the CPU time (the Evolver process's own for
-//! Evolver), meaningful when the machine is shared; Time is wall-clock. The Evolver rows are skipped when `evolver-nox-d` is
-//! not installed (scripts/install-deps.sh --bench).
+//! spatial discretisation Evolver's method uses), plain or Richardson-extrapolated (docs/flow.md).
+//! `cpu_s` is the CPU time (the Evolver process's own for Evolver), meaningful when the machine is
+//! shared; Time is wall-clock. The Evolver rows are skipped when `evolver-nox-d` is not installed
+//! (scripts/install-deps.sh --bench).
 //!   bench_flow_decay --benchmark_counters_tabular=true
 
 #include "sdflow/flow/cotangent_cache.h"
@@ -95,8 +96,8 @@ void Sdflow(benchmark::State& state)
                                            : sdflow::CurvatureMethod::cotangent},
       .mass = variant == 2 ? sdflow::VertexMass::volume_gradient : sdflow::VertexMass::voronoi,
       .extrapolate = extrapolate};
-  state.SetLabel(fmt::format("{}{}", variant == 0 ? "eq. 9 H" : variant == 1 ? "cotangent H" : "cotangent H, volume-gradient M",
-                             extrapolate ? ", extrapolated" : ""));
+  const char* name = variant == 0 ? "eq. 9 H" : variant == 1 ? "cotangent H" : "cotangent H, volume-gradient M";
+  state.SetLabel(fmt::format("{}{}", name, extrapolate ? ", extrapolated" : ""));
   const Mesh start = perturbed_sphere(level);
   for (auto _ : state) {
     Mesh mesh = start;

@@ -1,8 +1,9 @@
 //! `sdflow run`: evolve a surface by surface diffusion flow into a run directory (flow/simulation.h).
 //!   sdflow run --input MESH --out DIR [--steps N] [--t-end T]
 //!              [--tau T | --schedule FILE [--schedule-retries N] | --adaptive]
-//!              [--beta B] [--curvature NAME] [--mass NAME] [--extrapolate] [--solver cholmod|qr] [--snapshot-every K]
-//!              [--checkpoint-every K] [--conserve-volume] [--fixed-boundary] [--retriangulate [--edge-length L]] [--quiet]
+//!              [--beta B] [--curvature NAME] [--mass NAME] [--extrapolate] [--solver cholmod|qr]
+//!              [--snapshot-every K] [--checkpoint-every K] [--conserve-volume] [--fixed-boundary]
+//!              [--retriangulate [--edge-length L]] [--quiet]
 //!   sdflow run SCENARIO.toml [flags]     (flags override the file's keys)
 //!   sdflow run --resume DIR [--steps N] [--t-end T]
 
@@ -29,7 +30,8 @@ struct RunArguments {
   long steps = 0, snapshot_every = 0, checkpoint_every = 0;
   int schedule_retries = 0;
   double end_time = 0, tau = 0, beta = 0, edge_length = 0;
-  bool adaptive = false, extrapolate = false, conserve_volume = false, fixed_boundary = false, retriangulate = false, quiet = false;
+  bool adaptive = false, extrapolate = false, conserve_volume = false, fixed_boundary = false,
+       retriangulate = false, quiet = false;
   std::map<std::string, CLI::Option*> given;
   bool has(const std::string& name) const { return given.at(name)->count() > 0; }
 };
@@ -142,8 +144,8 @@ void run(const RunArguments& a)
   const bool resuming = a.has("--resume");
   if (resuming) {
     if (a.has("--input") || a.has("--tau") || a.has("--schedule") || a.has("--adaptive") || a.has("--beta") ||
-        a.has("--schedule-retries") || a.has("--curvature") || a.has("--mass") || a.has("--extrapolate") || a.has("--solver") || a.has("--retriangulate") ||
-        a.has("--edge-length") || !a.scenario.empty())
+        a.has("--schedule-retries") || a.has("--curvature") || a.has("--mass") || a.has("--extrapolate") ||
+        a.has("--solver") || a.has("--retriangulate") || a.has("--edge-length") || !a.scenario.empty())
       throw InvalidParameter("--resume continues a run with its own parameters (run.toml): only --steps, --t-end, "
                              "--snapshot-every and --checkpoint-every may be changed");
     read_run_parameters(std::filesystem::path(a.resume) / "run.toml", p);

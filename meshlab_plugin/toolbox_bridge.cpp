@@ -152,7 +152,10 @@ std::vector<std::string> curvature_names()
           curvature_name({.method = CurvatureMethod::cotangent})};
 }
 
-std::vector<std::string> mass_names() { return {mass_name(VertexMass::voronoi), mass_name(VertexMass::volume_gradient)}; }
+std::vector<std::string> mass_names()
+{
+  return {mass_name(VertexMass::voronoi), mass_name(VertexMass::volume_gradient)};
+}
 
 ShadedSurface surface_diffusion(const Surface& input, const std::string& name, const DiffusionSettings& settings,
                                 const Reporter& reporter)

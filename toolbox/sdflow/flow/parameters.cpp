@@ -116,8 +116,8 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
   }
   check_keys(file, table,
              {"input", "out", "steps", "t_end", "time_step", "tau", "schedule", "schedule_retries", "beta", "curvature",
-              "mass", "extrapolate",              "solver", "factorisation", "cg_tolerance", "snapshot_every", "checkpoint_every", "conserve_volume",
-              "fixed_boundary", "adaptive", "retriangulation", "reference_sphere"},
+              "mass", "extrapolate", "solver", "factorisation", "cg_tolerance", "snapshot_every", "checkpoint_every",
+              "conserve_volume", "fixed_boundary", "adaptive", "retriangulation", "reference_sphere"},
              "");
   std::optional<std::string> mode;
   for (const auto& [key_view, node] : table) {
