@@ -66,6 +66,17 @@ TEST(FlowStep, unit_sphere_distances_do_not_grow_and_fall_with_refinement)
   }
 }
 
+//! The unit icosphere of `level` with the P2 mode r = 1 + amplitude·P2(z) (DESIGN.md §1).
+Mesh p2_perturbed_icosphere(int level, double amplitude)
+{
+  Mesh mesh = analytic::icosphere(level);
+  for (auto v : mesh.vertices()) {
+    const auto p = mesh.point(v);
+    mesh.set_point(v, p * (1 + amplitude * 0.5 * (3 * p[2] * p[2] - 1)));
+  }
+  return mesh;
+}
+
 //! Amplitude of the P2 mode of |x| - R̄ (area-weighted projection).
 double p2_amplitude(const Mesh& mesh)
 {
@@ -100,11 +111,7 @@ TEST(FlowStep, l2_mode_decays_at_the_analytic_rate)
   for (int level : {2, 3, 4}) {
     SCOPED_TRACE(level);
     const int steps = 12 << (level - 2);
-    Mesh mesh = analytic::icosphere(level);
-    for (auto v : mesh.vertices()) {
-      const auto p = mesh.point(v);
-      mesh.set_point(v, p * (1 + amplitude * 0.5 * (3 * p[2] * p[2] - 1)));
-    }
+    const Mesh mesh = p2_perturbed_icosphere(level, amplitude);
     const double a0 = p2_amplitude(mesh);
     const double a1 = p2_amplitude(evolve(mesh, end_time / steps, steps));
     const double rate = -std::log(a1 / a0) / end_time;
@@ -139,11 +146,7 @@ TEST(FlowStep, cotangent_curvature_gives_the_l2_rate_on_coarse_meshes)
   const double exact_rate = 1.0 * 2 * 3 * 4 / 2.0;
   for (int level : {2, 3}) {
     SCOPED_TRACE(level);
-    Mesh mesh = analytic::icosphere(level);
-    for (auto v : mesh.vertices()) {
-      const auto p = mesh.point(v);
-      mesh.set_point(v, p * (1 + amplitude * 0.5 * (3 * p[2] * p[2] - 1)));
-    }
+    const Mesh mesh = p2_perturbed_icosphere(level, amplitude);
     const double a0 = p2_amplitude(mesh);
     const auto error = [&](CurvatureMethod method) {
       const double a1 = p2_amplitude(evolve(mesh, end_time / steps, steps, {.curvature = {.method = method}}));
@@ -182,11 +185,7 @@ TEST(FlowStep, volume_gradient_mass_gives_the_l2_rate_on_the_coarsest_mesh)
   constexpr double end_time = 0.05;
   constexpr int steps = 200;
   const double exact_rate = 1.0 * 2 * 3 * 4 / 2.0;
-  Mesh mesh = analytic::icosphere(2);
-  for (auto v : mesh.vertices()) {
-    const auto p = mesh.point(v);
-    mesh.set_point(v, p * (1 + amplitude * 0.5 * (3 * p[2] * p[2] - 1)));
-  }
+  const Mesh mesh = p2_perturbed_icosphere(2, amplitude);
   const double a0 = p2_amplitude(mesh);
   const auto error = [&](VertexMass mass) {
     const SchemeOptions scheme{.curvature = {.method = CurvatureMethod::cotangent}, .mass = mass};
@@ -203,11 +202,7 @@ TEST(FlowStep, extrapolated_steps_are_second_order_in_time)
   // Error at t = 0.04 against 256 extrapolated steps, for 4, 8, 16 steps: it halves with τ for
   // the plain step and falls by four for the extrapolated one.
   constexpr double end_time = 0.04;
-  Mesh start = analytic::icosphere(2);
-  for (auto v : start.vertices()) {
-    const auto p = start.point(v);
-    start.set_point(v, p * (1 + 0.05 * 0.5 * (3 * p[2] * p[2] - 1)));
-  }
+  const Mesh start = p2_perturbed_icosphere(2, 0.05);
   const auto final = [&](int steps, bool extrapolate) {
     return vertex_positions(evolve(start, end_time / steps, steps, {.extrapolate = extrapolate}));
   };
