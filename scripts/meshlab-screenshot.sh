@@ -29,23 +29,12 @@ cp "$(command -v meshlab)" "$tmp/prefix/bin/meshlab"  # a copy: a link would res
 # (its range from a 1% percentile crop; minVal and maxVal are then unused) run by meshlabserver,
 # saved with vertex colours and quality.
 "$build/cli/sdflow" --quiet shape ellipsoid --vertices 2500 -o "$tmp/ellipsoid.ply" > /dev/null
-cat > "$tmp/evolve.mlx" << 'MLX'
-<!DOCTYPE FilterScript>
-<FilterScript>
- <filter name="Surface diffusion N steps">
-  <Param type="RichInt" name="Steps" value="6"/>
-  <Param type="RichBool" name="AutomaticTau" value="true"/>
-  <Param type="RichFloat" name="Tau" value="0.001"/>
-  <Param type="RichFloat" name="Beta" value="0.5"/>
-  <Param type="RichBool" name="ConserveVolume" value="true"/>
-  <Param type="RichBool" name="FixedBoundary" value="false"/>
-  <Param type="RichBool" name="Retriangulate" value="false"/>
-  <Param type="RichFloat" name="EdgeLength" value="0.3"/>
-  <Param type="RichEnum" name="Curvature" value="0" enum_cardinality="3" enum_val0="normal_integral"
-         enum_val1="normal_integral_angle_sum" enum_val2="cotangent"/>
-  <Param type="RichEnum" name="Mass" value="0" enum_cardinality="2" enum_val0="voronoi" enum_val1="volume_gradient"/>
-  <Param type="RichBool" name="Extrapolate" value="false"/>
- </filter>
+# shellcheck source=SCRIPTDIR/../meshlab_plugin/tests/diffusion_filter_mlx.sh
+source meshlab_plugin/tests/diffusion_filter_mlx.sh
+{
+  printf '<!DOCTYPE FilterScript>\n<FilterScript>\n'
+  diffusion_filter_mlx 6 true 0.001 0.5 true false false 0.3 0 0 false
+  cat << 'MLX'
  <filter name="Colorize by vertex Quality">
   <Param type="RichFloat" name="minVal" value="0"/>
   <Param type="RichFloat" name="maxVal" value="0"/>
@@ -54,6 +43,7 @@ cat > "$tmp/evolve.mlx" << 'MLX'
  </filter>
 </FilterScript>
 MLX
+} > "$tmp/evolve.mlx"
 timeout 240 xvfb-run -a "$tmp/prefix/bin/meshlabserver" -i "$tmp/ellipsoid.ply" -o "$tmp/evolved.ply" -m vc vq \
   -s "$tmp/evolve.mlx" -l "$tmp/evolve.log" > "$tmp/console.txt" 2>&1 || { cat "$tmp/evolve.log"; exit 1; }
 grep 'steps to t\|Quality Range' "$tmp/evolve.log" | sort -u

@@ -31,31 +31,15 @@ mkdir -p "$work"
 
 fail() { echo "headless_test $case_name: FAILED: $*" >&2; exit 1; }
 
-# Writes a filter script for "Surface diffusion N steps" giving every parameter (meshlabserver
-# asserts on a missing one): FILE STEPS AUTOMATIC_TAU TAU BETA CONSERVE_VOLUME FIXED_BOUNDARY
-# RETRIANGULATE EDGE_LENGTH CURVATURE MASS EXTRAPOLATE. CURVATURE and MASS are indices of the
-# choices (0: the paper's); an enum parameter needs its choices in the script, or meshlabserver
-# drops it and aborts as on a missing one.
+# shellcheck source=SCRIPTDIR/diffusion_filter_mlx.sh
+source "$(dirname "${BASH_SOURCE[0]}")/diffusion_filter_mlx.sh"
+
+# Writes a filter script for "Surface diffusion N steps": FILE, then the settings of
+# diffusion_filter_mlx (diffusion_filter_mlx.sh).
 write_diffusion_script() {
-  cat > "$1" <<MLX
-<!DOCTYPE FilterScript>
-<FilterScript>
- <filter name="Surface diffusion N steps">
-  <Param type="RichInt" name="Steps" value="$2"/>
-  <Param type="RichBool" name="AutomaticTau" value="$3"/>
-  <Param type="RichFloat" name="Tau" value="$4"/>
-  <Param type="RichFloat" name="Beta" value="$5"/>
-  <Param type="RichBool" name="ConserveVolume" value="$6"/>
-  <Param type="RichBool" name="FixedBoundary" value="$7"/>
-  <Param type="RichBool" name="Retriangulate" value="$8"/>
-  <Param type="RichFloat" name="EdgeLength" value="$9"/>
-  <Param type="RichEnum" name="Curvature" value="${10}" enum_cardinality="3" enum_val0="normal_integral"
-         enum_val1="normal_integral_angle_sum" enum_val2="cotangent"/>
-  <Param type="RichEnum" name="Mass" value="${11}" enum_cardinality="2" enum_val0="voronoi" enum_val1="volume_gradient"/>
-  <Param type="RichBool" name="Extrapolate" value="${12}"/>
- </filter>
-</FilterScript>
-MLX
+  local file=$1
+  shift
+  { printf '<!DOCTYPE FilterScript>\n<FilterScript>\n'; diffusion_filter_mlx "$@"; printf '</FilterScript>\n'; } > "$file"
 }
 
 # Writes a filter script for "Surface diffusion: re-triangulate" giving every parameter:

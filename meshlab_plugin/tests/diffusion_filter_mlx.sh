@@ -1,0 +1,26 @@
+# shellcheck shell=bash
+# Sourced by headless_test.sh and scripts/meshlab-screenshot.sh: one place for the parameters of
+# "Surface diffusion N steps" in a meshlabserver filter script.
+#   diffusion_filter_mlx STEPS AUTOMATIC_TAU TAU BETA CONSERVE_VOLUME FIXED_BOUNDARY RETRIANGULATE
+#                        EDGE_LENGTH CURVATURE MASS EXTRAPOLATE
+# prints the <filter> element with every parameter (meshlabserver asserts on a missing one).
+# CURVATURE and MASS are indices of the choices (0: the paper's); an enum parameter needs its
+# choices in the script, or meshlabserver drops it and aborts as on a missing one.
+diffusion_filter_mlx() {
+  cat <<MLX
+ <filter name="Surface diffusion N steps">
+  <Param type="RichInt" name="Steps" value="$1"/>
+  <Param type="RichBool" name="AutomaticTau" value="$2"/>
+  <Param type="RichFloat" name="Tau" value="$3"/>
+  <Param type="RichFloat" name="Beta" value="$4"/>
+  <Param type="RichBool" name="ConserveVolume" value="$5"/>
+  <Param type="RichBool" name="FixedBoundary" value="$6"/>
+  <Param type="RichBool" name="Retriangulate" value="$7"/>
+  <Param type="RichFloat" name="EdgeLength" value="$8"/>
+  <Param type="RichEnum" name="Curvature" value="$9" enum_cardinality="3" enum_val0="normal_integral"
+         enum_val1="normal_integral_angle_sum" enum_val2="cotangent"/>
+  <Param type="RichEnum" name="Mass" value="${10}" enum_cardinality="2" enum_val0="voronoi" enum_val1="volume_gradient"/>
+  <Param type="RichBool" name="Extrapolate" value="${11}"/>
+ </filter>
+MLX
+}
