@@ -104,11 +104,12 @@ void Sdflow(benchmark::State& state)
     const double cpu_begin = cpu_seconds(RUSAGE_SELF);
     const auto begin = std::chrono::steady_clock::now();
     const sdflow::CotangentCache cache(mesh);
-    sdflow::FlowSolver solver;
+    sdflow::FlowSolver solver, half_solver;
     Eigen::VectorXd w;
     for (int s = 0; s < steps; ++s) {
       const auto operators = sdflow::flow_operators(mesh, scheme, &cache);
-      auto step = extrapolate ? sdflow::extrapolated_step(mesh, operators, end_time / steps, scheme, solver, &cache, w)
+      auto step = extrapolate ? sdflow::extrapolated_step(mesh, operators, end_time / steps, scheme, solver, half_solver,
+                                                          &cache, w)
                               : sdflow::solve_step(mesh, operators, end_time / steps, 0.5, solver, w);
       sdflow::set_vertex_positions(mesh, step.positions);
       w = std::move(step.w);

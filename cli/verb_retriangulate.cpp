@@ -109,6 +109,10 @@ void add_retriangulate_verb(CLI::App& app)
   verb->add_option("--iterations", o.remesh_iterations, "Remeshing iterations (0: no remeshing)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  verb->add_option("--edges-per-radius", o.edges_per_radius,
+                   "Edges per radius of curvature where that is finer than the edge length (0: uniform)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   verb->add_flag("--always-rebuild", o.always_rebuild,
                  "Rebuild from the points even when nothing intersects (stages 3-5 always)");
   verb->add_option("--neighbours", o.normals.neighbours, "k nearest neighbours of the jet normals")

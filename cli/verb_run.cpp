@@ -1,7 +1,8 @@
 //! `sdflow run`: evolve a surface by surface diffusion flow into a run directory (flow/simulation.h).
 //!   sdflow run --input MESH --out DIR [--steps N] [--t-end T]
 //!              [--tau T | --schedule FILE [--schedule-retries N] | --adaptive]
-//!              [--beta B] [--curvature NAME] [--mass NAME] [--extrapolate] [--solver cholmod|qr]
+//!              [--preset paper|default] [--beta B] [--curvature NAME] [--mass NAME] [--extrapolate]
+//!              [--tolerance E] [--solver cholmod|qr] [--edges-per-radius N]
 //!              [--snapshot-every K] [--checkpoint-every K] [--conserve-volume] [--fixed-boundary]
 //!              [--retriangulate [--edge-length L]] [--quiet]
 //!   sdflow run SCENARIO.toml [flags]     (flags override the file's keys)
@@ -26,10 +27,10 @@ namespace sdflow::cli {
 namespace {
 
 struct RunArguments {
-  std::string scenario, input, out, resume, schedule, solver, curvature, mass;
+  std::string scenario, input, out, resume, schedule, solver, curvature, mass, preset;
   long steps = 0, snapshot_every = 0, checkpoint_every = 0;
   int schedule_retries = 0;
-  double end_time = 0, tau = 0, beta = 0, edge_length = 0;
+  double end_time = 0, tau = 0, beta = 0, edge_length = 0, tolerance = 0, edges_per_radius = 0;
   bool adaptive = false, extrapolate = false, conserve_volume = false, fixed_boundary = false,
        retriangulate = false, quiet = false;
   std::map<std::string, CLI::Option*> given;
@@ -110,6 +111,7 @@ private:
 
 void apply_flags(const RunArguments& a, RunParameters& p)
 {
+  if (a.has("--preset")) apply_preset(a.preset, p);
   if (a.has("--input")) p.input = a.input;
   if (a.has("--out")) p.output_dir = a.out;
   if (a.has("--steps")) p.steps = a.steps;
@@ -118,6 +120,11 @@ void apply_flags(const RunArguments& a, RunParameters& p)
   if (a.has("--curvature")) p.scheme.curvature = curvature_options(a.curvature);
   if (a.has("--mass")) p.scheme.mass = vertex_mass(a.mass);
   if (a.has("--extrapolate")) p.scheme.extrapolate = true;
+  if (a.has("--tolerance")) {
+    p.time_step.adaptive.tolerance = a.tolerance;
+    p.scheme.extrapolate = true;
+  }
+  if (a.has("--edges-per-radius")) p.retriangulation.pipeline.edges_per_radius = a.edges_per_radius;
   if (a.has("--snapshot-every")) p.snapshot_every = a.snapshot_every;
   if (a.has("--checkpoint-every")) p.checkpoint_every = a.checkpoint_every;
   if (a.has("--conserve-volume")) p.conserve_volume = true;
@@ -145,6 +152,7 @@ void run(const RunArguments& a)
   if (resuming) {
     if (a.has("--input") || a.has("--tau") || a.has("--schedule") || a.has("--adaptive") || a.has("--beta") ||
         a.has("--schedule-retries") || a.has("--curvature") || a.has("--mass") || a.has("--extrapolate") ||
+        a.has("--preset") || a.has("--tolerance") || a.has("--edges-per-radius") ||
         a.has("--solver") || a.has("--retriangulate") || a.has("--edge-length") || !a.scenario.empty())
       throw InvalidParameter("--resume continues a run with its own parameters (run.toml): only --steps, --t-end, "
                              "--snapshot-every and --checkpoint-every may be changed");
@@ -207,14 +215,28 @@ void add_run_verb(CLI::App& app)
   g["--schedule"]->excludes(g["--adaptive"]);
   g["--beta"] = verb->add_option("--beta", args->beta, "Implicitness β (default 0.5; 0 = explicit)")
                     ->check(CLI::NonNegativeNumber);
+  g["--preset"] = verb->add_option("--preset", args->preset,
+                                   "paper: the paper's scheme exactly (eq. 9 H, Voronoi areas, plain steps, uniform "
+                                   "re-triangulation, no volume restoration); default: sdflow's. Other flags override it")
+                      ->check(CLI::IsMember({"paper", "default"}));
   g["--curvature"] =
       verb->add_option("--curvature", args->curvature,
-                       "Mean curvature: normal_integral (eq. 9, default), normal_integral_angle_sum or cotangent");
+                       "Mean curvature: cotangent (H = ½ N·ΔX, default), normal_integral (eq. 9, the paper's) or "
+                       "normal_integral_angle_sum")
+          ->check(CLI::IsMember({"cotangent", "normal_integral", "normal_integral_angle_sum"}));
   g["--mass"] = verb->add_option("--mass", args->mass,
                                  "Vertex areas of the Laplacian: voronoi (eq. 10, default) or volume_gradient")
                      ->check(CLI::IsMember({"voronoi", "volume_gradient"}));
   g["--extrapolate"] = verb->add_flag("--extrapolate", args->extrapolate,
                                       "Richardson-extrapolate each step: second order in τ, three solves a step");
+  g["--tolerance"] = verb->add_option("--tolerance", args->tolerance,
+                                      "Adaptive τ with a bound on the extrapolated step's local error estimate, "
+                                      "relative to the local edge length (implies --extrapolate)")
+                         ->check(CLI::PositiveNumber);
+  g["--edges-per-radius"] =
+      verb->add_option("--edges-per-radius", args->edges_per_radius,
+                       "Re-triangulation: edges per radius of curvature where finer than ℓ (default 4; 0: uniform ℓ)")
+          ->check(CLI::NonNegativeNumber);
   g["--solver"] = verb->add_option("--solver", args->solver, "Linear solver: cholmod (default) or qr (paper's, slow)")
                       ->check(CLI::IsMember({"cholmod", "qr"}));
   g["--snapshot-every"] = verb->add_option("--snapshot-every", args->snapshot_every,

@@ -97,7 +97,7 @@ TEST(RunParameters, every_curvature_name_reads_back_to_its_options)
     EXPECT_EQ(q.scheme.curvature.normalisation, p.scheme.curvature.normalisation);
   }
   const RunParameters defaults;
-  EXPECT_EQ(curvature_name(defaults.scheme.curvature), "normal_integral") << "the paper's eq. (9) stays the default";
+  EXPECT_EQ(curvature_name(defaults.scheme.curvature), "cotangent") << "the default must converge off spheres";
   EXPECT_THROW(curvature_options("Cotangent"), InvalidParameter);
   EXPECT_EQ(mass_name(defaults.scheme.mass), "voronoi") << "eq. (10)'s areas stay the default";
   EXPECT_EQ(vertex_mass(mass_name(VertexMass::volume_gradient)), VertexMass::volume_gradient);

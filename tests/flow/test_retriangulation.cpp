@@ -101,13 +101,13 @@ TEST(RetriangulatingRun, resumed_run_repeats_the_same_surgery)
   test::TempDir dir;
   const Mesh start = dumbbell();
   constexpr double no_end = std::numeric_limits<double>::infinity();
-  run_simulation(start, {.parameters = retriangulating_run(dir / "whole", no_end, 45)});
-  run_simulation(start, {.parameters = retriangulating_run(dir / "resumed", no_end, 20)});
+  run_simulation(start, {.parameters = retriangulating_run(dir / "whole", no_end, 160)});
+  run_simulation(start, {.parameters = retriangulating_run(dir / "resumed", no_end, 60)});
   RunParameters rest;
   read_run_parameters(dir / "resumed/run.toml", rest);
-  rest.steps = 45;
+  rest.steps = 160;
   resume_simulation({.parameters = rest});
-  EXPECT_TRUE(summarise(dir / "whole/metrics.csv").events.count("split")) << "the surgery lies after step 20";
+  EXPECT_TRUE(summarise(dir / "whole/metrics.csv").events.count("split")) << "the surgery lies after step 60";
   EXPECT_EQ(test::read_file(dir / "resumed/metrics.csv"), test::read_file(dir / "whole/metrics.csv"));
 }
 

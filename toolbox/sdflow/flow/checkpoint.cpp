@@ -19,7 +19,7 @@ namespace {
 static_assert(std::endian::native == std::endian::little, "checkpoints are written on little-endian machines");
 
 constexpr char magic[8] = {'S', 'D', 'F', 'L', 'O', 'W', 'C', 'K'};
-constexpr std::uint32_t version = 2;
+constexpr std::uint32_t version = 3;
 
 std::uint64_t fnv1a(const char* data, std::size_t size)
 {
@@ -137,6 +137,12 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file)
     w.put_string(s.file.generic_string());
   }
   w.put<std::int64_t>(c.tolerated_degraded);
+  w.put<std::int64_t>(c.half_solver.solves_since_factorisation);
+  w.put<std::int64_t>(c.half_solver.iterations_since_factorisation);
+  w.put<std::int32_t>(c.half_solver.last_iterations);
+  w.put<std::uint8_t>(c.has_half_anchor);
+  w.put_doubles(c.half_anchor_positions.data(), static_cast<std::size_t>(c.half_anchor_positions.size()));
+  w.put(c.half_anchor_tau_beta);
   w.put(fnv1a(w.bytes().data(), w.bytes().size()));
   write_atomically(file, [&](std::ostream& out) { out.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size())); });
 }
@@ -157,7 +163,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
   Reader r(bytes, file);
   r.get<std::array<char, sizeof magic>>();
   const auto file_version = r.get<std::uint32_t>();
-  if (file_version != version && file_version != 1)
+  if (file_version < 1 || file_version > version)
     throw IoError(fmt::format("{}: checkpoint version {} (this sdflow reads versions 1 to {})", file.string(),
                               file_version, version));
   Checkpoint c;
@@ -189,6 +195,14 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
   }
   if (file_version >= 2)
     c.tolerated_degraded = r.get<std::int64_t>();
+  if (file_version >= 3) {
+    c.half_solver.solves_since_factorisation = r.get<std::int64_t>();
+    c.half_solver.iterations_since_factorisation = r.get<std::int64_t>();
+    c.half_solver.last_iterations = r.get<std::int32_t>();
+    c.has_half_anchor = r.get<std::uint8_t>() != 0;
+    c.half_anchor_positions = to_vectors(r.get_doubles(), file);
+    c.half_anchor_tau_beta = r.get<double>();
+  }
   return c;
 }
 

@@ -27,12 +27,18 @@ struct Checkpoint {
   double anchor_tau_beta = 0;          //!< and its τβ
   std::vector<SeriesEntry> snapshots;  //!< the series written so far
   long tolerated_degraded = 0;         //!< RetriangulationContext::tolerated_degraded (version ≥ 2)
+  //! The half-step solver of extrapolated steps (version ≥ 3): its counters and anchor.
+  SolverState half_solver;
+  bool has_half_anchor = false;
+  VertexVectors half_anchor_positions;
+  double half_anchor_tau_beta = 0;
 };
 
 //! Write `checkpoint` atomically (little-endian binary, FNV-1a checksum at the end).
 void write_checkpoint(const Checkpoint& checkpoint, const std::filesystem::path& file);
 
-//! Read a checkpoint (this version or version 1, which had no re-triangulation state); throws
+//! Read a checkpoint (this version or an older one: version 1 had no re-triangulation state,
+//! versions 1 and 2 no half-step solver); throws
 //! IoError if the file is missing, truncated, of another version or fails its checksum.
 Checkpoint read_checkpoint(const std::filesystem::path& file);
 

@@ -106,6 +106,31 @@ VertexMass vertex_mass(const std::string& name)
   throw InvalidParameter(fmt::format("mass must be \"voronoi\" or \"volume_gradient\", got \"{}\"", name));
 }
 
+void apply_preset(const std::string& name, RunParameters& p)
+{
+  RunParameters defaults;
+  const RunParameters* source = &defaults;
+  RunParameters paper;
+  if (name == "paper") {
+    paper.scheme.curvature = {.method = CurvatureMethod::normal_curvature_integral};
+    paper.scheme.mass = VertexMass::voronoi;
+    paper.scheme.extrapolate = false;
+    paper.time_step.adaptive.tolerance = 0;
+    paper.retriangulation.pipeline.edges_per_radius = 0;
+    paper.retriangulation.restore_volume = false;
+    source = &paper;
+  } else if (name != "default") {
+    throw InvalidParameter(fmt::format("preset must be \"paper\" or \"default\", got \"{}\"", name));
+  }
+  p.scheme.curvature = source->scheme.curvature;
+  p.scheme.mass = source->scheme.mass;
+  p.scheme.extrapolate = source->scheme.extrapolate;
+  p.time_step.adaptive.tolerance = source->time_step.adaptive.tolerance;
+  p.retriangulation.pipeline.edges_per_radius = source->retriangulation.pipeline.edges_per_radius;
+  p.retriangulation.pipeline.min_edge_fraction = source->retriangulation.pipeline.min_edge_fraction;
+  p.retriangulation.restore_volume = source->retriangulation.restore_volume;
+}
+
 void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
 {
   toml::table table;
@@ -115,14 +140,22 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
     throw IoError(fmt::format("{}:{}: {}", file.string(), e.source().begin.line, e.description()));
   }
   check_keys(file, table,
-             {"input", "out", "steps", "t_end", "time_step", "tau", "schedule", "schedule_retries", "beta", "curvature",
+             {"preset", "input", "out", "steps", "t_end", "time_step", "tau", "schedule", "schedule_retries", "beta", "curvature",
               "mass", "extrapolate", "solver", "factorisation", "cg_tolerance", "snapshot_every", "checkpoint_every",
               "conserve_volume", "fixed_boundary", "adaptive", "retriangulation", "reference_sphere"},
              "");
+  if (const toml::node* preset = table.get("preset")) {
+    try {
+      apply_preset(get<std::string>(file, *preset, "preset"), p);
+    } catch (const InvalidParameter& e) {
+      bad(file, *preset, e.what());
+    }
+  }
   std::optional<std::string> mode;
   for (const auto& [key_view, node] : table) {
     const std::string key(key_view.str());
-    if (key == "input") p.input = resolve(file, get<std::string>(file, node, "input"));
+    if (key == "preset") continue;
+    else if (key == "input") p.input = resolve(file, get<std::string>(file, node, "input"));
     else if (key == "out") p.output_dir = resolve(file, get<std::string>(file, node, "out"));
     else if (key == "steps") p.steps = get<long>(file, node, "steps");
     else if (key == "t_end") p.end_time = get<double>(file, node, "t_end");
@@ -178,7 +211,7 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
       if (!t)
         bad(file, node, "`adaptive` must be a table of the adaptive rule's parameters");
       check_keys(file, *t, {"initial_tau", "max_displacement", "growth", "shrink", "safety", "max_volume_change",
-                            "min_tau", "max_tau", "max_rejections"}, "adaptive.");
+                            "min_tau", "max_tau", "max_rejections", "tolerance"}, "adaptive.");
       AdaptiveOptions& a = p.time_step.adaptive;
       for (const auto& [k, n] : *t) {
         const std::string name(k.str());
@@ -192,6 +225,7 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
           else if (name == "safety") a.safety = v;
           else if (name == "max_volume_change") a.max_volume_change = v;
           else if (name == "min_tau") a.min_tau = v;
+          else if (name == "tolerance") a.tolerance = v;
           else a.max_tau = v;
         }
       }
@@ -201,7 +235,7 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
         bad(file, node, "`retriangulation` must be a table of the re-triangulation parameters");
       check_keys(file, *t, {"enabled", "every", "min_angle", "edge_ratio", "degraded_fraction", "always", "edge_length",
                             "remesh_iterations", "neighbours", "fill_holes", "max_hole_length", "min_component_faces",
-                            "min_component_thickness"},
+                            "min_component_thickness", "edges_per_radius", "min_edge_fraction", "restore_volume"},
                  "retriangulation.");
       RetriangulationSchedule& r = p.retriangulation;
       for (const auto& [k, n] : *t) {
@@ -209,6 +243,9 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
         if (name == "enabled") r.enabled = get<bool>(file, n, "enabled");
         else if (name == "always") r.always = get<bool>(file, n, "always");
         else if (name == "fill_holes") r.pipeline.fill_holes = get<bool>(file, n, "fill_holes");
+        else if (name == "restore_volume") r.restore_volume = get<bool>(file, n, "restore_volume");
+        else if (name == "edges_per_radius") r.pipeline.edges_per_radius = get<double>(file, n, "edges_per_radius");
+        else if (name == "min_edge_fraction") r.pipeline.min_edge_fraction = get<double>(file, n, "min_edge_fraction");
         else if (name == "every") r.every = get<long>(file, n, "every");
         else if (name == "remesh_iterations")
           r.pipeline.remesh_iterations = static_cast<int>(get<long>(file, n, "remesh_iterations"));
@@ -265,6 +302,10 @@ void validate_run_parameters(const RunParameters& p)
   if (!(p.reference_radius > 0))
     throw InvalidParameter(fmt::format("the reference sphere's radius must be positive, got {}", p.reference_radius));
   TimeStepController check(p.time_step); // validates the time-step options
+  if (p.time_step.adaptive.tolerance > 0 && !p.scheme.extrapolate)
+    throw InvalidParameter(fmt::format("an error tolerance ({}) needs extrapolated steps (extrapolate = true): "
+                                       "they provide the error estimate",
+                                       p.time_step.adaptive.tolerance));
   validate_retriangulation_schedule(p.retriangulation);
 }
 
@@ -303,17 +344,19 @@ std::string run_parameters_toml(const RunParameters& p)
   s += fmt::format("fixed_boundary = {}\n", p.scheme.boundary == BoundaryMotion::fixed);
   const AdaptiveOptions& a = p.time_step.adaptive;
   s += fmt::format("\n[adaptive]\ninitial_tau = {}\nmax_displacement = {}\ngrowth = {}\nshrink = {}\nsafety = {}\n"
-                   "max_volume_change = {}\nmin_tau = {}\nmax_tau = {}\nmax_rejections = {}\n",
+                   "max_volume_change = {}\nmin_tau = {}\nmax_tau = {}\nmax_rejections = {}\ntolerance = {}\n",
                    a.initial_tau, a.max_displacement, a.growth, a.shrink, a.safety, a.max_volume_change, a.min_tau,
-                   std::isfinite(a.max_tau) ? a.max_tau : 1e300, a.max_rejections);
+                   std::isfinite(a.max_tau) ? a.max_tau : 1e300, a.max_rejections, a.tolerance);
   const RetriangulationSchedule& r = p.retriangulation;
   s += fmt::format("\n[retriangulation]\nenabled = {}\nevery = {}\nmin_angle = {}\nedge_ratio = {}\ndegraded_fraction = {}\n"
                    "always = {}\n"
                    "edge_length = {}\nremesh_iterations = {}\nneighbours = {}\nfill_holes = {}\nmax_hole_length = {}\n"
-                   "min_component_faces = {}\nmin_component_thickness = {}\n",
+                   "min_component_faces = {}\nmin_component_thickness = {}\nedges_per_radius = {}\n"
+                   "min_edge_fraction = {}\nrestore_volume = {}\n",
                    r.enabled, r.every, r.min_angle_deg, r.edge_ratio, r.degraded_fraction, r.always, r.pipeline.target_edge_length,
                    r.pipeline.remesh_iterations, r.pipeline.normals.neighbours, r.pipeline.fill_holes,
-                   r.pipeline.max_hole_length, r.pipeline.min_component_faces, r.pipeline.min_component_thickness);
+                   r.pipeline.max_hole_length, r.pipeline.min_component_faces, r.pipeline.min_component_thickness,
+                   r.pipeline.edges_per_radius, r.pipeline.min_edge_fraction, r.restore_volume);
   s += fmt::format("\n[reference_sphere]\ncentre = [{}, {}, {}]\nradius = {}\n", p.reference_centre.x(),
                    p.reference_centre.y(), p.reference_centre.z(), p.reference_radius);
   return s;

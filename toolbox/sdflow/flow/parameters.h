@@ -5,6 +5,7 @@
 //!
 //! Scenario keys (all optional; a CLI flag of the same name overrides them):
 //! ```toml
+//! preset = "paper"            # the paper's scheme exactly (apply_preset); other keys override it
 //! input = "ellipsoid.off"      # relative paths are relative to the scenario file
 //! out = "runs/ellipsoid"
 //! steps = 200                  # stop after this many steps (0: no limit)
@@ -14,7 +15,7 @@
 //! schedule = "tables.csv"      # or inline: [[1, 50, 0.01], [51, 100, 0.02]]; implies "schedule"
 //! schedule_retries = 0         # halvings of the table's τ allowed for an unstable step
 //! beta = 0.5
-//! curvature = "normal_integral" # H by eq. (9); "normal_integral_angle_sum" (Σα, not 2π) or "cotangent"
+//! curvature = "cotangent"     # H = ½ N·ΔX; "normal_integral" (eq. 9) or "normal_integral_angle_sum" (Σα, not 2π)
 //! mass = "voronoi"             # vertex areas of Δ = M⁻¹L: eq. (10)'s, or "volume_gradient" (scheme.h)
 //! extrapolate = false          # local Richardson extrapolation: second order in τ, 3 solves a step
 //! solver = "cholmod"           # or "qr"
@@ -33,6 +34,7 @@
 //! min_tau = 1e-14
 //! max_tau = 1e300
 //! max_rejections = 25
+//! tolerance = 0.0              # bound on the extrapolated step's local error estimate (0: off)
 //! [retriangulation]            # see RetriangulationSchedule below and retri/pipeline.h
 //! enabled = false
 //! every = 1
@@ -42,6 +44,9 @@
 //! always = false
 //! edge_length = 0.0            # ℓ; 0: the initial surface's mean edge length
 //! remesh_iterations = 3
+//! edges_per_radius = 4.0       # curvature-adapted ℓ (0: uniform ℓ, the paper's)
+//! min_edge_fraction = 0.25     # floor of the adapted ℓ, as a fraction of ℓ
+//! restore_volume = true        # give back the volume a re-triangulation took or added
 //! neighbours = 18              # k of the jet normals
 //! fill_holes = true
 //! max_hole_length = 0.0        # 0: automatic
@@ -68,8 +73,8 @@ namespace sdflow {
 //! the pipeline of retri/pipeline.h runs when it intersects itself (a pinch-off, a hole sealing,
 //! bodies touching), when its triangles have degraded (more than `degraded_fraction` of the
 //! triangle count are triangles with an angle below `min_angle_deg` or edges outside [ℓ/r, r·ℓ]
-//! with r = `edge_ratio`, and more than the last re-triangulation left behind), or every time with
-//! `always` (the paper's practice).
+//! with r = `edge_ratio` and ℓ the local target of the pipeline's curvature-adapted sizing, and more
+//! than the last re-triangulation left behind), or every time with `always` (the paper's practice).
 struct RetriangulationSchedule {
   bool enabled = false;
   long every = 1;             //!< look at the surface after every k-th step (≥ 1)
@@ -81,6 +86,9 @@ struct RetriangulationSchedule {
   //! appear; larger values save remeshings on large surfaces.
   double degraded_fraction = 0;
   bool always = false;        //!< run the whole pipeline after every k-th step (the paper's practice)
+  //! Give each closed component (or group of components that split or fused) back the volume the
+  //! re-triangulation took or added (flow/volume.h, restore_volumes_from).
+  bool restore_volume = true;
   //! The pipeline; its ℓ (0 = automatic) is fixed when the run starts, to the initial surface's
   //! mean edge length, so that it stays the same for the whole run and its resumption.
   RetriangulationOptions pipeline;
@@ -102,8 +110,8 @@ struct RunParameters {
   RetriangulationSchedule retriangulation;
 };
 
-//! The names of the `curvature` key: "normal_integral" (eq. 9, the default), "normal_integral_angle_sum"
-//! (eq. 9 divided by the angle sum), "cotangent" (H = ½ N·ΔX).
+//! The names of the `curvature` key: "cotangent" (H = ½ N·ΔX, the default), "normal_integral"
+//! (eq. 9), "normal_integral_angle_sum" (eq. 9 divided by the angle sum).
 std::string curvature_name(const CurvatureOptions& options);
 
 //! The options a `curvature` name stands for; throws InvalidParameter, listing the names, on another.
@@ -115,7 +123,15 @@ std::string mass_name(VertexMass mass);
 //! The mass a `mass` name stands for; throws InvalidParameter, listing the names, on another.
 VertexMass vertex_mass(const std::string& name);
 
-//! Read a scenario or run.toml into `parameters`, overwriting only the keys present. Relative
+//! The presets of the `preset` key and `--preset`: "paper" is the paper's scheme exactly (eq. 9 H,
+//! Voronoi areas, plain steps, no error control, uniform re-triangulation edge length, no volume
+//! restoration after re-triangulation); "default" sets those options back to sdflow's defaults.
+//! Other parameters (time steps, β, the re-triangulation's ℓ and triggers) are left alone.
+//! Throws InvalidParameter, listing the names, on another name.
+void apply_preset(const std::string& name, RunParameters& parameters);
+
+//! Read a scenario or run.toml into `parameters`, overwriting only the keys present (a `preset`
+//! first, then the other keys). Relative
 //! paths are resolved against the file's folder. Throws IoError (file, line) on a syntax error,
 //! InvalidParameter on an unknown key or a value of the wrong type or range.
 void read_run_parameters(const std::filesystem::path& file, RunParameters& parameters);

@@ -1,7 +1,10 @@
 #include "sdflow/flow/retriangulation.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/flow/volume.h"
+#include "sdflow/geometry/measures.h"
 #include "sdflow/retri/intersect.h"
+#include "sdflow/retri/remesh.h"
 
 #include <fmt/format.h>
 
@@ -58,11 +61,19 @@ struct Degraded {
 
 Degraded degraded_elements(const Mesh& mesh, const RetriangulationSchedule& s)
 {
-  const double ell = s.pipeline.target_edge_length;
+  const RetriangulationOptions& pipeline = s.pipeline;
+  const double ell = pipeline.target_edge_length;
+  // The targets the pipeline's remesher would aim at: a closing neck asks for shorter edges.
+  const std::vector<double> target =
+      pipeline.edges_per_radius > 0
+          ? radius_targets(mesh, {.edges_per_radius = pipeline.edges_per_radius,
+                                  .min_length = pipeline.min_edge_fraction * ell, .max_length = ell})
+          : std::vector<double>(mesh.n_vertices(), ell);
   Degraded d;
   for (const auto e : mesh.edges()) {
     const double length = mesh.calc_edge_length(e);
-    d.edges += length > s.edge_ratio * ell || length * s.edge_ratio < ell;
+    const double local = 0.5 * (target[e.v0().idx()] + target[e.v1().idx()]);
+    d.edges += length > s.edge_ratio * local || length * s.edge_ratio < local;
   }
   for (const auto f : mesh.faces())
     d.triangles += smallest_angle_deg(mesh, f) < s.min_angle_deg;
@@ -83,7 +94,7 @@ std::string reason_to_retriangulate(const Mesh& mesh, const RetriangulationSched
   const double allowed = std::max(s.degraded_fraction * static_cast<double>(mesh.n_faces()),
                                   static_cast<double>(tolerated));
   if (static_cast<double>(d.total()) > allowed)
-    return fmt::format("{} edges outside [ℓ/{}, {}ℓ] and {} triangles with an angle below {}°", d.edges,
+    return fmt::format("{} edges outside [ℓ/{}, {}ℓ] of their target ℓ and {} triangles with an angle below {}°", d.edges,
                        s.edge_ratio, s.edge_ratio, d.triangles, s.min_angle_deg);
   return {};
 }
@@ -96,6 +107,8 @@ std::string describe(const RetriangulationResult& r)
   if (r.rebuilt)
     s += fmt::format("; {} intersecting pairs, {} faces removed, {} points dropped, rebuilt, {} holes filled",
                      r.intersecting_pairs, r.removed_faces, r.removed_points, r.filled_holes);
+  if (r.uniform_fallback)
+    s += "; uniform ℓ (the adapted one left crossing sheets)";
   s += fmt::format("; components {} → {}", r.components_before, r.components_after);
   if (r.dropped_components > 0)
     s += fmt::format(" ({} debris dropped)", r.dropped_components);
@@ -132,12 +145,22 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     if (reason.empty())
       return report;
     RetriangulationResult r = retriangulate(mesh, schedule.pipeline);
+    std::string volume_note;
+    if (schedule.restore_volume) {
+      const double before = enclosed_volume(r.mesh);
+      const VolumeRestoration restored = restore_volumes_from(mesh, r.mesh);
+      set_vertex_positions(r.mesh, restored.positions);
+      const double after = enclosed_volume(r.mesh);
+      if (after != 0)
+        volume_note = fmt::format("; volume restored by {:.3g} (relative)", (after - before) / after);
+    }
     report.remeshed = schedule.pipeline.remesh_iterations > 0;
     report.surgery = r.rebuilt;
     report.split = r.components_after > r.components_before - r.merged_components;
     report.merged = r.merged_components > 0;
     report.degraded_left = degraded_elements(r.mesh, schedule).total();
-    report.detail = fmt::format("{}: {}; {} degraded elements left", reason, describe(r), report.degraded_left);
+    report.detail =
+        fmt::format("{}: {}{}; {} degraded elements left", reason, describe(r), volume_note, report.degraded_left);
     mesh = std::move(r.mesh);
     return report;
   };

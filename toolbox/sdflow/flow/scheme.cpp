@@ -24,12 +24,20 @@ FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options, con
     op.laplacian = cotangent_laplacian(mesh);
     op.areas = mixed_voronoi_areas(mesh);
   }
-  if (options.mass == VertexMass::volume_gradient)
-    op.areas = volume_gradient_areas(mesh, op.normals);
   for (Eigen::Index i = 0; i < op.areas.size(); ++i)
     if (!(op.areas[i] > 0))
-      throw InvalidMesh(fmt::format("flow step: vertex {} has no area {} (isolated, degenerate or folded star)", i,
+      throw InvalidMesh(fmt::format("flow step: vertex {} has no area {} (isolated or degenerate star)", i,
                                     op.areas[i]));
+  if (options.mass == VertexMass::volume_gradient) {
+    // A star folded over itself sweeps little or negative volume: there the Voronoi area stands in.
+    const Eigen::VectorXd gradient = volume_gradient_areas(mesh, op.normals);
+    for (Eigen::Index i = 0; i < gradient.size(); ++i) {
+      if (gradient[i] > kMassFallbackFraction * op.areas[i])
+        op.areas[i] = gradient[i];
+      else
+        ++op.mass_fallbacks;
+    }
+  }
   // The cotangent H is built from the L and M just assembled rather than assembling them again.
   op.curvature = options.curvature.method == CurvatureMethod::cotangent
                      ? cotangent_mean_curvature(mesh, op.normals, op.laplacian, op.areas)
@@ -66,39 +74,39 @@ StepResult solve_step(const Mesh& mesh, const FlowOperators& op, double tau, dou
 }
 
 StepResult extrapolated_step(const Mesh& mesh, const FlowOperators& op, double tau, const SchemeOptions& options,
-                             FlowSolver& solver, const CotangentCache* cache, const Eigen::VectorXd& guess)
+                             FlowSolver& solver, FlowSolver& half_solver, const CotangentCache* cache,
+                             const Eigen::VectorXd& guess)
 {
-  StepResult result;
-  const auto absorb = [&result](const StepResult& part) {
-    result.solve.analysed |= part.solve.analysed;
-    result.solve.iterations += part.solve.iterations;
-    result.solve.relative_residual = std::max(result.solve.relative_residual, part.solve.relative_residual);
-    result.factorisations += part.factorisations;
-    if (part.solve.factorised) {
-      result.solve.factorised = true;
-      result.factorised_positions = part.factorised_positions;
-      result.factorised_tau_beta = part.factorised_tau_beta;
+  StepResult result = solve_step(mesh, op, tau, options.beta, solver, guess);
+  const auto absorb = [&result](const StepResult& half) {
+    result.solve.analysed |= half.solve.analysed;
+    result.solve.iterations += half.solve.iterations;
+    result.solve.relative_residual = std::max(result.solve.relative_residual, half.solve.relative_residual);
+    result.factorisations += half.factorisations;
+    if (half.solve.factorised) {
+      result.half_factorised = true;
+      result.half_factorised_positions = half.factorised_positions;
+      result.half_factorised_tau_beta = half.factorised_tau_beta;
     }
   };
-  const StepResult whole = solve_step(mesh, op, tau, options.beta, solver, guess);
-  absorb(whole);
-  const StepResult first_half = solve_step(mesh, op, tau / 2, options.beta, solver, whole.w);
+  const StepResult first_half = solve_step(mesh, op, tau / 2, options.beta, half_solver, result.w);
   absorb(first_half);
   Mesh halfway = mesh;
   set_vertex_positions(halfway, first_half.positions);
   const StepResult second_half =
-      solve_step(halfway, flow_operators(halfway, options, cache), tau / 2, options.beta, solver, first_half.w);
+      solve_step(halfway, flow_operators(halfway, options, cache), tau / 2, options.beta, half_solver, first_half.w);
   absorb(second_half);
-  result.positions = 2 * second_half.positions - whole.positions;
-  result.w = first_half.w + second_half.w - whole.w;
+  result.error = second_half.positions - result.positions;
+  result.positions = second_half.positions + result.error;
+  result.w = first_half.w + second_half.w - result.w;
   return result;
 }
 
 StepResult flow_step(const Mesh& mesh, double tau, const SchemeOptions& options, const SolverOptions& solver_options)
 {
-  FlowSolver solver(solver_options);
+  FlowSolver solver(solver_options), half_solver(solver_options);
   const FlowOperators operators = flow_operators(mesh, options);
-  return options.extrapolate ? extrapolated_step(mesh, operators, tau, options, solver)
+  return options.extrapolate ? extrapolated_step(mesh, operators, tau, options, solver, half_solver)
                              : solve_step(mesh, operators, tau, options.beta, solver);
 }
 

@@ -32,24 +32,35 @@ struct SchemeOptions {
   double beta = 0.5;
   BoundaryMotion boundary = BoundaryMotion::paper;
   NormalOptions normals;       //!< eq. (8); `equal_weights` is the paper's §4.3 boundary variant
-  CurvatureOptions curvature;  //!< eq. (9) by default, or the cotangent H (curvature.h)
+  //! The cotangent H = ½ N·ΔX by default: it converges under refinement on every smooth surface.
+  //! The paper's eq. (9) (`normal_curvature_integral`) does not off spheres (docs/validation.md):
+  //! its H error stays at the mesh's irregularity, and ΔH of it does not vanish.
+  CurvatureOptions curvature{.method = CurvatureMethod::cotangent};
   VertexMass mass = VertexMass::voronoi;
   //! Local Richardson extrapolation (`extrapolated_step`): second order in τ instead of first.
   bool extrapolate = false;
 };
 
 //! The operators of the current surface; they do not depend on τ, so a rejected step reuses them.
+//! A volume-gradient area below this fraction of the Voronoi area marks a folded star.
+inline constexpr double kMassFallbackFraction = 0.1;
+
 struct FlowOperators {
   VertexVectors normals;       //!< N (#V by 3), eq. (8)
   Eigen::VectorXd curvature;   //!< H (eq. 9 or cotangent, per SchemeOptions::curvature), 0 on the boundary
   SparseMatrix laplacian;      //!< L, eq. (10) in symmetric form
   Eigen::VectorXd areas;       //!< M: mixed Voronoi or volume-gradient areas (SchemeOptions::mass)
+  //! Vertices whose volume-gradient area was not usable (a folded or nearly flat-folded star near a
+  //! pinch or a seal): they take their mixed Voronoi area instead, so the step goes on.
+  long mass_fallbacks = 0;
   Eigen::VectorXd rhs;         //!< L H
   std::vector<bool> held;      //!< vertices with w = 0 (empty if none)
 };
 
 //! N, H, L, M and L H of `mesh`. With `cache` (built for this connectivity) L and M are assembled
-//! into its kept pattern. Throws InvalidMesh on a degenerate star or triangle.
+//! into its kept pattern. A volume-gradient area below `kMassFallbackFraction` of the vertex's
+//! Voronoi area is replaced by the Voronoi area (counted in `mass_fallbacks`). Throws InvalidMesh
+//! on a degenerate star or triangle (a Voronoi area that is not positive).
 FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options = {},
                              const CotangentCache* cache = nullptr);
 
@@ -63,6 +74,12 @@ struct StepResult {
   //! positions its operators were taken at and its τβ, so a resumed run can rebuild that factor.
   VertexVectors factorised_positions;
   double factorised_tau_beta = 0;
+  //! The same for the half-step solver of an extrapolated step (`half_factorised`: it factorised).
+  bool half_factorised = false;
+  VertexVectors half_factorised_positions;
+  double half_factorised_tau_beta = 0;
+  //! X_{τ/2∘τ/2} − X_τ of an extrapolated step, its local error estimate (0 rows for a plain step).
+  VertexVectors error;
 };
 
 //! Solve the step for `tau` (> 0) with `solver`; `guess` (empty or #V) warm-starts iterative solves.
@@ -75,9 +92,11 @@ StepResult solve_step(const Mesh& mesh, const FlowOperators& operators, double t
 //! 2·S_{τ/2}(S_{τ/2}(X)) − S_τ(X). The step S_τ is first order in τ (τβΔ² is not the linearised
 //! operator of ΔH), the combination second order. Costs three solves and the operators of the
 //! half-step surface (`cache`, optional, must fit `mesh`); `w` returned is w_{τ/2} + w'_{τ/2} − w_τ.
+//! The whole step solves with `solver`, the two half steps with `half_solver`: each keeps a factor
+//! of its own system, so both are reused from step to step as in plain steps.
 StepResult extrapolated_step(const Mesh& mesh, const FlowOperators& operators, double tau,
-                             const SchemeOptions& options, FlowSolver& solver, const CotangentCache* cache = nullptr,
-                             const Eigen::VectorXd& guess = {});
+                             const SchemeOptions& options, FlowSolver& solver, FlowSolver& half_solver,
+                             const CotangentCache* cache = nullptr, const Eigen::VectorXd& guess = {});
 
 //! A complete step with a fresh solver: operators, solve, update. For tests and one-off use.
 StepResult flow_step(const Mesh& mesh, double tau, const SchemeOptions& options = {},

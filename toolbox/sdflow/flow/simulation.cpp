@@ -102,7 +102,7 @@ class Runner {
 public:
   explicit Runner(const SimulationOptions& options)
       : options_(options), p_(options.parameters), dir_(p_.output_dir), solver_(p_.solver),
-        controller_(p_.time_step)
+        half_solver_(p_.solver), controller_(p_.time_step)
   {
     validate_run_parameters(p_);
     if (dir_.empty())
@@ -144,15 +144,19 @@ public:
     controller_ = TimeStepController(p_.time_step, c.time_step);
     tolerated_degraded_ = c.tolerated_degraded;
     snapshots_ = c.snapshots;
+    // Refactorise the anchors' systems: the preconditioners are then the ones the uninterrupted run
+    // would be using, so the CG iterates (and every later decision) are identical.
     if (c.has_anchor) {
-      // Refactorise the anchor's system: the preconditioner is then the one the uninterrupted run
-      // would be using, so the CG iterates (and every later decision) are identical.
-      Mesh anchor = make_mesh(c.anchor_positions, c.triangles);
-      const FlowOperators anchor_op = flow_operators(anchor, p_.scheme, &*cache_);
-      solver_.restore(FlowSystem{anchor_op.laplacian, anchor_op.areas, anchor_op.held, c.anchor_tau_beta}, c.solver);
+      restore_solver(solver_, c.anchor_positions, c.anchor_tau_beta, c.triangles, c.solver);
       has_anchor_ = true;
       anchor_positions_ = c.anchor_positions;
       anchor_tau_beta_ = c.anchor_tau_beta;
+    }
+    if (c.has_half_anchor) {
+      restore_solver(half_solver_, c.half_anchor_positions, c.half_anchor_tau_beta, c.triangles, c.half_solver);
+      has_half_anchor_ = true;
+      half_anchor_positions_ = c.half_anchor_positions;
+      half_anchor_tau_beta_ = c.half_anchor_tau_beta;
     }
     metrics_ = read_truncated(dir_ / "metrics.csv", "", step_, true);
     events_ = read_truncated(dir_ / "events.log", "step ", step_, false);
@@ -180,6 +184,14 @@ public:
   }
 
 private:
+  void restore_solver(FlowSolver& solver, const VertexVectors& positions, double tau_beta, const Triangles& triangles,
+                      const SolverState& state)
+  {
+    Mesh anchor = make_mesh(positions, triangles);
+    const FlowOperators anchor_op = flow_operators(anchor, p_.scheme, &*cache_);
+    solver.restore(FlowSystem{anchor_op.laplacian, anchor_op.areas, anchor_op.held, tau_beta}, state);
+  }
+
   bool finished() const
   {
     return (p_.steps > 0 && step_ >= p_.steps) ||
@@ -242,15 +254,18 @@ private:
     return a.safety * a.max_displacement * tau;
   }
 
-  StepCheck check(const VertexVectors& next, const Eigen::VectorXd& w, double tau,
-                  const Eigen::VectorXd& edge_lengths, const std::vector<double>& volumes) const
+  StepCheck check(const StepResult& trial, double tau, const Eigen::VectorXd& edge_lengths,
+                  const std::vector<double>& volumes) const
   {
     StepCheck c;
+    const VertexVectors& next = trial.positions;
     if (!next.allFinite()) {
       c.non_finite = true;
       return c;
     }
-    c.displacement_ratio = (tau * w.cwiseAbs()).cwiseQuotient(edge_lengths).maxCoeff();
+    c.displacement_ratio = (tau * trial.w.cwiseAbs()).cwiseQuotient(edge_lengths).maxCoeff();
+    if (trial.error.rows() > 0)
+      c.error_estimate = trial.error.rowwise().norm().cwiseQuotient(edge_lengths).maxCoeff();
     const VertexVectors& now = positions_;
     for (Eigen::Index f = 0; f < triangles_.rows(); ++f) {
       const auto normal = [&](const VertexVectors& x) {
@@ -267,6 +282,7 @@ private:
     if (p_.time_step.mode == TimeStepMode::adaptive) {
       c.displacement_exceeded = c.displacement_ratio > p_.time_step.adaptive.max_displacement;
       c.volume_exceeded = c.volume_change > p_.time_step.adaptive.max_volume_change;
+      c.error_exceeded = p_.time_step.adaptive.tolerance > 0 && c.error_estimate > p_.time_step.adaptive.tolerance;
     }
     return c;
   }
@@ -289,18 +305,26 @@ private:
     double tau = 0;
     for (;;) {
       tau = controller_.propose(next_step, automatic, time_left);
-      trial = p_.scheme.extrapolate ? extrapolated_step(mesh_, op_, tau, p_.scheme, solver_, &*cache_, previous_w_)
-                                    : solve_step(mesh_, op_, tau, p_.scheme.beta, solver_, previous_w_);
+      trial = p_.scheme.extrapolate
+                  ? extrapolated_step(mesh_, op_, tau, p_.scheme, solver_, half_solver_, &*cache_, previous_w_)
+                  : solve_step(mesh_, op_, tau, p_.scheme.beta, solver_, previous_w_);
       record.cg_iterations += trial.solve.iterations;
+      result_.factorisations += trial.factorisations;
       if (trial.solve.factorised) {
-        result_.factorisations += trial.factorisations;
-        record.factorised = true;
         has_anchor_ = p_.solver.kind == SolverKind::cholmod;
         anchor_positions_ = trial.factorised_positions;
         anchor_tau_beta_ = trial.factorised_tau_beta;
-        logger().debug("step {}: factorised (τ = {})", next_step, tau);
       }
-      const StepCheck c = check(trial.positions, trial.w, tau, edge_lengths, volumes);
+      if (trial.half_factorised) {
+        has_half_anchor_ = p_.solver.kind == SolverKind::cholmod;
+        half_anchor_positions_ = trial.half_factorised_positions;
+        half_anchor_tau_beta_ = trial.half_factorised_tau_beta;
+      }
+      if (trial.factorisations > 0) {
+        record.factorised = true;
+        logger().debug("step {}: {} factorisations (τ = {})", next_step, trial.factorisations, tau);
+      }
+      const StepCheck c = check(trial, tau, edge_lengths, volumes);
       if (controller_.judge(next_step, tau, c))
         break;
       ++rejections;
@@ -327,7 +351,8 @@ private:
         mesh_ = canonical(mesh_);
         renew_connectivity();
         solver_.forget_factorisation();
-        has_anchor_ = false;
+        half_solver_.forget_factorisation();
+        has_anchor_ = has_half_anchor_ = false;
         previous_w_.resize(0);
         last_w_ = Eigen::VectorXd::Zero(mesh_.n_vertices());
         for (const auto& [flag, name] : {std::pair{report.remeshed, "remeshed"}, std::pair{report.surgery, "surgery"},
@@ -405,6 +430,11 @@ private:
     c.anchor_tau_beta = anchor_tau_beta_;
     c.snapshots = snapshots_;
     c.tolerated_degraded = tolerated_degraded_;
+    c.half_solver = half_solver_.state();
+    c.has_half_anchor = has_half_anchor_;
+    if (has_half_anchor_)
+      c.half_anchor_positions = half_anchor_positions_;
+    c.half_anchor_tau_beta = half_anchor_tau_beta_;
     write_checkpoint(c, dir_ / "checkpoint.bin");
   }
 
@@ -419,7 +449,7 @@ private:
   RunParameters p_;
   RetriangulationHook retriangulate_;
   std::filesystem::path dir_;
-  FlowSolver solver_;
+  FlowSolver solver_, half_solver_; // the half steps of extrapolated steps keep a factor of their own
   TimeStepController controller_;
   Mesh mesh_;
   Triangles triangles_;
@@ -431,9 +461,9 @@ private:
   double time_ = 0;
   long tolerated_degraded_ = 0; // see RetriangulationContext
   Eigen::VectorXd previous_w_, last_w_;
-  bool has_anchor_ = false;
-  VertexVectors anchor_positions_;
-  double anchor_tau_beta_ = 0;
+  bool has_anchor_ = false, has_half_anchor_ = false;
+  VertexVectors anchor_positions_, half_anchor_positions_;
+  double anchor_tau_beta_ = 0, half_anchor_tau_beta_ = 0;
   std::vector<SeriesEntry> snapshots_;
   std::string metrics_, events_;
   Clock::time_point last_flush_ = Clock::now();

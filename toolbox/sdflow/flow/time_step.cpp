@@ -135,6 +135,8 @@ std::string StepCheck::describe() const
     parts.push_back(fmt::format("normal displacement {:.3g} of the local edge length", displacement_ratio));
   if (volume_exceeded)
     parts.push_back(fmt::format("relative volume change {:.3g}", volume_change));
+  if (error_exceeded)
+    parts.push_back(fmt::format("local error estimate {:.3g} of the local edge length", error_estimate));
   if (parts.empty())
     return "accepted";
   std::string text = parts.front();
@@ -161,12 +163,14 @@ TimeStepController::TimeStepController(const TimeStepOptions& options, TimeStepS
   case TimeStepMode::adaptive:
     if (!(a.max_displacement > 0) || !(a.safety > 0 && a.safety <= 1) || !(a.growth >= 1) ||
         !(a.shrink > 0 && a.shrink < 1) || !(a.max_volume_change > 0) || !(a.min_tau > 0) ||
-        !(a.max_tau >= a.min_tau) || a.max_rejections < 1 || !(a.initial_tau >= 0))
+        !(a.max_tau >= a.min_tau) || a.max_rejections < 1 || !(a.initial_tau >= 0) ||
+        !(a.tolerance >= 0 && std::isfinite(a.tolerance)))
       throw InvalidParameter(fmt::format(
           "adaptive τ: need max_displacement > 0 ({}), 0 < safety ≤ 1 ({}), growth ≥ 1 ({}), 0 < shrink < 1 ({}), "
-          "max_volume_change > 0 ({}), 0 < min_tau ≤ max_tau ({}, {}), max_rejections ≥ 1 ({}), initial_tau ≥ 0 ({})",
+          "max_volume_change > 0 ({}), 0 < min_tau ≤ max_tau ({}, {}), max_rejections ≥ 1 ({}), initial_tau ≥ 0 ({}), "
+          "tolerance ≥ 0 ({})",
           a.max_displacement, a.safety, a.growth, a.shrink, a.max_volume_change, a.min_tau, a.max_tau,
-          a.max_rejections, a.initial_tau));
+          a.max_rejections, a.initial_tau, a.tolerance));
     break;
   }
 }
@@ -206,17 +210,23 @@ bool TimeStepController::judge(long step, double tau, const StepCheck& check)
                                     options_.mode == TimeStepMode::schedule ? "schedule retries, " : ""));
   }
   const AdaptiveOptions& a = options_.adaptive;
+  // The factors that would bring each bounded quantity to `safety` times its bound.
+  const double displacement_factor =
+      check.displacement_ratio > 0 ? a.safety * a.max_displacement / check.displacement_ratio : a.growth;
+  const double error_factor = a.tolerance > 0 && check.error_estimate > 0
+                                  ? a.safety * std::sqrt(a.tolerance / check.error_estimate)
+                                  : a.growth;
   if (!check.failed()) {
     state_.rejections = 0;
-    const double predicted = check.displacement_ratio > 0 ? a.safety * a.max_displacement / check.displacement_ratio
-                                                          : a.growth;
-    state_.next_tau = std::min(a.max_tau, tau * std::min(a.growth, predicted));
+    state_.next_tau = std::min(a.max_tau, tau * std::min({a.growth, displacement_factor, error_factor}));
     return true;
   }
   ++state_.rejections;
   double factor = a.shrink;
-  if (check.displacement_exceeded && check.displacement_ratio > 0)
-    factor = std::min(factor, a.safety * a.max_displacement / check.displacement_ratio);
+  if (check.displacement_exceeded)
+    factor = std::min(factor, displacement_factor);
+  if (check.error_exceeded)
+    factor = std::min(factor, error_factor);
   state_.next_tau = tau * factor;
   if (state_.rejections > a.max_rejections || state_.next_tau < a.min_tau)
     throw SolverFailure(fmt::format("step {}: unstable, no acceptable τ after {} rejections (last τ = {:g}: {})",

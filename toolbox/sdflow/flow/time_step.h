@@ -11,6 +11,9 @@
 //! - A step is also rejected when a triangle turns over (its normal reverses), a position is not
 //!   finite, or a closed component's enclosed volume changes by more than `max_volume_change`
 //!   (relative): τ is then multiplied by `shrink`.
+//! - With a `tolerance` ε > 0 (extrapolated steps only, scheme.h): e = max_v |X_{τ/2∘τ/2} − X_τ|_v / h_v,
+//!   the local error estimate that step doubling provides (Hairer, Nørsett, Wanner I §II.4), must
+//!   be ≤ ε, and the next τ is also scaled by at most safety · √(ε / e) (the estimate is O(τ²)).
 //! - After `max_rejections` rejections in a row, or when τ would fall below `min_tau`, the run stops
 //!   with SolverFailure: the flow cannot be continued stably from this surface.
 //! With constant τ or a schedule, a step that turns a triangle over or produces a non-finite
@@ -63,6 +66,9 @@ struct AdaptiveOptions {
   double min_tau = 1e-14;          //!< below this τ the run is declared unstable
   double max_tau = std::numeric_limits<double>::infinity();
   int max_rejections = 25;         //!< rejections in a row before the run is declared unstable
+  //! ε, the bound on the local error estimate of extrapolated steps relative to the local edge
+  //! length (0: off, the displacement bound alone sets τ).
+  double tolerance = 0;
 };
 
 struct TimeStepOptions {
@@ -80,9 +86,14 @@ struct StepCheck {
   int inverted_triangles = 0;
   bool non_finite = false;
   double volume_change = 0;        //!< largest relative volume change of a closed component
+  double error_estimate = 0;       //!< max_v |X_{τ/2∘τ/2} − X_τ|_v / h_v of an extrapolated step (else 0)
   bool displacement_exceeded = false;
   bool volume_exceeded = false;
-  bool failed() const { return non_finite || inverted_triangles > 0 || displacement_exceeded || volume_exceeded; }
+  bool error_exceeded = false;
+  bool failed() const
+  {
+    return non_finite || inverted_triangles > 0 || displacement_exceeded || volume_exceeded || error_exceeded;
+  }
   std::string describe() const;
 };
 

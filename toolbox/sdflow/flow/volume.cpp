@@ -3,10 +3,12 @@
 #include "sdflow/errors.h"
 #include "sdflow/geometry/normals.h"
 #include "sdflow/geometry/topology.h"
+#include "sdflow/retri/closest_point_grid.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
+#include <numeric>
 
 namespace sdflow {
 namespace {
@@ -91,6 +93,76 @@ VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& t
       result.max_relative_error =
           std::max(result.max_relative_error, std::abs(volume[k] - target_volumes[k]) / std::abs(target_volumes[k]));
   return result;
+}
+
+VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after)
+{
+  int old_count = 0, new_count = 0;
+  const std::vector<int> old_component = face_component_ids(before, &old_count);
+  const std::vector<int> new_component = face_component_ids(after, &new_count);
+  const std::vector<ComponentTopology> old_topology = component_topology(before);
+  const std::vector<ComponentTopology> new_topology = component_topology(after);
+  const std::vector<double> old_volume =
+      component_volumes(vertex_positions(before), face_indices(before), old_component, old_count);
+  const std::vector<double> new_volume =
+      component_volumes(vertex_positions(after), face_indices(after), new_component, new_count);
+  std::vector<double> new_area(new_count, 0.0);
+  std::vector<int> vertex_component(after.n_vertices(), -1);
+  for (auto f : after.faces()) {
+    new_area[new_component[f.idx()]] += after.calc_face_area(f);
+    for (auto v : f.vertices())
+      vertex_component[v.idx()] = new_component[f.idx()];
+  }
+
+  // Nodes 0..old_count-1 are the components of `before`, then those of `after`.
+  std::vector<int> parent(old_count + new_count);
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&parent](int i) {
+    while (parent[i] != i)
+      i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  const ClosestPointGrid grid(before);
+  std::vector<std::vector<int>> votes(new_count, std::vector<int>(old_count, 0));
+  std::vector<int> vertex_count(new_count, 0);
+  for (auto v : after.vertices()) {
+    const int k = vertex_component[v.idx()];
+    if (k < 0)
+      continue;
+    const int face = grid.closest_point(to_eigen(after.point(v))).face;
+    if (face >= 0)
+      ++votes[k][old_component[face]];
+    ++vertex_count[k];
+  }
+  for (int k = 0; k < new_count; ++k)
+    for (int j = 0; j < old_count; ++j)
+      if (votes[k][j] > 0 && 10 * votes[k][j] >= vertex_count[k])
+        parent[find(old_count + k)] = find(j);
+
+  struct Group {
+    double old_volume = 0, new_volume = 0, new_area = 0;
+    bool closed = true, has_old = false;
+  };
+  std::vector<Group> group(old_count + new_count);
+  for (int j = 0; j < old_count; ++j) {
+    Group& g = group[find(j)];
+    g.old_volume += old_volume[j];
+    g.closed = g.closed && old_topology[j].closed();
+    g.has_old = true;
+  }
+  for (int k = 0; k < new_count; ++k) {
+    Group& g = group[find(old_count + k)];
+    g.new_volume += new_volume[k];
+    g.new_area += new_area[k];
+    g.closed = g.closed && new_topology[k].closed();
+  }
+  std::vector<double> target = new_volume;
+  for (int k = 0; k < new_count; ++k) {
+    const Group& g = group[find(old_count + k)];
+    if (g.closed && g.has_old && g.new_area > 0)
+      target[k] += (g.old_volume - g.new_volume) * new_area[k] / g.new_area;
+  }
+  return restore_volumes(after, target);
 }
 
 } // namespace sdflow

@@ -28,4 +28,12 @@ std::vector<double> component_volumes(const VertexVectors& positions,
 //! the volume cannot be restored (a component with zero volume gradient).
 VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& target_volumes);
 
+//! Offset the components of `after`, a re-triangulation of `before`, so that volume lost or gained
+//! by the re-triangulation is given back. Each component of `after` belongs to the components of
+//! `before` its vertices lie nearest to (10% of its vertices or more); components so linked form
+//! groups (one body that pinched off into two, two bodies that fused), and each closed group gets
+//! back Σ V_before − Σ V_after, shared among its new components in proportion to their areas.
+//! Groups with an open component are left alone. Throws SolverFailure as restore_volumes does.
+VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after);
+
 } // namespace sdflow

@@ -2,6 +2,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/geometry/normals.cpp
   sdflow/geometry/curvature.cpp
   sdflow/geometry/cotangent_curvature.cpp
+  sdflow/geometry/principal_curvature.cpp
   sdflow/geometry/laplacian.cpp
   sdflow/geometry/measures.cpp
   sdflow/geometry/quality.cpp

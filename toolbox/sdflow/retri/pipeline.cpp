@@ -43,6 +43,12 @@ void validate_retriangulation_options(const RetriangulationOptions& o)
   if (!(o.min_component_thickness >= 0) || !std::isfinite(o.min_component_thickness))
     throw InvalidParameter(fmt::format("re-triangulation: min component thickness must be ≥ 0, got {}",
                                        o.min_component_thickness));
+  if (!(o.edges_per_radius >= 0) || !std::isfinite(o.edges_per_radius))
+    throw InvalidParameter(fmt::format("re-triangulation: edges per radius of curvature must be ≥ 0 (0: uniform ℓ), "
+                                       "got {}", o.edges_per_radius));
+  if (!(o.min_edge_fraction > 0 && o.min_edge_fraction <= 1))
+    throw InvalidParameter(
+        fmt::format("re-triangulation: the smallest edge fraction must be in (0, 1], got {}", o.min_edge_fraction));
   if (o.min_component_faces < 1)
     throw InvalidParameter(
         fmt::format("re-triangulation: min component faces must be ≥ 1, got {}", o.min_component_faces));
@@ -142,11 +148,50 @@ Mesh validated(const Mesh& mesh)
   return build_mesh(soup, "re-triangulated surface").mesh;
 }
 
-} // namespace
+//! Rings around intersecting faces where stage 1 keeps the mesh's own scale.
+constexpr int kLocalScaleRings = 4;
 
-RetriangulationResult retriangulate(const Mesh& input, const RetriangulationOptions& options)
+//! Stage 1's curvature-adapted sizing (radius_targets), except within kLocalScaleRings of the faces
+//! that intersect others, where the target is the local mean edge length: sheets that crossed are
+//! not a curvature to resolve (refining where they cross leaves the rebuild slivers of enclosed
+//! space), and coarsening a neck that pinched through would tear it before the surgery.
+SizingField adapted_sizing(const Mesh& mesh, const RetriangulationOptions& options, double ell)
 {
-  validate_retriangulation_options(options);
+  Mesh clean = mesh;
+  clean.garbage_collection();
+  const double min_length = options.min_edge_fraction * ell;
+  std::vector<double> target = radius_targets(
+      clean, {.edges_per_radius = options.edges_per_radius, .min_length = min_length, .max_length = ell});
+  std::vector<bool> near(clean.n_vertices(), false);
+  for (const FacePair& pair : self_intersections(clean))
+    for (const int f : {pair.first, pair.second})
+      for (const auto v : clean.fv_range(clean.face_handle(f)))
+        near[v.idx()] = true;
+  for (int ring = 0; ring < kLocalScaleRings; ++ring) {
+    std::vector<bool> grown = near;
+    for (const auto v : clean.vertices())
+      if (near[v.idx()])
+        for (const auto w : clean.vv_range(v))
+          grown[w.idx()] = true;
+    near.swap(grown);
+  }
+  for (const auto v : clean.vertices()) {
+    if (!near[v.idx()])
+      continue;
+    double sum = 0;
+    int count = 0;
+    for (const auto e : clean.ve_range(v)) {
+      sum += clean.calc_edge_length(e);
+      ++count;
+    }
+    target[v.idx()] = std::clamp(count > 0 ? sum / count : ell, min_length, ell);
+  }
+  return nearest_vertex_sizing(clean, std::move(target));
+}
+
+//! The pipeline with the given options, once.
+RetriangulationResult retriangulate_once(const Mesh& input, const RetriangulationOptions& options)
+{
   if (input.n_faces() == 0)
     throw InvalidMesh("re-triangulation: the surface has no triangles");
 
@@ -168,6 +213,8 @@ RetriangulationResult retriangulate(const Mesh& input, const RetriangulationOpti
     RemeshOptions remesh;
     remesh.target_edge_length = r.target_edge_length;
     remesh.iterations = options.remesh_iterations;
+    if (options.edges_per_radius > 0)
+      remesh.sizing = adapted_sizing(mesh, options, r.target_edge_length);
     RemeshResult remeshed = isotropic_remesh(mesh, remesh);
     mesh = std::move(remeshed.mesh);
     r.remesh = remeshed.statistics;
@@ -227,6 +274,28 @@ RetriangulationResult retriangulate(const Mesh& input, const RetriangulationOpti
                  "filled, {} → {} components ({} dropped)",
                  r.merged_components, r.intersecting_pairs, r.removed_faces, r.removed_points, r.filled_holes,
                  r.components_before, r.components_after, r.dropped_components);
+  return r;
+}
+
+} // namespace
+
+RetriangulationResult retriangulate(const Mesh& input, const RetriangulationOptions& options)
+{
+  validate_retriangulation_options(options);
+  if (options.edges_per_radius == 0)
+    return retriangulate_once(input, options);
+  // Adapted edge lengths help a pinch or a seal through; where they leave the rebuild with
+  // sheets that still cross, or with nothing, the uniform ℓ is tried instead.
+  RetriangulationOptions uniform = options;
+  uniform.edges_per_radius = 0;
+  try {
+    RetriangulationResult r = retriangulate_once(input, options);
+    if (!r.rebuilt || self_intersections(r.mesh).empty())
+      return r;
+  } catch (const InvalidMesh&) {
+  }
+  RetriangulationResult r = retriangulate_once(input, uniform);
+  r.uniform_fallback = true;
   return r;
 }
 

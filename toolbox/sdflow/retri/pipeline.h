@@ -2,7 +2,7 @@
 //! \file pipeline.h
 //! \brief The re-triangulation of paper §3.2.1 (with Appendix B), composed from the toolbox:
 //! 0. components that intersect each other are joined into the boundary of their union (surface_union.h);
-//! 1. isotropic remeshing to the target edge length ℓ (remesh.h);
+//! 1. isotropic remeshing to the target edge length ℓ, finer where the curvature is large (remesh.h);
 //! 2. the self-intersecting faces are removed, then the vertices left without a face (remove_intersections.h);
 //! 3. jet normals oriented by a minimum spanning tree; inconsistently oriented points are dropped (point_normals.h);
 //! 4. the surface is rebuilt from the oriented points by advancing front (reconstruct.h);
@@ -25,6 +25,12 @@ struct RetriangulationOptions {
   double target_edge_length = 0;
   //! Rounds of stage 1; 0 skips it.
   int remesh_iterations = 3;
+  //! Stage 1 adapts ℓ to the curvature (remesh.h, radius_targets): this many edges per radius of
+  //! curvature where that asks for edges shorter than ℓ, so a closing neck or hole stays resolved;
+  //! 0 remeshes to the uniform ℓ (the paper's practice).
+  double edges_per_radius = 4;
+  //! The floor of the adapted edge length, as a fraction of ℓ (in (0, 1]).
+  double min_edge_fraction = 0.25;
   //! Run stages 3–5 even when nothing intersects (the paper's "after every step" application).
   bool always_rebuild = false;
   PointNormalsOptions normals;
@@ -59,6 +65,9 @@ struct RetriangulationResult {
   int components_before = 0;    //!< components of the input
   int components_after = 0;     //!< components of the result
   int dropped_components = 0;   //!< stage 6
+  //! The curvature-adapted edge lengths left sheets that cross, or nothing, after a rebuild: the
+  //! result is the pipeline's with the uniform ℓ.
+  bool uniform_fallback = false;
   struct Seconds {
     double merge = 0, remesh = 0, intersections = 0, normals = 0, reconstruction = 0, holes = 0, components = 0;
   } seconds;

@@ -4,6 +4,7 @@
 #include "sdflow/geometry/curvature.h"
 #include "sdflow/geometry/laplacian.h"
 #include "sdflow/geometry/normals.h"
+#include "sdflow/geometry/principal_curvature.h"
 #include "sdflow/log.h"
 #include "sdflow/retri/closest_point_grid.h"
 #include "sdflow/retri/spatial_order.h"
@@ -669,54 +670,15 @@ RemeshResult isotropic_remesh(const Mesh& input, const RemeshOptions& options)
   return result;
 }
 
-SizingField curvature_sizing(const Mesh& mesh, const CurvatureSizingOptions& options)
+SizingField nearest_vertex_sizing(const Mesh& mesh, std::vector<double> lengths)
 {
-  if (!(options.tolerance > 0) || !(options.min_length > 0) || !(options.max_length >= options.min_length))
-    throw InvalidParameter(fmt::format("curvature_sizing: need tolerance > 0 and 0 < min_length ≤ max_length, got "
-                                       "ε = {}, min = {}, max = {}",
-                                       options.tolerance, options.min_length, options.max_length));
-  if (mesh.n_faces() == 0)
-    throw InvalidMesh("curvature_sizing: the mesh has no triangles");
-  Mesh clean = mesh;
-  clean.garbage_collection();
-  const VertexVectors normals = vertex_normals(clean);
-  const Eigen::VectorXd H = mean_curvature(clean, normals);
-  const Eigen::VectorXd area = mixed_voronoi_areas(clean);
-  const auto n = static_cast<Eigen::Index>(clean.n_vertices());
-  // Largest absolute principal curvature from H and the Gaussian curvature K (angle defect):
-  // κ = |H| + √max(H² − K, 0).
-  Eigen::VectorXd kappa = Eigen::VectorXd::Zero(n);
-  for (auto v : clean.vertices()) {
-    if (clean.is_boundary(v) || !(area[v.idx()] > 0))
-      continue;
-    double angle_sum = 0;
-    for (auto h : clean.voh_range(v)) {
-      if (h.is_boundary())
-        continue;
-      const Eigen::Vector3d p = to_eigen(clean.point(v));
-      const Eigen::Vector3d a = to_eigen(clean.point(h.to())) - p;
-      const Eigen::Vector3d b = to_eigen(clean.point(h.next().to())) - p;
-      angle_sum += std::atan2(a.cross(b).norm(), a.dot(b));
-    }
-    const double K = (2 * std::numbers::pi - angle_sum) / area[v.idx()];
-    const double h = H[v.idx()];
-    kappa[v.idx()] = std::abs(h) + std::sqrt(std::max(h * h - K, 0.0));
-  }
-  // Eq. (9) sets H = 0 on the boundary: borrow the largest curvature of the interior neighbours.
-  for (auto v : clean.vertices())
-    if (clean.is_boundary(v))
-      for (auto w : clean.vv_range(v))
-        if (!clean.is_boundary(w))
-          kappa[v.idx()] = std::max(kappa[v.idx()], kappa[w.idx()]);
-
+  if (lengths.size() != mesh.n_vertices())
+    throw InvalidParameter(fmt::format("nearest_vertex_sizing: {} lengths for {} vertices", lengths.size(),
+                                       mesh.n_vertices()));
   auto sites = std::make_shared<SizingSites>();
-  const double eps = options.tolerance;
-  for (auto v : clean.vertices()) {
-    const double k = kappa[v.idx()];
-    const double length = k > 0 ? std::sqrt(std::max(6 * eps / k - 3 * eps * eps, 0.0)) : options.max_length;
-    sites->points.push_back(to_eigen(clean.point(v)));
-    sites->length.push_back(std::clamp(length, options.min_length, options.max_length));
-  }
+  for (auto v : mesh.vertices())
+    sites->points.push_back(to_eigen(mesh.point(v)));
+  sites->length = std::move(lengths);
   auto tree = std::make_shared<SizingTree>(3, *sites, nanoflann::KDTreeSingleIndexAdaptorParams(10));
   return [sites, tree](const Eigen::Vector3d& p) {
     std::uint32_t id = 0;
@@ -724,6 +686,68 @@ SizingField curvature_sizing(const Mesh& mesh, const CurvatureSizingOptions& opt
     tree->knnSearch(p.data(), 1, &id, &distance);
     return sites->length[id];
   };
+}
+
+namespace {
+
+Mesh garbage_collected(const Mesh& mesh, const char* who)
+{
+  if (mesh.n_faces() == 0)
+    throw InvalidMesh(fmt::format("{}: the mesh has no triangles", who));
+  Mesh clean = mesh;
+  clean.garbage_collection();
+  return clean;
+}
+
+} // namespace
+
+SizingField curvature_sizing(const Mesh& mesh, const CurvatureSizingOptions& options)
+{
+  if (!(options.tolerance > 0) || !(options.min_length > 0) || !(options.max_length >= options.min_length))
+    throw InvalidParameter(fmt::format("curvature_sizing: need tolerance > 0 and 0 < min_length ≤ max_length, got "
+                                       "ε = {}, min = {}, max = {}",
+                                       options.tolerance, options.min_length, options.max_length));
+  const Mesh clean = garbage_collected(mesh, "curvature_sizing");
+  const VertexVectors normals = vertex_normals(clean);
+  const Eigen::VectorXd kappa =
+      largest_principal_curvature(clean, mean_curvature(clean, normals), mixed_voronoi_areas(clean));
+  const double eps = options.tolerance;
+  std::vector<double> lengths;
+  for (Eigen::Index v = 0; v < kappa.size(); ++v) {
+    const double k = kappa[v];
+    const double length = k > 0 ? std::sqrt(std::max(6 * eps / k - 3 * eps * eps, 0.0)) : options.max_length;
+    lengths.push_back(std::clamp(length, options.min_length, options.max_length));
+  }
+  return nearest_vertex_sizing(clean, std::move(lengths));
+}
+
+std::vector<double> radius_targets(const Mesh& mesh, const RadiusSizingOptions& options)
+{
+  if (!(options.edges_per_radius > 0) || !(options.min_length > 0) || !(options.max_length >= options.min_length) ||
+      !std::isfinite(options.max_length))
+    throw InvalidParameter(fmt::format("radius_targets: need edges_per_radius > 0 and 0 < min_length ≤ max_length, "
+                                       "got {}, min = {}, max = {}",
+                                       options.edges_per_radius, options.min_length, options.max_length));
+  const Eigen::VectorXd kappa = largest_principal_curvature(mesh);
+  std::vector<double> edge_sum(mesh.n_vertices(), 0.0);
+  std::vector<int> edge_count(mesh.n_vertices(), 0);
+  for (auto e : mesh.edges())
+    for (auto v : {e.v0(), e.v1()}) {
+      edge_sum[v.idx()] += mesh.calc_edge_length(e);
+      ++edge_count[v.idx()];
+    }
+  std::vector<double> lengths;
+  lengths.reserve(static_cast<std::size_t>(kappa.size()));
+  for (Eigen::Index v = 0; v < kappa.size(); ++v) {
+    const double local = edge_count[v] > 0 ? edge_sum[v] / edge_count[v] : options.max_length;
+    double length = options.max_length;
+    if (kappa[v] * local > 1) // a crease or a fold, not a curvature the mesh resolves: keep its scale
+      length = local;
+    else if (kappa[v] > 0)
+      length = 1 / (options.edges_per_radius * kappa[v]);
+    lengths.push_back(std::clamp(length, options.min_length, options.max_length));
+  }
+  return lengths;
 }
 
 } // namespace sdflow

@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include <functional>
+#include <vector>
 
 namespace sdflow {
 
@@ -51,7 +52,8 @@ struct RemeshOptions {
   //! Boundary vertices where the boundary turns by more than this angle (degrees) are corners:
   //! never moved or removed, so polygonal boundaries keep their shape.
   double boundary_corner_angle_deg = 45;
-  //! Local target ℓ(p) for adaptive remeshing (e.g. curvature_sizing); empty: uniform ℓ.
+  //! Local target ℓ(p) for adaptive remeshing (e.g. curvature_sizing, or nearest_vertex_sizing of
+  //! radius_targets); empty: uniform ℓ.
   //! An edge's target is the mean of the targets at its two ends.
   SizingField sizing;
 };
@@ -88,5 +90,26 @@ struct CurvatureSizingOptions {
 //! Sizing field from the curvature of `mesh`: the target at a point is the one of the nearest
 //! vertex of `mesh`. Throws InvalidParameter for out-of-range options.
 SizingField curvature_sizing(const Mesh& mesh, const CurvatureSizingOptions& options);
+
+//! A sizing field from a target length at each vertex of `mesh` (no deleted elements): the target
+//! at a point is the one of the nearest vertex. Throws InvalidParameter unless there is one length
+//! per vertex.
+SizingField nearest_vertex_sizing(const Mesh& mesh, std::vector<double> lengths);
+
+//! Targets by the radius of curvature: ℓ(v) = 1 / (n κ(v)), n edges per radius of curvature at
+//! the vertex (κ its largest absolute principal curvature, from the cotangent H and the angle
+//! defect), clamped to [min_length, max_length]. A thinning neck of radius r gets edges of r / n,
+//! so it stays resolved as it closes; flat and gently curved parts keep max_length. Where the
+//! radius of curvature is below the local mean edge length h (a crease, a fold, two sheets that
+//! crossed), the curvature is not one the mesh resolves: the target there is h (clamped).
+struct RadiusSizingOptions {
+  double edges_per_radius = 4; //!< n (> 0)
+  double min_length = 0;       //!< floor (> 0)
+  double max_length = 0;       //!< ceiling (≥ min_length, finite)
+};
+
+//! The target length ℓ(v) of the rule above at each vertex of `mesh` (no deleted elements).
+//! Throws InvalidParameter for out-of-range options.
+std::vector<double> radius_targets(const Mesh& mesh, const RadiusSizingOptions& options);
 
 } // namespace sdflow
