@@ -154,5 +154,47 @@ TEST(RunParameters, validation_requires_a_stop_condition_and_sane_values)
   EXPECT_THROW(validate_run_parameters(p), InvalidParameter);
 }
 
+TEST(RunParameters, paper_preset_selects_the_papers_scheme_and_keys_override_it)
+{
+  test::TempDir dir;
+  RunParameters paper;
+  apply_preset("paper", paper);
+  EXPECT_EQ(curvature_name(paper.scheme.curvature), "normal_integral");
+  EXPECT_EQ(paper.scheme.mass, VertexMass::voronoi);
+  EXPECT_FALSE(paper.scheme.extrapolate);
+  EXPECT_EQ(paper.retriangulation.pipeline.edges_per_radius, 0);
+  EXPECT_FALSE(paper.retriangulation.restore_volume);
+  RunParameters back = paper;
+  apply_preset("default", back);
+  EXPECT_EQ(curvature_name(back.scheme.curvature), "cotangent");
+  EXPECT_EQ(back.retriangulation.pipeline.edges_per_radius, RunParameters{}.retriangulation.pipeline.edges_per_radius);
+  EXPECT_TRUE(back.retriangulation.restore_volume);
+  EXPECT_THROW(apply_preset("Paper", back), InvalidParameter);
+
+  // In a scenario the preset comes first, whatever the order of the keys.
+  test::write_file(dir / "s.toml", "curvature = \"cotangent\"\npreset = \"paper\"\nsteps = 1\n");
+  RunParameters p;
+  read_run_parameters(dir / "s.toml", p);
+  EXPECT_EQ(curvature_name(p.scheme.curvature), "cotangent");
+  EXPECT_FALSE(p.retriangulation.restore_volume);
+  // The resolved parameters read back to the same scheme without the preset key.
+  test::write_file(dir / "run.toml", run_parameters_toml(p));
+  RunParameters q;
+  read_run_parameters(dir / "run.toml", q);
+  EXPECT_EQ(curvature_name(q.scheme.curvature), "cotangent");
+  EXPECT_FALSE(q.retriangulation.restore_volume);
+  EXPECT_EQ(q.retriangulation.pipeline.edges_per_radius, 0);
+  test::write_file(dir / "bad.toml", "steps = 1\npreset = \"fast\"\n");
+  try {
+    read_run_parameters(dir / "bad.toml", p);
+    FAIL() << "accepted";
+  } catch (const InvalidParameter& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.toml:2: preset must be"), std::string::npos) << e.what();
+  }
+  RunParameters tolerance_alone;
+  tolerance_alone.steps = 1;
+  tolerance_alone.time_step.adaptive.tolerance = 1e-3;
+  EXPECT_THROW(validate_run_parameters(tolerance_alone), InvalidParameter) << "needs extrapolated steps";
+}
 } // namespace
 } // namespace sdflow

@@ -356,5 +356,22 @@ TEST(FlowStep, rejects_bad_parameters_with_a_clear_error)
   EXPECT_THROW(flow_step(Mesh{}, 0.01), InvalidMesh);
 }
 
+TEST(FlowStep, volume_gradient_areas_fall_back_to_voronoi_on_a_folded_star)
+{
+  // Carry one vertex of a sphere across a neighbour: its star folds over, it sweeps (almost) no
+  // volume along its normal, and the step goes on with its Voronoi area. (Pushing a vertex along
+  // its normal does not fold it: Σ A_f n_f over a star is the link's vector area, whatever v is.)
+  Mesh mesh = analytic::icosphere(3);
+  const auto v = *mesh.vertices().begin();
+  const auto w = *mesh.vv_iter(v);
+  mesh.set_point(v, mesh.point(w) + 0.5 * (mesh.point(w) - mesh.point(v)));
+  const SchemeOptions options{.mass = VertexMass::volume_gradient};
+  const FlowOperators op = flow_operators(mesh, options);
+  EXPECT_GE(op.mass_fallbacks, 1);
+  EXPECT_NEAR(op.areas[v.idx()], mixed_voronoi_areas(mesh)[v.idx()], 1e-15);
+  EXPECT_GT(op.areas.minCoeff(), 0);
+  EXPECT_EQ(flow_operators(analytic::icosphere(3), options).mass_fallbacks, 0) << "smooth stars keep their own areas";
+  EXPECT_NO_THROW(flow_step(mesh, 1e-4, options));
+}
 } // namespace
 } // namespace sdflow

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace sdflow {
 namespace {
 
@@ -148,5 +150,26 @@ TEST(TimeStepController, schedule_retries_apply_to_schedules_only_and_are_bounde
                InvalidParameter);
 }
 
+TEST(TimeStepController, error_tolerance_rejects_and_predicts_the_next_tau)
+{
+  // The step-doubling estimate is O(τ²): an estimate 4 ε calls for τ · safety · √(1/4).
+  TimeStepOptions options;
+  options.adaptive.initial_tau = 1.0;
+  options.adaptive.tolerance = 1e-3;
+  TimeStepController controller(options);
+  StepCheck large;
+  large.error_estimate = 4e-3;
+  large.error_exceeded = true;
+  EXPECT_FALSE(controller.judge(1, 1.0, large));
+  EXPECT_DOUBLE_EQ(controller.propose(1, 0.0, 10.0), options.adaptive.safety / 2);
+  StepCheck small;
+  small.error_estimate = 0.25e-3;
+  EXPECT_TRUE(controller.judge(1, 0.4, small));
+  EXPECT_DOUBLE_EQ(controller.propose(2, 0.0, 10.0), 0.4 * options.adaptive.growth) << "growth stays bounded";
+  StepCheck near;
+  near.error_estimate = 0.9e-3;
+  EXPECT_TRUE(controller.judge(2, 0.5, near));
+  EXPECT_DOUBLE_EQ(controller.propose(3, 0.0, 10.0), 0.5 * options.adaptive.safety * std::sqrt(1 / 0.9));
+}
 } // namespace
 } // namespace sdflow

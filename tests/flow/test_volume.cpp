@@ -48,5 +48,44 @@ TEST(RestoreVolumes, open_components_are_left_alone)
   EXPECT_THROW(restore_volumes(disk, {}), InvalidParameter);
 }
 
+TEST(RestoreVolumesFrom, a_remeshed_body_gets_its_volume_back)
+{
+  // A coarser inscribed sphere stands for a re-triangulation that lost volume (about 3%).
+  const Mesh before = analytic::icosphere(4);
+  const Mesh after = analytic::icosphere(2);
+  ASSERT_GT((enclosed_volume(before) - enclosed_volume(after)) / enclosed_volume(before), 0.02);
+  Mesh restored = after;
+  set_vertex_positions(restored, restore_volumes_from(before, after).positions);
+  EXPECT_NEAR(enclosed_volume(restored), enclosed_volume(before), round_off_volume * enclosed_volume(before));
+}
+
+TEST(RestoreVolumesFrom, pieces_of_one_body_share_its_volume_by_area)
+{
+  // One body (an ellipsoid spanning both spheres) re-triangulated into two spheres of radii 1 and
+  // 2 (a pinch-off): together they get the body's volume back, each in proportion to its area.
+  const Mesh before = analytic::ellipsoid(4, 4, 2.05, 2.05);
+  const Mesh small = analytic::icosphere(3, 1.0, {-2.5, 0, 0});
+  const Mesh large = analytic::icosphere(3, 2.0, {1.5, 0, 0});
+  Mesh after = analytic::disjoint_union(small, large);
+  const std::vector<double> old_parts = component_volumes(after);
+  const double deficit = enclosed_volume(before) - old_parts[0] - old_parts[1];
+  set_vertex_positions(after, restore_volumes_from(before, after).positions);
+  const std::vector<double> parts = component_volumes(after);
+  ASSERT_EQ(parts.size(), 2u);
+  EXPECT_NEAR(parts[0] + parts[1], enclosed_volume(before), 1e-10 * enclosed_volume(before));
+  const double share = surface_area(small) / (surface_area(small) + surface_area(large));
+  EXPECT_NEAR(parts[0] - old_parts[0], share * deficit, 1e-3 * std::abs(deficit));
+}
+
+TEST(RestoreVolumesFrom, separate_bodies_keep_their_own_volumes)
+{
+  // Two bodies far apart, each re-triangulated coarser: neither borrows from the other.
+  const Mesh before = analytic::disjoint_union(analytic::icosphere(4, 1.0, {-5, 0, 0}), analytic::icosphere(4, 2.0, {5, 0, 0}));
+  Mesh after = analytic::disjoint_union(analytic::icosphere(2, 1.0, {-5, 0, 0}), analytic::icosphere(3, 2.0, {5, 0, 0}));
+  set_vertex_positions(after, restore_volumes_from(before, after).positions);
+  const std::vector<double> want = component_volumes(before), got = component_volumes(after);
+  for (int k = 0; k < 2; ++k)
+    EXPECT_NEAR(got[k], want[k], 1e-10 * want[k]) << k;
+}
 } // namespace
 } // namespace sdflow

@@ -2,6 +2,7 @@ target_sources(sdflow_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/test_normals.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_curvature.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_cotangent_curvature.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_principal_curvature.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_laplacian.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_measures.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_topology.cpp

@@ -3,6 +3,8 @@
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/retri/pipeline.h"
+#include "sdflow/shapes/catalogue.h"
+#include "sdflow/shapes/mesher.h"
 #include "retri/mesh_checks.h"
 #include "retri/test_meshes.h"
 #include "support/analytic_meshes.h"
@@ -165,5 +167,37 @@ TEST(Pipeline, bad_options_and_empty_results_are_refused)
   EXPECT_THROW(retriangulate(Mesh{}), InvalidMesh);
 }
 
+//! Mean length of the edges whose midpoints lie within |x| < half_width (the dumbbell's neck).
+double mean_edge_length_near_neck(const Mesh& mesh, double half_width)
+{
+  double sum = 0;
+  int count = 0;
+  for (const auto e : mesh.edges()) {
+    const Mesh::Point mid = (mesh.point(e.v0()) + mesh.point(e.v1())) / 2;
+    if (std::abs(mid[0]) < half_width) {
+      sum += mesh.calc_edge_length(e);
+      ++count;
+    }
+  }
+  return sum / count;
+}
+
+TEST(Pipeline, a_thin_neck_gets_edges_by_its_radius_of_curvature)
+{
+  // The dumbbell's neck has radius 0.5; with ℓ = 0.5 a uniform remeshing puts about six edges
+  // around it. With 4 edges per radius of curvature (floor ℓ/4) its edges come out near ℓ/4,
+  // while the end spheres (radius 3) keep ℓ.
+  constexpr double ell = 0.5;
+  const Mesh dumbbell =
+      mesh_implicit_surface(shapes::dumbbell({.radius = 3, .separation = 9}), {.edge_length = ell}).mesh;
+  const RetriangulationResult adapted = retriangulate(dumbbell, {.target_edge_length = ell});
+  const RetriangulationResult uniform = retriangulate(dumbbell, {.target_edge_length = ell, .edges_per_radius = 0});
+  EXPECT_LT(mean_edge_length_near_neck(adapted.mesh, 0.3), 0.45 * ell);
+  EXPECT_GT(mean_edge_length_near_neck(uniform.mesh, 0.3), 0.75 * ell);
+  EXPECT_GT(adapted.mesh.n_vertices(), uniform.mesh.n_vertices());
+  EXPECT_LT(adapted.mesh.n_vertices(), 2 * uniform.mesh.n_vertices()) << "refinement must stay local";
+  EXPECT_FALSE(adapted.uniform_fallback);
+  EXPECT_EQ(checks::self_intersecting_pairs(adapted.mesh), 0);
+}
 } // namespace
 } // namespace sdflow
