@@ -5,14 +5,19 @@
 #include "sdflow/geometry/curvature.h"
 #include "sdflow/geometry/laplacian.h"
 #include "sdflow/geometry/normals.h"
+#include "sdflow/shapes/catalogue.h"
+#include "sdflow/shapes/mesher.h"
 #include "support/analytic_meshes.h"
 #include "support/convergence.h"
 #include "support/curvature_errors.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
+#include <numbers>
+#include <vector>
 
 namespace sdflow {
 namespace {
@@ -111,6 +116,52 @@ TEST(CotangentCurvature, refuses_operators_of_another_size)
   const Mesh other = analytic::icosphere(2);
   EXPECT_THROW(cotangent_mean_curvature(mesh, vertex_normals(mesh), cotangent_laplacian(other), mixed_voronoi_areas(mesh)),
                InvalidParameter);
+}
+
+//! The largest area-weighted mean of H − H_exact over bands of the tube angle v (12 bands): the part
+//! of the error that survives local averaging, which is what the flow, through ΔH, responds to.
+double band_bias(const Mesh& torus, const Eigen::VectorXd& h, double major, double minor)
+{
+  constexpr int bands = 12;
+  std::vector<double> sum(bands, 0.0), area(bands, 0.0);
+  const Eigen::VectorXd a = mixed_voronoi_areas(torus);
+  for (auto v : torus.vertices()) {
+    const Eigen::Vector3d p = to_eigen(torus.point(v));
+    const double angle = std::atan2(p.z(), std::hypot(p.x(), p.y()) - major);
+    const int band = std::min(bands - 1, static_cast<int>((angle + std::numbers::pi) / (2 * std::numbers::pi) * bands));
+    sum[band] += a[v.idx()] * (h[v.idx()] - torus_curvature(p, major, minor));
+    area[band] += a[v.idx()];
+  }
+  double worst = 0;
+  for (int b = 0; b < bands; ++b)
+    worst = std::max(worst, std::abs(sum[b] / area[b]));
+  return worst;
+}
+
+TEST(CotangentCurvature, its_error_averages_out_on_remeshed_tori_where_eq9_is_biased)
+{
+  // Why the flow's default H is the cotangent one. On the isotropically remeshed surfaces runs use
+  // (R = 3, r = 1.5, edge lengths 0.2, 0.1, 0.05) neither H converges pointwise: the RMS errors stay
+  // near 0.0045 (eq. 9) and 0.0087 (cotangent). But the cotangent error is noise that averages
+  // out over a band of the tube, and that part falls at second order (measured 1.7e-3, 4.2e-4,
+  // 9.4e-5); eq. (9)'s error carries a bias that depends on where on the tube a star sits, and it
+  // barely falls (1.9e-3, 1.7e-3, 1.2e-3), so the flow's ΔH inherits it. The errors are
+  // recorded as test properties (scripts/validation.sh puts them in docs/validation.md).
+  constexpr double major = 3, minor = 1.5;
+  std::vector<double> paper, cotangent;
+  for (const double edge : {0.2, 0.1, 0.05}) {
+    const Mesh torus =
+        mesh_implicit_surface(shapes::torus({.major = major, .minor = minor}), {.edge_length = edge}).mesh;
+    const VertexVectors normals = vertex_normals(torus);
+    paper.push_back(band_bias(torus, mean_curvature(torus, normals), major, minor));
+    cotangent.push_back(band_bias(torus, mean_curvature(torus, normals, kCotangent), major, minor));
+    const std::string key = fmt::format("edge_{}_vertices_{}", edge, torus.n_vertices());
+    RecordProperty(key + "_eq9_band_bias", fmt::format("{:.3g}", paper.back()));
+    RecordProperty(key + "_cotangent_band_bias", fmt::format("{:.3g}", cotangent.back()));
+  }
+  EXPECT_LT(cotangent[2], 0.35 * cotangent[0]) << "the cotangent H's local average must converge";
+  EXPECT_GT(paper[2], 0.5 * paper[0]) << "eq. (9)'s bias was expected to stay, roughly";
+  EXPECT_LT(cotangent[2], 0.5 * paper[2]);
 }
 
 } // namespace

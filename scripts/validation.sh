@@ -1,0 +1,200 @@
+#!/usr/bin/env bash
+# Re-runs the validation of the 3-D flow against exact references and writes the tables of
+# docs/validation.md (between its "<!-- tables -->" markers) from what it measured:
+#   - the torus R = 3, r = 1.5 (R/r = 2; the paper's R = 6, r = 3 is the same shape, its times 16× these):
+#     when its hole seals, at three resolutions, with the defaults and with --preset paper;
+#   - the paper's dumbbell (samples/dumbbell.toml's shape): when its neck pinches off, likewise;
+#   - capsules of radius 1 and length L (L/D from 5 to 12): how many bodies they break into, and when,
+#     at three edge lengths with the defaults and at one with --preset paper;
+#   - the axisymmetric reference (`sdflow axisymmetric`) for each, computed in 1-D.
+# Each run's directory is kept under build/validation/ and reused when it finished, so a second call
+# only redraws the tables; --force re-runs everything. Runs go two at a time (--jobs N to change).
+#   scripts/validation.sh [--jobs N] [--force] [--only torus|dumbbell|capsules] [--sdflow PATH]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+jobs=2 force=0 only="" sdflow=build/release/cli/sdflow
+while (($#)); do
+  case $1 in
+    --jobs) jobs=$2; shift 2 ;;
+    --force) force=1; shift ;;
+    --only) only=$2; shift 2 ;;
+    --sdflow) sdflow=$2; shift 2 ;;
+    -h|--help) sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "validation.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
+  esac
+done
+[[ -x $sdflow ]] || { echo "validation.sh: $sdflow not found: build first (scripts/test.sh builds build/release)" >&2; exit 2; }
+sdflow=$(realpath "$sdflow")
+work=build/validation
+mkdir -p "$work"
+work=$(realpath "$work")
+
+torus_vertices=(5000 15000 30000)
+dumbbell_vertices=(5000 10000 20000)
+capsule_ratios=(5 6 7 7.5 8 9 10 12)
+capsule_edges=(0.2 0.15 0.11)
+paper_capsule_edge=0.13
+
+# --- the runs -----------------------------------------------------------------------------------
+# One line per run: NAME MESH_COMMAND... ;; RUN_FLAGS...
+plan=()
+want() { [[ -z $only || $only == "$1" ]]; }
+if want torus; then
+  for n in "${torus_vertices[@]}"; do
+    for scheme in default paper; do
+      plan+=("torus_${n}_$scheme|shape torus --major 3 --minor 1.5 --vertices $n|--t-end 8 --preset $scheme")
+    done
+  done
+fi
+if want dumbbell; then
+  for n in "${dumbbell_vertices[@]}"; do
+    for scheme in default paper; do
+      plan+=("dumbbell_${n}_$scheme|shape dumbbell --vertices $n|--t-end 0.6 --preset $scheme")
+    done
+  done
+fi
+if want capsules; then
+  for ratio in "${capsule_ratios[@]}"; do
+    half=$(awk -v x="$ratio" 'BEGIN { print x - 1 }') # half-length of the axis segment, radius 1
+    box=$(awk -v x="$ratio" 'BEGIN { printf "%g,-1.5,-1.5,%g,1.5,1.5", -x - 0.5, x + 0.5 }')
+    expr="sqrt(max(abs(x)-$half,0)^2+y^2+z^2)-1"
+    for h in "${capsule_edges[@]}"; do
+      plan+=("capsule_${ratio}_${h}_default|shape --expr $expr --box $box --edge-length $h|--t-end 50 --preset default")
+    done
+    plan+=("capsule_${ratio}_${paper_capsule_edge}_paper|shape --expr $expr --box $box --edge-length $paper_capsule_edge|--t-end 50 --preset paper")
+  done
+fi
+
+run_one() { # NAME|MESH ARGS|RUN ARGS
+  local name=${1%%|*} rest=${1#*|}
+  local mesh_args=${rest%%|*} run_args=${rest#*|}
+  local dir=$work/$name
+  if [[ $force == 0 && -f $dir/done ]]; then return 0; fi
+  rm -rf "$dir"
+  mkdir -p "$dir"
+  # shellcheck disable=SC2086 # the argument lists are ours, split on purpose
+  "$sdflow" -q $mesh_args -o "$dir/start.ply" > "$dir/shape.log" 2>&1
+  local start=$SECONDS
+  # shellcheck disable=SC2086
+  if "$sdflow" -q run --input "$dir/start.ply" --out "$dir/run" --retriangulate --snapshot-every 0 --quiet \
+      $run_args > "$dir/run.log" 2>&1; then
+    echo $((SECONDS - start)) > "$dir/seconds"
+    touch "$dir/done"
+  else
+    echo "validation.sh: $name failed (see $dir/run.log)" >&2
+  fi
+}
+export -f run_one
+export sdflow work force
+printf '%s\n' "${plan[@]}" | xargs -d '\n' -P "$jobs" -I{} bash -c 'run_one "$1"' _ {}
+
+# --- what the runs measured ---------------------------------------------------------------------
+metrics() { echo "$work/$1/run/metrics.csv"; }
+# Time of the first row after which the genus fell (a hole sealed) or the component count rose.
+event_time() { # NAME genus|components
+  local file; file=$(metrics "$1")
+  [[ -f $file ]] || { echo "–"; return; }
+  awk -F, -v what="$2" 'NR == 2 { g = $7; c = $6 } NR > 2 && ((what == "genus" && $7 < g) || (what == "components" && $6 > c)) { printf "%.4g", $2; found = 1; exit } END { if (!found) printf "none" }' "$file"
+}
+final_components() { local f; f=$(metrics "$1"); [[ -f $f ]] && tail -n 1 "$f" | cut -d, -f6 || echo "–"; }
+vertices() { local f; f=$(metrics "$1"); [[ -f $f ]] && sed -n 2p "$f" | cut -d, -f4 || echo "–"; }
+volume_drift() { # relative change from the first row to the last, in %
+  local f; f=$(metrics "$1")
+  [[ -f $f ]] || { echo "–"; return; }
+  awk -F, 'NR == 2 { v0 = $9 } END { printf "%+.3f%%", 100 * ($9 - v0) / v0 }' "$f"
+}
+seconds() { [[ -f $work/$1/seconds ]] && echo "$(cat "$work/$1/seconds") s" || echo "–"; }
+# Richardson extrapolation of three values at resolutions h1 > h2 > h3 with h ∝ n^(-1/2) (vertex counts) or
+# given edge lengths, assuming a power law in h: prints the extrapolated value and the observed order.
+extrapolate() { # h1 v1 h2 v2 h3 v3
+  awk -v h1="$1" -v a="$2" -v h2="$3" -v b="$4" -v h3="$5" -v c="$6" '
+    function gap(p) { return (h1^p - h2^p) / (h2^p - h3^p) - (a - b) / (b - c) }
+    BEGIN {
+      if (a !~ /^[0-9.]+$/ || b !~ /^[0-9.]+$/ || c !~ /^[0-9.]+$/) { print "–"; exit }
+      if ((a - b) * (b - c) <= 0) { printf "%.4g (not monotone)", c; exit }
+      lo = 0.25; hi = 4; flo = gap(lo)
+      if (flo * gap(hi) > 0) { printf "%.4g (order outside [0.25, 4])", c; exit }
+      for (i = 0; i < 60; ++i) { p = (lo + hi) / 2; f = gap(p); if (f * flo > 0) { lo = p; flo = f } else hi = p }
+      printf "%.4g (order %.2g)", c - (b - c) / (h2^p - h3^p) * h3^p, p
+    }'
+}
+reference() { # axisymmetric ARGS...: the reference event time, or – if the verb is not there
+  "$sdflow" axisymmetric "$@" --json 2>/dev/null |
+    awk 'match($0, /"event_time": *[-0-9.eE+]+/) { s = substr($0, RSTART, RLENGTH); sub(/.*: */, "", s); printf "%.4g", s; found = 1 } END { if (!found) printf "–" }'
+}
+reference_bodies() {
+  "$sdflow" axisymmetric "$@" --json 2>/dev/null |
+    awk 'match($0, /"bodies": *[0-9]+/) { s = substr($0, RSTART, RLENGTH); sub(/.*: */, "", s); printf "%s", s; found = 1 } END { if (!found) printf "–" }'
+}
+h_of() { awk -v n="$1" 'BEGIN { printf "%.6g", 1 / sqrt(n) }'; } # resolution from a vertex count
+
+tables=$(mktemp)
+{
+  if want torus; then
+    ref=$(reference torus --major 3 --minor 1.5)
+    echo "#### Torus R = 3, r = 1.5: time at which the hole seals"
+    echo
+    echo "1-D reference (\`sdflow axisymmetric torus --major 3 --minor 1.5\`): **$ref** (the paper's R = 6, r = 3: 16× that)."
+    echo
+    echo "| vertices | default | error | --preset paper | error | volume drift (default) | CPU default / paper |"
+    echo "|---|---|---|---|---|---|---|"
+    d=() p=()
+    for n in "${torus_vertices[@]}"; do
+      a=$(event_time "torus_${n}_default" genus) b=$(event_time "torus_${n}_paper" genus)
+      d+=("$(h_of "$n")" "$a") p+=("$(h_of "$n")" "$b")
+      echo "| $(vertices "torus_${n}_default") | $a | $(awk -v x="$a" -v r="$ref" 'BEGIN { if (r+0 > 0 && x+0 > 0) printf "%+.1f%%", 100 * (x - r) / r; else printf "–" }') | $b | $(awk -v x="$b" -v r="$ref" 'BEGIN { if (r+0 > 0 && x+0 > 0) printf "%+.1f%%", 100 * (x - r) / r; else printf "–" }') | $(volume_drift "torus_${n}_default") | $(seconds "torus_${n}_default") / $(seconds "torus_${n}_paper") |"
+    done
+    echo "| extrapolated | $(extrapolate "${d[@]}") | | $(extrapolate "${p[@]}") | | | |"
+    echo
+  fi
+  if want dumbbell; then
+    ref=$(reference dumbbell)
+    echo "#### The paper's dumbbell (R = 6, neck width 1, centres 18 apart): time at which the neck pinches off"
+    echo
+    echo "1-D reference (\`sdflow axisymmetric dumbbell\`): **$ref**."
+    echo
+    echo "| vertices | default | error | --preset paper | error | volume drift (default) | CPU default / paper |"
+    echo "|---|---|---|---|---|---|---|"
+    d=() p=()
+    for n in "${dumbbell_vertices[@]}"; do
+      a=$(event_time "dumbbell_${n}_default" components) b=$(event_time "dumbbell_${n}_paper" components)
+      d+=("$(h_of "$n")" "$a") p+=("$(h_of "$n")" "$b")
+      echo "| $(vertices "dumbbell_${n}_default") | $a | $(awk -v x="$a" -v r="$ref" 'BEGIN { if (r+0 > 0 && x+0 > 0) printf "%+.1f%%", 100 * (x - r) / r; else printf "–" }') | $b | $(awk -v x="$b" -v r="$ref" 'BEGIN { if (r+0 > 0 && x+0 > 0) printf "%+.1f%%", 100 * (x - r) / r; else printf "–" }') | $(volume_drift "dumbbell_${n}_default") | $(seconds "dumbbell_${n}_default") / $(seconds "dumbbell_${n}_paper") |"
+    done
+    echo "| extrapolated | $(extrapolate "${d[@]}") | | $(extrapolate "${p[@]}") | | | |"
+    echo
+  fi
+  if want capsules; then
+    echo "#### Capsules of radius 1 (D = 2), length L: bodies at the end (t = 50) and time of the first break-up"
+    echo
+    header="| L/D | 1-D reference |"
+    rule="|---|---|"
+    for h in "${capsule_edges[@]}"; do header+=" default, edge $h |"; rule+="---|"; done
+    header+=" --preset paper, edge $paper_capsule_edge | CPU (default, finest) |"; rule+="---|---|"
+    echo "$header"
+    echo "$rule"
+    for ratio in "${capsule_ratios[@]}"; do
+      ref_t=$(reference capsule --length-ratio "$ratio")
+      row="| $ratio | $(reference_bodies capsule --length-ratio "$ratio") bodies, t = $ref_t |"
+      for h in "${capsule_edges[@]}"; do
+        row+=" $(final_components "capsule_${ratio}_${h}_default"), t = $(event_time "capsule_${ratio}_${h}_default" components) |"
+      done
+      row+=" $(final_components "capsule_${ratio}_${paper_capsule_edge}_paper"), t = $(event_time "capsule_${ratio}_${paper_capsule_edge}_paper" components) |"
+      row+=" $(seconds "capsule_${ratio}_${capsule_edges[-1]}_default") |"
+      echo "$row"
+    done
+    echo
+  fi
+} > "$tables"
+
+doc=docs/validation.md
+if [[ -z $only && -f $doc ]] && grep -q '<!-- tables -->' "$doc"; then
+  awk -v tables="$tables" '
+    /<!-- tables -->/ { print; while ((getline line < tables) > 0) print line; skip = 1; next }
+    /<!-- end of tables -->/ { skip = 0 }
+    !skip { print }' "$doc" > "$doc.tmp" && mv "$doc.tmp" "$doc"
+  echo "validation.sh: tables written to $doc"
+fi
+cat "$tables"
+rm -f "$tables"
