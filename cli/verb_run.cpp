@@ -31,7 +31,7 @@ struct RunArguments {
   long steps = 0, snapshot_every = 0, checkpoint_every = 0;
   int schedule_retries = 0;
   double end_time = 0, tau = 0, beta = 0, edge_length = 0, tolerance = 0, edges_per_radius = 0;
-  bool adaptive = false, extrapolate = false, conserve_volume = false, fixed_boundary = false,
+  bool adaptive = false, extrapolate = false, stop_at_topology_change = false, conserve_volume = false, fixed_boundary = false,
        retriangulate = false, quiet = false;
   std::map<std::string, CLI::Option*> given;
   bool has(const std::string& name) const { return given.at(name)->count() > 0; }
@@ -116,6 +116,7 @@ void apply_flags(const RunArguments& a, RunParameters& p)
   if (a.has("--out")) p.output_dir = a.out;
   if (a.has("--steps")) p.steps = a.steps;
   if (a.has("--t-end")) p.end_time = a.end_time;
+  if (a.has("--stop-at-topology-change")) p.stop_at_topology_change = true;
   if (a.has("--beta")) p.scheme.beta = a.beta;
   if (a.has("--curvature")) p.scheme.curvature = curvature_options(a.curvature);
   if (a.has("--mass")) p.scheme.mass = vertex_mass(a.mass);
@@ -203,6 +204,10 @@ void add_run_verb(CLI::App& app)
   g["--out"] = verb->add_option("--out", args->out, "Run directory (must not hold a run yet)");
   g["--steps"] = verb->add_option("--steps", args->steps, "Stop after N steps")->check(CLI::PositiveNumber);
   g["--t-end"] = verb->add_option("--t-end", args->end_time, "Stop at time T")->check(CLI::PositiveNumber);
+  g["--stop-at-topology-change"] =
+      verb->add_flag("--stop-at-topology-change", args->stop_at_topology_change,
+                     "Also stop after the first step that changes the component count or the genus (with "
+                     "--retriangulate): event times of pinch-offs, seals and fusions");
   g["--tau"] = verb->add_option("--tau", args->tau, "Constant time step τ")->check(CLI::PositiveNumber);
   g["--schedule"] = verb->add_option("--schedule", args->schedule, "τ schedule (CSV first,last,tau or TOML)")
                         ->check(CLI::ExistingFile);

@@ -43,14 +43,14 @@ want() { [[ -z $only || $only == "$1" ]]; }
 if want torus; then
   for n in "${torus_vertices[@]}"; do
     for scheme in default paper; do
-      plan+=("torus_${n}_$scheme|shape torus --major 3 --minor 1.5 --vertices $n|--t-end 8 --preset $scheme")
+      plan+=("torus_${n}_$scheme|shape torus --major 3 --minor 1.5 --vertices $n|--t-end 8 --stop-at-topology-change --preset $scheme")
     done
   done
 fi
 if want dumbbell; then
   for n in "${dumbbell_vertices[@]}"; do
     for scheme in default paper; do
-      plan+=("dumbbell_${n}_$scheme|shape dumbbell --vertices $n|--t-end 0.6 --preset $scheme")
+      plan+=("dumbbell_${n}_$scheme|shape dumbbell --vertices $n|--t-end 0.6 --stop-at-topology-change --preset $scheme")
     done
   done
 fi

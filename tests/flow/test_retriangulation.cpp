@@ -199,5 +199,20 @@ TEST(RetriangulationHook, gives_back_the_volume_a_remeshing_takes)
       EXPECT_GT(change, 1e-3);
   }
 }
+TEST(RetriangulatingRun, stops_at_the_first_topology_change_when_asked)
+{
+  test::TempDir dir;
+  RunParameters p = retriangulating_run(dir / "run", 1.0);
+  p.stop_at_topology_change = true;
+  const SimulationResult r = run_simulation(dumbbell(), {.parameters = p});
+  const MetricsSummary m = summarise(dir / "run/metrics.csv");
+  EXPECT_LT(r.time, 1.0);
+  EXPECT_EQ(m.last[components_col], "2") << "the last row is the pinch-off's";
+  EXPECT_NE(m.last.back().find("split"), std::string::npos);
+  RunParameters q;
+  read_run_parameters(dir / "run/run.toml", q);
+  EXPECT_TRUE(q.stop_at_topology_change);
+}
+
 } // namespace
 } // namespace sdflow

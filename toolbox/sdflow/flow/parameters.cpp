@@ -140,7 +140,7 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
     throw IoError(fmt::format("{}:{}: {}", file.string(), e.source().begin.line, e.description()));
   }
   check_keys(file, table,
-             {"preset", "input", "out", "steps", "t_end", "time_step", "tau", "schedule", "schedule_retries", "beta", "curvature",
+             {"preset", "input", "out", "steps", "stop_at_topology_change", "t_end", "time_step", "tau", "schedule", "schedule_retries", "beta", "curvature",
               "mass", "extrapolate", "solver", "factorisation", "cg_tolerance", "snapshot_every", "checkpoint_every",
               "conserve_volume", "fixed_boundary", "adaptive", "retriangulation", "reference_sphere"},
              "");
@@ -159,6 +159,8 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
     else if (key == "out") p.output_dir = resolve(file, get<std::string>(file, node, "out"));
     else if (key == "steps") p.steps = get<long>(file, node, "steps");
     else if (key == "t_end") p.end_time = get<double>(file, node, "t_end");
+    else if (key == "stop_at_topology_change")
+      p.stop_at_topology_change = get<bool>(file, node, "stop_at_topology_change");
     else if (key == "time_step") mode = get<std::string>(file, node, "time_step");
     else if (key == "tau") {
       p.time_step.tau = get<double>(file, node, "tau");
@@ -320,6 +322,7 @@ std::string run_parameters_toml(const RunParameters& p)
   s += fmt::format("steps = {}\n", p.steps);
   if (std::isfinite(p.end_time))
     s += fmt::format("t_end = {}\n", p.end_time);
+  s += fmt::format("stop_at_topology_change = {}\n", p.stop_at_topology_change);
   s += fmt::format("time_step = \"{}\"\n", modes[static_cast<int>(p.time_step.mode)]);
   if (p.time_step.mode == TimeStepMode::constant)
     s += fmt::format("tau = {}\n", p.time_step.tau);

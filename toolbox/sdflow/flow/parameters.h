@@ -10,6 +10,7 @@
 //! out = "runs/ellipsoid"
 //! steps = 200                  # stop after this many steps (0: no limit)
 //! t_end = 10.0                 # stop at this time (absent: no limit)
+//! stop_at_topology_change = false # also stop after the first pinch-off, seal or fusion
 //! time_step = "adaptive"       # "constant" (needs tau), "schedule" (needs schedule) or "adaptive"
 //! tau = 0.01                   # implies time_step = "constant" when time_step is absent
 //! schedule = "tables.csv"      # or inline: [[1, 50, 0.01], [51, 100, 0.02]]; implies "schedule"
@@ -99,6 +100,9 @@ struct RunParameters {
   std::filesystem::path output_dir;  //!< the run directory
   long steps = 0;                    //!< step limit, 0 for none
   double end_time = std::numeric_limits<double>::infinity(); //!< time limit
+  //! Also stop after the first step whose re-triangulation changed the component count or the
+  //! genus (a pinch-off, a hole sealing, bodies fusing): for measuring event times.
+  bool stop_at_topology_change = false;
   TimeStepOptions time_step;
   SchemeOptions scheme;
   SolverOptions solver;

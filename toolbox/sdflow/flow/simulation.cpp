@@ -195,7 +195,8 @@ private:
   bool finished() const
   {
     return (p_.steps > 0 && step_ >= p_.steps) ||
-           (std::isfinite(p_.end_time) && time_ >= p_.end_time * (1 - end_time_tolerance));
+           (std::isfinite(p_.end_time) && time_ >= p_.end_time * (1 - end_time_tolerance)) ||
+           topology_changed_;
   }
 
   //! The hook: the caller's, or the one of the parameters' schedule with its ℓ fixed now.
@@ -348,8 +349,10 @@ private:
     if (retriangulate_) {
       const RetriangulationReport report = call_retriangulation();
       if (report.changed()) {
+        const int components = topology_.count, genus = topology_.genus;
         mesh_ = canonical(mesh_);
         renew_connectivity();
+        topology_changed_ = p_.stop_at_topology_change && (topology_.count != components || topology_.genus != genus);
         solver_.forget_factorisation();
         half_solver_.forget_factorisation();
         has_anchor_ = has_half_anchor_ = false;
@@ -460,6 +463,7 @@ private:
   long step_ = 0;
   double time_ = 0;
   long tolerated_degraded_ = 0; // see RetriangulationContext
+  bool topology_changed_ = false; // with stop_at_topology_change: the run ends after this step
   Eigen::VectorXd previous_w_, last_w_;
   bool has_anchor_ = false, has_half_anchor_ = false;
   VertexVectors anchor_positions_, half_anchor_positions_;
