@@ -3,10 +3,21 @@
 # initial surfaces (samples/make_meshes.sh), runs each scenario into runs/NAME, plots it, and prints
 # one line per run: steps, final time, area and volume change, final curvature deviation, the
 # topology (components/genus, first -> last) and the re-triangulation events.
-#   samples/reproduce.sh                    every experiment (about an hour on 2 cores)
+#   samples/reproduce.sh                    every experiment with sdflow's defaults (hours on 2 cores)
 #   samples/reproduce.sh torus dumbbell     only these scenarios
+#   samples/reproduce.sh --paper [NAME...]  the same with the paper's scheme (--preset paper), into
+#                                           runs/NAME-paper: to compare with the paper's tables
 set -euo pipefail
 cd "$(dirname "$0")/.."
+preset=() suffix=""
+if [[ "${1:-}" == "--paper" ]]; then
+  preset=(--preset paper) suffix=-paper
+  shift
+fi
+if [[ "${1:-}" == "-h" || "${1:-}" == "--help" ]]; then
+  sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'
+  exit 0
+fi
 cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build build/release -j "$(nproc)" --target sdflow
 sdflow=$PWD/build/release/cli/sdflow
@@ -16,11 +27,14 @@ names=("$@")
 [[ ${#names[@]} -gt 0 ]] || names=(sphere_accuracy ellipsoid_relax ellipsoid_quarter_beta ellipsoid_explicit torus
                                    dumbbell sintering sintering_late spheres_on_plane spheres_on_plane_late)
 for name in "${names[@]}"; do
-  rm -rf "runs/$name"
+  out=runs/$name$suffix
+  rm -rf "$out"
   status=0
-  "$sdflow" run "samples/$name.toml" --quiet || status=$?
+  input=() # a second stage starts from its first stage's run of the same scheme
+  [[ $name == *_late ]] && input=(--input "runs/${name%_late}$suffix/snapshots/step_000400.ply")
+  "$sdflow" run "samples/$name.toml" --out "$out" "${input[@]}" "${preset[@]}" --quiet || status=$?
   [[ $status -eq 0 || $status -eq 3 ]] || exit "$status"   # 3: stopped as unstable (the explicit scheme)
-  "$sdflow" plot "runs/$name" > /dev/null
+  "$sdflow" plot "$out" > /dev/null
   awk -F, -v name="$name" -v status="$status" '
     NR == 2 { a0 = $8; v0 = $9; topo0 = $6 "/" $7 }
     NR > 1 { last = $0; split($14, ev, "+"); for (i in ev) if (ev[i] != "") n[ev[i]]++ }
@@ -31,5 +45,5 @@ for name in "${names[@]}"; do
       printf "%-24s %s steps, t = %.4g, area %+.2f%%, volume %+.3f%%, H_dev %.2f%%, components/genus %s -> %s/%s%s%s\n",
              name, f[1], f[2], 100 * (f[8] / a0 - 1), (v0 != 0 ? 100 * (f[9] / v0 - 1) : 0), f[11], topo0, f[6], f[7],
              (events == "" ? "" : ", events: " events), (status == 3 ? " (stopped as unstable)" : "")
-    }' "runs/$name/metrics.csv"
+    }' "$out/metrics.csv"
 done
