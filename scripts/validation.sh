@@ -9,7 +9,8 @@
 #   - the axisymmetric reference (`sdflow axisymmetric`) for each, computed in 1-D.
 # Each run's directory is kept under build/validation/ and reused when it finished, so a second call
 # only redraws the tables; --force re-runs everything. Runs go two at a time (--jobs N to change).
-#   scripts/validation.sh [--jobs N] [--force] [--only torus|dumbbell|capsules] [--sdflow PATH]
+#   - the sphere-mode rates and the remeshed tori's curvature errors, from the test suite's measurements.
+#   scripts/validation.sh [--jobs N] [--force] [--only modes|torus|dumbbell|capsules] [--sdflow PATH]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -20,7 +21,7 @@ while (($#)); do
     --force) force=1; shift ;;
     --only) only=$2; shift 2 ;;
     --sdflow) sdflow=$2; shift 2 ;;
-    -h|--help) sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "validation.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -87,7 +88,9 @@ run_one() { # NAME|MESH ARGS|RUN ARGS
 }
 export -f run_one
 export sdflow work force
-printf '%s\n' "${plan[@]}" | xargs -d '\n' -P "$jobs" -I{} bash -c 'run_one "$1"' _ {}
+if ((${#plan[@]} > 0)); then
+  printf '%s\n' "${plan[@]}" | xargs -d '\n' -P "$jobs" -I{} bash -c 'run_one "$1"' _ {}
+fi
 
 # --- what the runs measured ---------------------------------------------------------------------
 metrics() { echo "$work/$1/run/metrics.csv"; }
@@ -129,8 +132,40 @@ reference_bodies() {
 }
 h_of() { awk -v n="$1" 'BEGIN { printf "%.6g", 1 / sqrt(n) }'; } # resolution from a vertex count
 
+# Test properties (gtest's XML output) of the measurements the test suite makes anyway.
+tests_binary=$(dirname "$(dirname "$sdflow")")/tests/sdflow_tests
+properties() { # FILTER: prints NAME VALUE lines
+  local xml; xml=$(mktemp)
+  "$tests_binary" --gtest_filter="$1" --gtest_output="xml:$xml" > /dev/null 2>&1 || true
+  grep -o 'property name="[^"]*" value="[^"]*"' "$xml" | sed 's/property name="\([^"]*\)" value="\([^"]*\)"/\1 \2/'
+  rm -f "$xml"
+}
+
 tables=$(mktemp)
 {
+  if want modes && [[ -x $tests_binary ]]; then
+    echo "#### Sphere modes (3-D flow, defaults, extrapolated steps, ±ε averaged, ε = 0.01)"
+    echo
+    echo "| vertices | l = 2: rate (exact 12) | error | l = 3: rate (exact 60) | error |"
+    echo "|---|---|---|---|---|"
+    props=$(properties 'FlowStep.sphere_mode_rates_12_and_60_converge_with_the_defaults')
+    for n in 162 642 2562; do
+      r2=$(awk -v k="l2_vertices_${n}_rate" '$1 == k { print $2 }' <<< "$props")
+      r3=$(awk -v k="l3_vertices_${n}_rate" '$1 == k { print $2 }' <<< "$props")
+      echo "| $n | $r2 | $(awk -v r="$r2" 'BEGIN { printf "%+.2f%%", 100 * (r - 12) / 12 }') | $r3 | $(awk -v r="$r3" 'BEGIN { printf "%+.2f%%", 100 * (r - 60) / 60 }') |"
+    done
+    echo
+    echo "#### Mean curvature on remeshed tori R = 3, r = 1.5: largest band-averaged error of H"
+    echo
+    echo "| edge length | vertices | eq. (9) | cotangent (the default) |"
+    echo "|---|---|---|---|"
+    props=$(properties 'CotangentCurvature.its_error_averages_out_on_remeshed_tori_where_eq9_is_biased')
+    # property names: edge_H_vertices_N_{eq9,cotangent}_band_bias
+    awk '{ split($1, k, "_"); key = k[2] " " k[4]; if ($1 ~ /eq9/) e9[key] = $2; else ct[key] = $2 }
+         END { for (key in e9) { split(key, hv, " "); printf "| %s | %s | %s | %s |\n", hv[1], hv[2], e9[key], ct[key] } }' <<< "$props" |
+      sort -t'|' -k2,2gr
+    echo
+  fi
   if want torus; then
     ref=$(reference torus --major 3 --minor 1.5)
     echo "#### Torus R = 3, r = 1.5: time at which the hole seals"
