@@ -71,6 +71,7 @@ run_one() { # NAME|MESH ARGS|RUN ARGS
   local name=${1%%|*} rest=${1#*|}
   local mesh_args=${rest%%|*} run_args=${rest#*|}
   local dir=$work/$name
+  [[ -n $name ]] || return 0
   if [[ $force == 0 && -f $dir/done ]]; then return 0; fi
   rm -rf "$dir"
   mkdir -p "$dir"
