@@ -12,6 +12,9 @@
 #   - the sphere-mode rates and the remeshed tori's curvature errors, from the test suite's measurements.
 #   scripts/validation.sh [--jobs N] [--force] [--only modes|torus|dumbbell|capsules] [--sdflow PATH]
 set -euo pipefail
+# Everything runs inside main(), which bash reads whole before it starts: editing this file while a
+# validation runs cannot change what the running one does.
+main() {
 cd "$(dirname "$0")/.."
 
 jobs=2 force=0 only="" sdflow=build/release/cli/sdflow
@@ -241,3 +244,5 @@ if [[ -z $only && -f $doc ]] && grep -q '<!-- tables -->' "$doc"; then
 fi
 cat "$tables"
 rm -f "$tables"
+}
+main "$@"
