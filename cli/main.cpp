@@ -50,6 +50,7 @@ int main(int argc, char** argv)
   sdflow::cli::add_intersections_verb(app);
   sdflow::cli::add_components_verb(app);
   sdflow::cli::add_union_verb(app);
+  sdflow::cli::add_axisymmetric_verb(app);
 
   try {
     app.parse(argc, argv);

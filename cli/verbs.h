@@ -19,6 +19,7 @@ void add_shape_verb(CLI::App& app);
 void add_stats_verb(CLI::App& app);
 void add_intersections_verb(CLI::App& app);
 void add_components_verb(CLI::App& app);
+void add_axisymmetric_verb(CLI::App& app);
 void add_union_verb(CLI::App& app);
 
 } // namespace sdflow::cli
