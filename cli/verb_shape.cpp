@@ -30,6 +30,7 @@ struct ShapeArguments {
   double edge_length = 0;
   int vertices = 0;
   int iterations = MesherOptions{}.iterations;
+  double edges_per_radius = 0;
   double grid_cell = 0;
   std::string output;
   std::map<std::string, double> values;      //!< every catalogue parameter, by name
@@ -87,7 +88,7 @@ void run(const ShapeArguments& args)
   const ImplicitSurface surface = chosen_surface(args);
   const MesherResult result = mesh_implicit_surface(
       surface, {.edge_length = args.edge_length, .vertices = args.vertices, .iterations = args.iterations,
-                .grid_cell = args.grid_cell});
+                .edges_per_radius = args.edges_per_radius, .grid_cell = args.grid_cell});
   write_mesh(result.mesh, args.output, {.encoding = Encoding::binary});
 
   const auto& a = result.min_angles;
@@ -120,6 +121,10 @@ void add_shape_verb(CLI::App& app)
   auto* count = verb->add_option("--vertices", args->vertices, "Approximate vertex count (within a few percent)");
   length->excludes(count);
   verb->add_option("--iterations", args->iterations, "Remeshing iterations")->capture_default_str();
+  verb->add_option("--edges-per-radius", args->edges_per_radius,
+                   "Then refine to this many edges per radius of curvature where finer than the edge length, "
+                   "down to a quarter of it (default 0: uniform)")
+      ->check(CLI::NonNegativeNumber);
   verb->add_option("--grid-cell", args->grid_cell, "Marching grid spacing (default: from the edge length and shape)");
   verb->add_option("-o,--output", args->output, "Output mesh (.off, .obj, .ply, .stl)");
   // Every catalogue parameter once; which ones the chosen shape accepts is checked after parsing.

@@ -10,6 +10,6 @@ make_mesh() { # file, then the arguments of sdflow shape
   [[ -f $file ]] || "$sdflow" shape "$@" -o "$file"
 }
 make_mesh torus_15250.ply torus --vertices 15250
-make_mesh dumbbell.ply dumbbell --edge-length 0.5
+make_mesh dumbbell.ply dumbbell --edge-length 0.5 --edges-per-radius 4 # the neck resolved from the start
 make_mesh sintering_51311.ply sintering --vertices 51311
 make_mesh spheres_on_plane_95657.ply spheres-on-plane --vertices 95657

@@ -57,7 +57,7 @@ fi
 if want dumbbell; then
   for n in "${dumbbell_vertices[@]}"; do
     for scheme in default paper; do
-      plan+=("dumbbell_${n}_$scheme|shape dumbbell --vertices $n|--t-end 0.6 --stop-at-topology-change --preset $scheme")
+      plan+=("dumbbell_${n}_$scheme|shape dumbbell --vertices $n --edges-per-radius 4|--t-end 0.6 --stop-at-topology-change --preset $scheme")
     done
   done
 fi

@@ -164,6 +164,7 @@ TEST(RunParameters, paper_preset_selects_the_papers_scheme_and_keys_override_it)
   EXPECT_FALSE(paper.scheme.extrapolate);
   EXPECT_EQ(paper.retriangulation.pipeline.edges_per_radius, 0);
   EXPECT_FALSE(paper.retriangulation.restore_volume);
+  EXPECT_FALSE(paper.retriangulation.pipeline.curved_projection);
   RunParameters back = paper;
   apply_preset("default", back);
   EXPECT_EQ(curvature_name(back.scheme.curvature), "cotangent");

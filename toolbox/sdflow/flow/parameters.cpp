@@ -117,6 +117,7 @@ void apply_preset(const std::string& name, RunParameters& p)
     paper.scheme.extrapolate = false;
     paper.time_step.adaptive.tolerance = 0;
     paper.retriangulation.pipeline.edges_per_radius = 0;
+    paper.retriangulation.pipeline.curved_projection = false;
     paper.retriangulation.restore_volume = false;
     source = &paper;
   } else if (name != "default") {
@@ -128,6 +129,7 @@ void apply_preset(const std::string& name, RunParameters& p)
   p.time_step.adaptive.tolerance = source->time_step.adaptive.tolerance;
   p.retriangulation.pipeline.edges_per_radius = source->retriangulation.pipeline.edges_per_radius;
   p.retriangulation.pipeline.min_edge_fraction = source->retriangulation.pipeline.min_edge_fraction;
+  p.retriangulation.pipeline.curved_projection = source->retriangulation.pipeline.curved_projection;
   p.retriangulation.restore_volume = source->retriangulation.restore_volume;
 }
 
@@ -237,7 +239,8 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
         bad(file, node, "`retriangulation` must be a table of the re-triangulation parameters");
       check_keys(file, *t, {"enabled", "every", "min_angle", "edge_ratio", "degraded_fraction", "always", "edge_length",
                             "remesh_iterations", "neighbours", "fill_holes", "max_hole_length", "min_component_faces",
-                            "min_component_thickness", "edges_per_radius", "min_edge_fraction", "restore_volume"},
+                            "min_component_thickness", "edges_per_radius", "min_edge_fraction", "restore_volume",
+                            "curved_projection"},
                  "retriangulation.");
       RetriangulationSchedule& r = p.retriangulation;
       for (const auto& [k, n] : *t) {
@@ -246,6 +249,8 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
         else if (name == "always") r.always = get<bool>(file, n, "always");
         else if (name == "fill_holes") r.pipeline.fill_holes = get<bool>(file, n, "fill_holes");
         else if (name == "restore_volume") r.restore_volume = get<bool>(file, n, "restore_volume");
+        else if (name == "curved_projection")
+          r.pipeline.curved_projection = get<bool>(file, n, "curved_projection");
         else if (name == "edges_per_radius") r.pipeline.edges_per_radius = get<double>(file, n, "edges_per_radius");
         else if (name == "min_edge_fraction") r.pipeline.min_edge_fraction = get<double>(file, n, "min_edge_fraction");
         else if (name == "every") r.every = get<long>(file, n, "every");
@@ -355,11 +360,12 @@ std::string run_parameters_toml(const RunParameters& p)
                    "always = {}\n"
                    "edge_length = {}\nremesh_iterations = {}\nneighbours = {}\nfill_holes = {}\nmax_hole_length = {}\n"
                    "min_component_faces = {}\nmin_component_thickness = {}\nedges_per_radius = {}\n"
-                   "min_edge_fraction = {}\nrestore_volume = {}\n",
+                   "min_edge_fraction = {}\nrestore_volume = {}\ncurved_projection = {}\n",
                    r.enabled, r.every, r.min_angle_deg, r.edge_ratio, r.degraded_fraction, r.always, r.pipeline.target_edge_length,
                    r.pipeline.remesh_iterations, r.pipeline.normals.neighbours, r.pipeline.fill_holes,
                    r.pipeline.max_hole_length, r.pipeline.min_component_faces, r.pipeline.min_component_thickness,
-                   r.pipeline.edges_per_radius, r.pipeline.min_edge_fraction, r.restore_volume);
+                   r.pipeline.edges_per_radius, r.pipeline.min_edge_fraction, r.restore_volume,
+                   r.pipeline.curved_projection);
   s += fmt::format("\n[reference_sphere]\ncentre = [{}, {}, {}]\nradius = {}\n", p.reference_centre.x(),
                    p.reference_centre.y(), p.reference_centre.z(), p.reference_radius);
   return s;

@@ -48,6 +48,7 @@
 //! edges_per_radius = 4.0       # curvature-adapted ℓ (0: uniform ℓ, the paper's)
 //! min_edge_fraction = 0.25     # floor of the adapted ℓ, as a fraction of ℓ
 //! restore_volume = true        # give back the volume a re-triangulation took or added
+//! curved_projection = true     # remesh onto the smooth surface, not its flat triangles
 //! neighbours = 18              # k of the jet normals
 //! fill_holes = true
 //! max_hole_length = 0.0        # 0: automatic
@@ -129,7 +130,8 @@ VertexMass vertex_mass(const std::string& name);
 
 //! The presets of the `preset` key and `--preset`: "paper" is the paper's scheme exactly (eq. 9 H,
 //! Voronoi areas, plain steps, no error control, uniform re-triangulation edge length, no volume
-//! restoration after re-triangulation); "default" sets those options back to sdflow's defaults.
+//! restoration after re-triangulation, flat projection in remeshing); "default" sets those options
+//! back to sdflow's defaults.
 //! Other parameters (time steps, β, the re-triangulation's ℓ and triggers) are left alone.
 //! Throws InvalidParameter, listing the names, on another name.
 void apply_preset(const std::string& name, RunParameters& parameters);

@@ -213,6 +213,7 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
     RemeshOptions remesh;
     remesh.target_edge_length = r.target_edge_length;
     remesh.iterations = options.remesh_iterations;
+    remesh.curved_projection = options.curved_projection;
     if (options.edges_per_radius > 0)
       remesh.sizing = adapted_sizing(mesh, options, r.target_edge_length);
     RemeshResult remeshed = isotropic_remesh(mesh, remesh);

@@ -45,6 +45,10 @@ struct RemeshOptions {
   //! time; with both projections left empty the relaxation sweeps run on TBB threads (with the
   //! same results).
   PointProjection project;
+  //! With the default projection: lift the closest point on the input's flat triangles onto the
+  //! smooth surface they sample (a Phong tessellation from the eq. 8 normals), so that remeshing
+  //! does not shrink convex parts by the triangles' sagitta. Off: the flat triangles themselves.
+  bool curved_projection = false;
   //! Closest point on the boundary curves (BoundaryMode::remesh). Empty: the input's boundary
   //! polylines, through a nearest-vertex search (retri/star_projection.h).
   PointProjection project_boundary;

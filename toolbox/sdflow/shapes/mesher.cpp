@@ -125,6 +125,8 @@ MesherResult mesh_implicit_surface(const ImplicitSurface& input, const MesherOpt
                                        options.edge_length, options.vertices));
   if (by_count && options.vertices < 12)
     throw InvalidParameter(fmt::format("mesher: {} vertices are too few for a surface (at least 12)", options.vertices));
+  if (!(options.edges_per_radius >= 0) || !std::isfinite(options.edges_per_radius))
+    throw InvalidParameter(fmt::format("mesher: edges per radius must be ≥ 0, got {}", options.edges_per_radius));
   if (!std::isfinite(options.edge_length) || !(options.grid_cell >= 0) || options.iterations < 1 ||
       !(options.tolerance > 0 && options.tolerance < 1e-6))
     throw InvalidParameter(fmt::format("mesher: need finite ℓ, grid cell ≥ 0 (got {}), iterations ≥ 1 (got {}) and a "
@@ -186,6 +188,20 @@ MesherResult mesh_implicit_surface(const ImplicitSurface& input, const MesherOpt
     ell *= std::sqrt(ratio); // vertex count scales like ℓ⁻²
   }
   result.edge_length = ell;
+  if (options.edges_per_radius > 0) {
+    // Twice: the second pass sees the curvature of the refined mesh.
+    for (int pass = 0; pass < 2; ++pass) {
+      Mesh clean = mesh;
+      clean.garbage_collection();
+      remesh.sizing = nearest_vertex_sizing(
+          clean, radius_targets(clean, {.edges_per_radius = options.edges_per_radius, .min_length = ell / 4,
+                                        .max_length = ell}));
+      remesh.iterations = std::max(3, options.iterations / 2);
+      auto remeshed = isotropic_remesh(clean, remesh);
+      mesh = std::move(remeshed.mesh);
+      result.remesh = remeshed.statistics;
+    }
+  }
 
   const double scale = surface.scale();
   for (auto v : mesh.vertices()) {

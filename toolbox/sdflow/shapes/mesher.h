@@ -21,6 +21,10 @@ struct MesherOptions {
   double edge_length = 0; //!< target edge length ℓ; give exactly one of edge_length and vertices
   int vertices = 0;       //!< approximate vertex count: ℓ is adjusted until within 2% of it
   int iterations = 10;    //!< remeshing iterations at the final ℓ
+  //! Then refine where the surface curves: this many edges per radius of curvature where that is
+  //! shorter than ℓ, down to ℓ/4 (remesh.h, radius_targets); 0 keeps the uniform ℓ. A flow started
+  //! on the result begins with its necks resolved, which refining later cannot recover exactly.
+  double edges_per_radius = 0;
   //! Marching-grid spacing near the surface; 0 = min(2ℓ, feature_size / 2), refined where complex.
   double grid_cell = 0;
   //! Projection tolerance on |f|/|∇f| relative to the box diagonal.
