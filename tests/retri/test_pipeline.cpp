@@ -59,7 +59,10 @@ TEST(Pipeline, always_rebuild_reconstructs_a_torus_with_its_genus)
   const RetriangulationResult r = retriangulate(torus, {.remesh_iterations = 1, .always_rebuild = true});
   EXPECT_TRUE(r.rebuilt);
   EXPECT_EQ(closed_genera(r.mesh), std::vector<int>{1});
-  EXPECT_NEAR(enclosed_volume(r.mesh), enclosed_volume(torus), 0.02 * enclosed_volume(torus));
+  // The remeshing projects onto the smooth torus the coarse input samples (curved projection), so
+  // the volume is compared with the torus's, 2π²Rr², not with the coarse mesh's (2.4% less).
+  const double exact = 2 * std::numbers::pi * std::numbers::pi * 6 * 3 * 3;
+  EXPECT_NEAR(enclosed_volume(r.mesh), exact, 0.02 * exact);
 }
 
 //! The upper half of an icosphere: a cap whose boundary loop zigzags along the equator.

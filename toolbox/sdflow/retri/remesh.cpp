@@ -633,6 +633,7 @@ double mean_edge_length(const Mesh& mesh)
 //! so new vertices no longer sit inside convex parts by the sagitta κh²/8 of the old triangles.
 PointProjection curved_projection(const Mesh& mesh, std::shared_ptr<const ClosestPointGrid> grid)
 {
+  constexpr double kSmoothPatchCosine = 0.866; // corner normals within 30° of the triangle's
   struct Surface {
     VertexVectors points, normals;
     Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> triangles;
@@ -640,12 +641,20 @@ PointProjection curved_projection(const Mesh& mesh, std::shared_ptr<const Closes
   auto surface = std::make_shared<Surface>(Surface{vertex_positions(mesh), vertex_normals(mesh), face_indices(mesh)});
   return [grid = std::move(grid), surface](const Eigen::Vector3d& p) {
     const ClosestPoint c = grid->closest_point(p);
-    Eigen::Vector3d lifted = c.point;
+    std::array<Eigen::Vector3d, 3> x, n;
     for (int i = 0; i < 3; ++i) {
-      const int v = surface->triangles(c.face, i);
-      const Eigen::Vector3d n = surface->normals.row(v);
-      lifted += 0.5 * c.barycentric[i] * (Eigen::Vector3d(surface->points.row(v)) - c.point).dot(n) * n;
+      x[i] = surface->points.row(surface->triangles(c.face, i));
+      n[i] = surface->normals.row(surface->triangles(c.face, i));
     }
+    // Only where the corners' normals agree with the triangle's (a smooth patch, not a crease,
+    // a fold or sheets that crossed, whose normals say nothing of a surface to lift onto).
+    const Eigen::Vector3d face_normal = (x[1] - x[0]).cross(x[2] - x[0]).normalized();
+    for (int i = 0; i < 3; ++i)
+      if (!(n[i].dot(face_normal) > kSmoothPatchCosine))
+        return c.point;
+    Eigen::Vector3d lifted = c.point;
+    for (int i = 0; i < 3; ++i)
+      lifted += 0.5 * c.barycentric[i] * (x[i] - c.point).dot(n[i]) * n[i];
     return lifted;
   };
 }
