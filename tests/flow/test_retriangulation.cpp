@@ -241,5 +241,35 @@ TEST(RetriangulatingRun, every_option_combination_pinches_off)
       }
 }
 
+TEST(RetriangulationHook, a_forced_call_runs_the_pipeline_whatever_the_schedule)
+{
+  RetriangulationSchedule schedule;
+  schedule.enabled = true;
+  schedule.every = 5;
+  schedule.pipeline.target_edge_length = 0.15;
+  const RetriangulationHook hook = make_retriangulation_hook(schedule);
+  Mesh idle = analytic::icosphere(3);
+  EXPECT_FALSE(hook(idle, {.step = 3}).changed()) << "not a step the schedule looks at";
+  Mesh forced = analytic::icosphere(3);
+  const RetriangulationReport report = hook(forced, {.step = 3, .force = true});
+  EXPECT_TRUE(report.remeshed);
+  EXPECT_NE(report.detail.find("no step could be taken"), std::string::npos) << report.detail;
+}
+
+TEST(RetriangulatingRun, a_step_no_tau_can_take_is_retried_after_a_retriangulation)
+{
+  // The explicit scheme at τ = 0.5 turns triangles over at any surface: the run re-triangulates,
+  // tries again once, and only then stops as unstable, saying so.
+  test::TempDir dir;
+  RunParameters p = retriangulating_run(dir / "run", std::numeric_limits<double>::infinity(), 3);
+  p.scheme.beta = 0;
+  p.time_step.mode = TimeStepMode::constant;
+  p.time_step.tau = 0.5;
+  EXPECT_THROW(run_simulation(analytic::ellipsoid(3, 5, 4, 3), {.parameters = p}), SolverFailure);
+  const std::string events = test::read_file(dir / "run/events.log");
+  EXPECT_NE(events.find("re-triangulating, then trying again"), std::string::npos) << events;
+  EXPECT_NE(events.find("stopped"), std::string::npos) << events;
+}
+
 } // namespace
 } // namespace sdflow

@@ -139,9 +139,10 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
   auto watch = std::make_shared<IntersectionWatch>();
   return [schedule, watch](Mesh& mesh, const RetriangulationContext& context) {
     RetriangulationReport report;
-    if (context.step % schedule.every != 0)
+    if (!context.force && context.step % schedule.every != 0)
       return report;
-    const std::string reason = reason_to_retriangulate(mesh, schedule, context.tolerated_degraded, *watch);
+    const std::string reason = context.force ? "no step could be taken"
+                                             : reason_to_retriangulate(mesh, schedule, context.tolerated_degraded, *watch);
     if (reason.empty())
       return report;
     RetriangulationResult r = retriangulate(mesh, schedule.pipeline);

@@ -14,6 +14,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -219,10 +220,10 @@ private:
   }
 
   //! The hook's failure stops the run like an unstable step: the files written so far stay valid.
-  RetriangulationReport call_retriangulation()
+  RetriangulationReport call_retriangulation(bool force)
   {
     try {
-      RetriangulationReport report = retriangulate_(mesh_, {step_, time_, tolerated_degraded_});
+      RetriangulationReport report = retriangulate_(mesh_, {step_, time_, tolerated_degraded_, force});
       if (report.degraded_left >= 0)
         tolerated_degraded_ = report.degraded_left;
       return report;
@@ -288,24 +289,20 @@ private:
     return c;
   }
 
-  void advance()
+  //! Trials of step `next_step` until the controller accepts one (returned: its τ); throws
+  //! SolverFailure as the controller does.
+  double trial_step(long next_step, StepResult& trial, StepRecord& record, int& rejections,
+                    std::vector<double>& volumes)
   {
-    const long next_step = step_ + 1;
     positions_ = vertex_positions(mesh_);
     const Eigen::VectorXd edge_lengths = mean_edge_lengths(mesh_);
-    const std::vector<double> volumes =
-        component_volumes(positions_, triangles_, topology_.face_component, topology_.count);
+    volumes = component_volumes(positions_, triangles_, topology_.face_component, topology_.count);
     const bool need_automatic_tau = p_.time_step.mode == TimeStepMode::adaptive &&
                                     controller_.state().next_tau == 0 && p_.time_step.adaptive.initial_tau == 0;
     const double automatic = need_automatic_tau ? automatic_tau(edge_lengths) : 0.0;
     const double time_left = std::isfinite(p_.end_time) ? p_.end_time - time_ : std::numeric_limits<double>::infinity();
-
-    int rejections = 0;
-    StepRecord record;
-    StepResult trial;
-    double tau = 0;
     for (;;) {
-      tau = controller_.propose(next_step, automatic, time_left);
+      const double tau = controller_.propose(next_step, automatic, time_left);
       trial = p_.scheme.extrapolate
                   ? extrapolated_step(mesh_, op_, tau, p_.scheme, solver_, half_solver_, &*cache_, previous_w_)
                   : solve_step(mesh_, op_, tau, p_.scheme.beta, solver_, previous_w_);
@@ -327,11 +324,67 @@ private:
       }
       const StepCheck c = check(trial, tau, edge_lengths, volumes);
       if (controller_.judge(next_step, tau, c))
-        break;
+        return tau;
       ++rejections;
       ++result_.rejected_trials;
       log_event(fmt::format("rejected τ = {}: {}", tau, c.describe()), next_step);
     }
+  }
+
+  //! Take the re-triangulated mesh: new connectivity, fresh factorisations, its events.
+  void adopt_retriangulation(const RetriangulationReport& report, std::vector<std::string>& events)
+  {
+    const int components = topology_.count, genus = topology_.genus;
+    mesh_ = canonical(mesh_);
+    renew_connectivity();
+    topology_changed_ =
+        topology_changed_ || (p_.stop_at_topology_change && (topology_.count != components || topology_.genus != genus));
+    solver_.forget_factorisation();
+    half_solver_.forget_factorisation();
+    has_anchor_ = has_half_anchor_ = false;
+    previous_w_.resize(0);
+    last_w_ = Eigen::VectorXd::Zero(mesh_.n_vertices());
+    std::vector<std::string> these;
+    for (const auto& [flag, name] : {std::pair{report.remeshed, "remeshed"}, std::pair{report.surgery, "surgery"},
+                                     std::pair{report.split, "split"}, std::pair{report.merged, "merged"}})
+      if (flag && std::find(events.begin(), events.end(), name) == events.end()) {
+        events.emplace_back(name);
+        these.emplace_back(name);
+      }
+    log_event(fmt::format("re-triangulated ({}): {}", join_events(these), report.detail));
+  }
+
+  void advance()
+  {
+    const long next_step = step_ + 1;
+    const TimeStepState controller_before = controller_.state();
+    std::vector<std::string> events;
+    int rejections = 0;
+    StepRecord record;
+    StepResult trial;
+    double tau = 0;
+    std::vector<double> volumes;
+    // A step that no τ makes acceptable (a triangle beside a closing neck that turns over
+    // whatever the step) is retried once after a re-triangulation of the surface it starts from.
+    for (bool forced = false;;) {
+      try {
+        tau = trial_step(next_step, trial, record, rejections, volumes);
+        break;
+      } catch (const SolverFailure& e) {
+        if (!retriangulate_ || forced)
+          throw;
+        forced = true;
+        log_event(fmt::format("no acceptable step ({}): re-triangulating, then trying again", e.what()), next_step);
+        RetriangulationReport report = call_retriangulation(true);
+        if (!report.changed())
+          throw;
+        adopt_retriangulation(report, events);
+        op_ = flow_operators(mesh_, p_.scheme, &*cache_);
+        controller_ = TimeStepController(p_.time_step, {.next_tau = controller_before.next_tau});
+      }
+    }
+    if (rejections > 0)
+      events.insert(events.begin(), "rejected");
 
     set_vertex_positions(mesh_, trial.positions);
     if (p_.conserve_volume) {
@@ -343,27 +396,10 @@ private:
     previous_w_ = trial.w;
     last_w_ = trial.w;
 
-    std::vector<std::string> events;
-    if (rejections > 0)
-      events.emplace_back("rejected");
     if (retriangulate_) {
-      const RetriangulationReport report = call_retriangulation();
-      if (report.changed()) {
-        const int components = topology_.count, genus = topology_.genus;
-        mesh_ = canonical(mesh_);
-        renew_connectivity();
-        topology_changed_ = p_.stop_at_topology_change && (topology_.count != components || topology_.genus != genus);
-        solver_.forget_factorisation();
-        half_solver_.forget_factorisation();
-        has_anchor_ = has_half_anchor_ = false;
-        previous_w_.resize(0);
-        last_w_ = Eigen::VectorXd::Zero(mesh_.n_vertices());
-        for (const auto& [flag, name] : {std::pair{report.remeshed, "remeshed"}, std::pair{report.surgery, "surgery"},
-                                         std::pair{report.split, "split"}, std::pair{report.merged, "merged"}})
-          if (flag)
-            events.emplace_back(name);
-        log_event(fmt::format("re-triangulated ({}): {}", join_events(events), report.detail));
-      }
+      const RetriangulationReport report = call_retriangulation(false);
+      if (report.changed())
+        adopt_retriangulation(report, events);
     }
     op_ = flow_operators(mesh_, p_.scheme, &*cache_);
     record.event = join_events(events);

@@ -33,6 +33,8 @@ struct RetriangulationContext {
   //! Degraded elements (short or long edges, sharp triangles) that the last re-triangulation could
   //! not remove: the hook tolerates that many until more appear (kept in checkpoints).
   long tolerated_degraded = 0;
+  //! Re-triangulate now, whatever the schedule says: the step from this surface could not be taken.
+  bool force = false;
 };
 
 //! What a re-triangulation hook did to the mesh (each flag becomes an event of the step's row).
