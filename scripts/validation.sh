@@ -129,13 +129,11 @@ extrapolate() { # h1 v1 h2 v2 h3 v3
       printf "%.4g (order %.2g)", c - (b - c) / (h2^p - h3^p) * h3^p, p
     }'
 }
-reference() { # axisymmetric ARGS...: the reference event time, or – if the verb is not there
+reference() { # axisymmetric ARGS...: "BODIES T*" of the 1-D reference (T* of the first event), or "– –"
   { "$sdflow" axisymmetric "$@" --json 2>/dev/null || true; } |
-    awk 'match($0, /"event_time": *[-0-9.eE+]+/) { s = substr($0, RSTART, RLENGTH); sub(/.*: */, "", s); printf "%.4g", s; found = 1 } END { if (!found) printf "–" }'
-}
-reference_bodies() {
-  { "$sdflow" axisymmetric "$@" --json 2>/dev/null || true; } |
-    awk 'match($0, /"bodies": *[0-9]+/) { s = substr($0, RSTART, RLENGTH); sub(/.*: */, "", s); printf "%s", s; found = 1 } END { if (!found) printf "–" }'
+    awk 'match($0, /"event_time" *: *[-0-9.eE+]+/) { s = substr($0, RSTART, RLENGTH); sub(/.*: */, "", s); t = s }
+         match($0, /"bodies" *: *[0-9]+/) { s = substr($0, RSTART, RLENGTH); sub(/.*: */, "", s); b = s }
+         END { printf "%s %s", (b == "" ? "–" : b), (t == "" ? (b == "" ? "–" : "none") : sprintf("%.5g", t)) }'
 }
 h_of() { awk -v n="$1" 'BEGIN { printf "%.6g", 1 / sqrt(n) }'; } # resolution from a vertex count
 
@@ -174,7 +172,7 @@ tables=$(mktemp)
     echo
   fi
   if want torus; then
-    ref=$(reference torus --major 3 --minor 1.5)
+    ref=$(reference torus --major 3 --minor 1.5 --stop-at-first-event | cut -d' ' -f2)
     echo "#### Torus R = 3, r = 1.5: time at which the hole seals"
     echo
     echo "1-D reference (\`sdflow axisymmetric torus --major 3 --minor 1.5\`): **$ref** (the paper's R = 6, r = 3: 16× that)."
@@ -195,7 +193,7 @@ tables=$(mktemp)
     echo
   fi
   if want dumbbell; then
-    ref=$(reference dumbbell)
+    ref=$(reference dumbbell --stop-at-first-event | cut -d' ' -f2)
     echo "#### The paper's dumbbell (R = 6, neck width 1, centres 18 apart): time at which the neck pinches off"
     echo
     echo "1-D reference (\`sdflow axisymmetric dumbbell\`): **$ref**."
@@ -221,8 +219,8 @@ tables=$(mktemp)
     echo "$header"
     echo "$rule"
     for ratio in "${capsule_ratios[@]}"; do
-      ref_t=$(reference capsule --length-ratio "$ratio")
-      row="| $ratio | $(reference_bodies capsule --length-ratio "$ratio") bodies, t = $ref_t |"
+      read -r ref_bodies ref_t < <(reference capsule --length-ratio "$ratio")
+      row="| $ratio | $ref_bodies, t = $ref_t |"
       for h in "${capsule_edges[@]}"; do
         row+=" $(final_components "capsule_${ratio}_${h}_default"), t = $(event_time "capsule_${ratio}_${h}_default" components) |"
       done

@@ -100,7 +100,7 @@ Sample sample_of(const std::vector<Body>& bodies, double time, long steps)
 EvolutionResult evolve_once(const GeneratingCurve& start, const EvolutionOptions& options)
 {
   if (!(options.max_displacement > 0) || !(options.stop_radius > 0) || !(options.end_time > 0) ||
-      options.max_steps < 1)
+      !(options.max_tau > 0) || options.max_steps < 1)
     throw InvalidParameter(fmt::format("axisymmetric flow: need max_displacement > 0 ({}), stop_radius > 0 ({}), "
                                        "end_time > 0 ({}), max_steps ≥ 1 ({})", options.max_displacement,
                                        options.stop_radius, options.end_time, options.max_steps));
@@ -115,9 +115,9 @@ EvolutionResult evolve_once(const GeneratingCurve& start, const EvolutionOptions
   const double stop_radius = options.stop_radius * size;
 
   EvolutionResult result;
-  result.initial_volume = enclosed_volume(start);
-  result.initial_area = surface_area(start);
   std::vector<Body> bodies{{.curve = redistribute(start, spacing)}};
+  result.initial_volume = enclosed_volume(bodies[0].curve);
+  result.initial_area = surface_area(bodies[0].curve);
   double time = 0, tau = 0;
   long steps = 0;
   bool stopped = false;
@@ -127,7 +127,7 @@ EvolutionResult evolve_once(const GeneratingCurve& start, const EvolutionOptions
                                       options.end_time));
     if (tau == 0) // a first step that moves nothing by more than about 1e-3 of its radius of curvature
       tau = std::pow(spacing.max_length, 4) * 1e-2;
-    tau = std::min(tau, options.end_time - time);
+    tau = std::min({tau, options.max_tau, options.end_time - time});
     // One step of every body with the same τ; a step that moves too far is retried with less.
     std::vector<GeneratingCurve> next;
     double worst = 0;

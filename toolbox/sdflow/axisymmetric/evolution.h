@@ -42,6 +42,8 @@ struct EvolutionOptions {
   //! Accuracy of the time steps: each step moves a node by at most this fraction of the local
   //! radius of curvature (time error first order in it).
   double max_displacement = 0.005;
+  //! Largest time step (the displacement bound alone lets a small perturbation take large steps).
+  double max_tau = std::numeric_limits<double>::infinity();
   //! An event is declared when a neck's radius falls below this fraction of the start's largest r.
   double stop_radius = 0.005;
   //! Evolve the pieces after a pinch-off (to count the bodies), or stop at the first event.
@@ -57,7 +59,7 @@ struct EvolutionResult {
   std::vector<Event> events;          //!< in time order
   std::vector<GeneratingCurve> bodies; //!< at the end (a sealed torus is kept as it was at the seal)
   Sample last;                        //!< the final state
-  double initial_volume = 0;
+  double initial_volume = 0; //!< of the start at the working spacing (redistributed)
   double initial_area = 0;
 };
 
