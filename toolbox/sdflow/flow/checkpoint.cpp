@@ -110,6 +110,36 @@ VertexVectors to_vectors(const std::vector<double>& values, const std::filesyste
   return v;
 }
 
+//! A solver's reuse counters and the system of its last factorisation (if it keeps one).
+struct SolverRecord {
+  SolverState state;
+  bool has_anchor = false;
+  VertexVectors anchor_positions;
+  double anchor_tau_beta = 0;
+};
+
+void put_solver(Writer& w, const SolverRecord& s)
+{
+  w.put<std::int64_t>(s.state.solves_since_factorisation);
+  w.put<std::int64_t>(s.state.iterations_since_factorisation);
+  w.put<std::int32_t>(s.state.last_iterations);
+  w.put<std::uint8_t>(s.has_anchor);
+  w.put_doubles(s.anchor_positions.data(), static_cast<std::size_t>(s.anchor_positions.size()));
+  w.put(s.anchor_tau_beta);
+}
+
+SolverRecord get_solver(Reader& r, const std::filesystem::path& file)
+{
+  SolverRecord s;
+  s.state.solves_since_factorisation = r.get<std::int64_t>();
+  s.state.iterations_since_factorisation = r.get<std::int64_t>();
+  s.state.last_iterations = r.get<std::int32_t>();
+  s.has_anchor = r.get<std::uint8_t>() != 0;
+  s.anchor_positions = to_vectors(r.get_doubles(), file);
+  s.anchor_tau_beta = r.get<double>();
+  return s;
+}
+
 } // namespace
 
 void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file)
@@ -125,24 +155,14 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file)
   w.put_doubles(c.previous_w.data(), static_cast<std::size_t>(c.previous_w.size()));
   w.put(c.time_step.next_tau);
   w.put<std::int32_t>(c.time_step.rejections);
-  w.put<std::int64_t>(c.solver.solves_since_factorisation);
-  w.put<std::int64_t>(c.solver.iterations_since_factorisation);
-  w.put<std::int32_t>(c.solver.last_iterations);
-  w.put<std::uint8_t>(c.has_anchor);
-  w.put_doubles(c.anchor_positions.data(), static_cast<std::size_t>(c.anchor_positions.size()));
-  w.put(c.anchor_tau_beta);
+  put_solver(w, {c.solver, c.has_anchor, c.anchor_positions, c.anchor_tau_beta});
   w.put<std::uint64_t>(c.snapshots.size());
   for (const auto& s : c.snapshots) {
     w.put(s.time);
     w.put_string(s.file.generic_string());
   }
   w.put<std::int64_t>(c.tolerated_degraded);
-  w.put<std::int64_t>(c.half_solver.solves_since_factorisation);
-  w.put<std::int64_t>(c.half_solver.iterations_since_factorisation);
-  w.put<std::int32_t>(c.half_solver.last_iterations);
-  w.put<std::uint8_t>(c.has_half_anchor);
-  w.put_doubles(c.half_anchor_positions.data(), static_cast<std::size_t>(c.half_anchor_positions.size()));
-  w.put(c.half_anchor_tau_beta);
+  put_solver(w, {c.half_solver, c.has_half_anchor, c.half_anchor_positions, c.half_anchor_tau_beta});
   w.put(fnv1a(w.bytes().data(), w.bytes().size()));
   write_atomically(file, [&](std::ostream& out) { out.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size())); });
 }
@@ -180,12 +200,11 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
   c.previous_w = Eigen::Map<const Eigen::VectorXd>(w.data(), static_cast<Eigen::Index>(w.size()));
   c.time_step.next_tau = r.get<double>();
   c.time_step.rejections = r.get<std::int32_t>();
-  c.solver.solves_since_factorisation = r.get<std::int64_t>();
-  c.solver.iterations_since_factorisation = r.get<std::int64_t>();
-  c.solver.last_iterations = r.get<std::int32_t>();
-  c.has_anchor = r.get<std::uint8_t>() != 0;
-  c.anchor_positions = to_vectors(r.get_doubles(), file);
-  c.anchor_tau_beta = r.get<double>();
+  const SolverRecord solver = get_solver(r, file);
+  c.solver = solver.state;
+  c.has_anchor = solver.has_anchor;
+  c.anchor_positions = solver.anchor_positions;
+  c.anchor_tau_beta = solver.anchor_tau_beta;
   const auto snapshot_count = r.get<std::uint64_t>();
   for (std::uint64_t i = 0; i < snapshot_count; ++i) {
     SeriesEntry s;
@@ -196,12 +215,11 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
   if (file_version >= 2)
     c.tolerated_degraded = r.get<std::int64_t>();
   if (file_version >= 3) {
-    c.half_solver.solves_since_factorisation = r.get<std::int64_t>();
-    c.half_solver.iterations_since_factorisation = r.get<std::int64_t>();
-    c.half_solver.last_iterations = r.get<std::int32_t>();
-    c.has_half_anchor = r.get<std::uint8_t>() != 0;
-    c.half_anchor_positions = to_vectors(r.get_doubles(), file);
-    c.half_anchor_tau_beta = r.get<double>();
+    const SolverRecord half = get_solver(r, file);
+    c.half_solver = half.state;
+    c.has_half_anchor = half.has_anchor;
+    c.half_anchor_positions = half.anchor_positions;
+    c.half_anchor_tau_beta = half.anchor_tau_beta;
   }
   return c;
 }
