@@ -135,6 +135,23 @@ reference() { # axisymmetric ARGS...: "BODIES T*" of the 1-D reference (T* of th
          match($0, /"bodies" *: *[0-9]+/) { s = substr($0, RSTART, RLENGTH); sub(/.*: */, "", s); b = s }
          END { printf "%s %s", (b == "" ? "–" : b), (t == "" ? (b == "" ? "–" : "none") : sprintf("%.5g", t)) }'
 }
+relative_error() { # VALUE REFERENCE
+  awk -v x="$1" -v r="$2" 'BEGIN { if (r + 0 > 0 && x + 0 > 0) printf "%+.1f%%", 100 * (x - r) / r; else printf "–" }'
+}
+# The table of one shape's event times at each vertex count, defaults and paper beside the reference.
+event_table() { # NAME genus|components REFERENCE VERTEX_COUNTS...
+  local name=$1 what=$2 ref=$3 d=() p=() n a b
+  shift 3
+  echo "| vertices | default | error | --preset paper | error | volume drift (default) | CPU default / paper |"
+  echo "|---|---|---|---|---|---|---|"
+  for n in "$@"; do
+    a=$(event_time "${name}_${n}_default" "$what") b=$(event_time "${name}_${n}_paper" "$what")
+    d+=("$(h_of "$n")" "$a") p+=("$(h_of "$n")" "$b")
+    echo "| $(vertices "${name}_${n}_default") | $a | $(relative_error "$a" "$ref") | $b | $(relative_error "$b" "$ref") | $(volume_drift "${name}_${n}_default") | $(seconds "${name}_${n}_default") / $(seconds "${name}_${n}_paper") |"
+  done
+  echo "| extrapolated | $(extrapolate "${d[@]}") | | $(extrapolate "${p[@]}") | | | |"
+  echo
+}
 h_of() { awk -v n="$1" 'BEGIN { printf "%.6g", 1 / sqrt(n) }'; } # resolution from a vertex count
 
 # Test properties (gtest's XML output) of the measurements the test suite makes anyway.
@@ -177,16 +194,7 @@ tables=$(mktemp)
     echo
     echo "1-D reference (\`sdflow axisymmetric torus --major 3 --minor 1.5\`): **$ref** (the paper's R = 6, r = 3: 16× that)."
     echo
-    echo "| vertices | default | error | --preset paper | error | volume drift (default) | CPU default / paper |"
-    echo "|---|---|---|---|---|---|---|"
-    d=() p=()
-    for n in "${torus_vertices[@]}"; do
-      a=$(event_time "torus_${n}_default" genus) b=$(event_time "torus_${n}_paper" genus)
-      d+=("$(h_of "$n")" "$a") p+=("$(h_of "$n")" "$b")
-      echo "| $(vertices "torus_${n}_default") | $a | $(awk -v x="$a" -v r="$ref" 'BEGIN { if (r+0 > 0 && x+0 > 0) printf "%+.1f%%", 100 * (x - r) / r; else printf "–" }') | $b | $(awk -v x="$b" -v r="$ref" 'BEGIN { if (r+0 > 0 && x+0 > 0) printf "%+.1f%%", 100 * (x - r) / r; else printf "–" }') | $(volume_drift "torus_${n}_default") | $(seconds "torus_${n}_default") / $(seconds "torus_${n}_paper") |"
-    done
-    echo "| extrapolated | $(extrapolate "${d[@]}") | | $(extrapolate "${p[@]}") | | | |"
-    echo
+    event_table torus genus "$ref" "${torus_vertices[@]}"
     echo "The whole run with the defaults (15k vertices, to t = 34.94, the end of the paper's Table 1 scaled by"
     echo "1/16): genus $(awk -F, 'NR == 2 { print $7 }' "$(metrics torus_15000_full)" 2>/dev/null) → $(tail -n 1 "$(metrics torus_15000_full)" 2>/dev/null | cut -d, -f7),"
     echo "volume drift $(volume_drift torus_15000_full) without \`--conserve-volume\`, $(tail -n 1 "$(metrics torus_15000_full)" 2>/dev/null | cut -d, -f1) steps, $(seconds torus_15000_full)."
@@ -198,16 +206,7 @@ tables=$(mktemp)
     echo
     echo "1-D reference (\`sdflow axisymmetric dumbbell\`): **$ref**."
     echo
-    echo "| vertices | default | error | --preset paper | error | volume drift (default) | CPU default / paper |"
-    echo "|---|---|---|---|---|---|---|"
-    d=() p=()
-    for n in "${dumbbell_vertices[@]}"; do
-      a=$(event_time "dumbbell_${n}_default" components) b=$(event_time "dumbbell_${n}_paper" components)
-      d+=("$(h_of "$n")" "$a") p+=("$(h_of "$n")" "$b")
-      echo "| $(vertices "dumbbell_${n}_default") | $a | $(awk -v x="$a" -v r="$ref" 'BEGIN { if (r+0 > 0 && x+0 > 0) printf "%+.1f%%", 100 * (x - r) / r; else printf "–" }') | $b | $(awk -v x="$b" -v r="$ref" 'BEGIN { if (r+0 > 0 && x+0 > 0) printf "%+.1f%%", 100 * (x - r) / r; else printf "–" }') | $(volume_drift "dumbbell_${n}_default") | $(seconds "dumbbell_${n}_default") / $(seconds "dumbbell_${n}_paper") |"
-    done
-    echo "| extrapolated | $(extrapolate "${d[@]}") | | $(extrapolate "${p[@]}") | | | |"
-    echo
+    event_table dumbbell components "$ref" "${dumbbell_vertices[@]}"
   fi
   if want capsules; then
     echo "#### Capsules of radius 1 (D = 2), length L: bodies at the end (t = 50) and time of the first break-up"
