@@ -155,15 +155,14 @@ constexpr int kLocalScaleRings = 4;
 //! that intersect others, where the target is the local mean edge length: sheets that crossed are
 //! not a curvature to resolve (refining where they cross leaves the rebuild slivers of enclosed
 //! space), and coarsening a neck that pinched through would tear it before the surgery.
-SizingField adapted_sizing(const Mesh& mesh, const RetriangulationOptions& options, double ell)
+SizingField adapted_sizing(const Mesh& clean, const std::vector<FacePair>& crossings,
+                           const RetriangulationOptions& options, double ell)
 {
-  Mesh clean = mesh;
-  clean.garbage_collection();
   const double min_length = options.min_edge_fraction * ell;
   std::vector<double> target = radius_targets(
       clean, {.edges_per_radius = options.edges_per_radius, .min_length = min_length, .max_length = ell});
   std::vector<bool> near(clean.n_vertices(), false);
-  for (const FacePair& pair : self_intersections(clean))
+  for (const FacePair& pair : crossings)
     for (const int f : {pair.first, pair.second})
       for (const auto v : clean.fv_range(clean.face_handle(f)))
         near[v.idx()] = true;
@@ -213,9 +212,13 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
     RemeshOptions remesh;
     remesh.target_edge_length = r.target_edge_length;
     remesh.iterations = options.remesh_iterations;
-    remesh.curved_projection = options.curved_projection;
+    mesh.garbage_collection();
+    // Where sheets cross, their normals describe no smooth surface: project onto the flat triangles.
+    const std::vector<FacePair> crossings =
+        options.curved_projection || options.edges_per_radius > 0 ? self_intersections(mesh) : std::vector<FacePair>{};
+    remesh.curved_projection = options.curved_projection && crossings.empty();
     if (options.edges_per_radius > 0)
-      remesh.sizing = adapted_sizing(mesh, options, r.target_edge_length);
+      remesh.sizing = adapted_sizing(mesh, crossings, options, r.target_edge_length);
     RemeshResult remeshed = isotropic_remesh(mesh, remesh);
     mesh = std::move(remeshed.mesh);
     r.remesh = remeshed.statistics;

@@ -32,7 +32,8 @@ struct RetriangulationOptions {
   //! The floor of the adapted edge length, as a fraction of ℓ (in (0, 1]).
   double min_edge_fraction = 0.25;
   //! Stage 1 projects new vertices onto the smooth surface the triangles sample, not onto the flat
-  //! triangles (remesh.h, RemeshOptions::curved_projection), so a remeshing does not thin a neck.
+  //! triangles (remesh.h, RemeshOptions::curved_projection), so a remeshing does not thin a neck;
+  //! onto the flat ones when the surface intersects itself (no smooth surface to lift onto there).
   bool curved_projection = true;
   //! Run stages 3–5 even when nothing intersects (the paper's "after every step" application).
   bool always_rebuild = false;

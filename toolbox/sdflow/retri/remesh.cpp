@@ -638,7 +638,13 @@ PointProjection curved_projection(const Mesh& mesh, std::shared_ptr<const Closes
     VertexVectors points, normals;
     Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> triangles;
   };
-  auto surface = std::make_shared<Surface>(Surface{vertex_positions(mesh), vertex_normals(mesh), face_indices(mesh)});
+  auto surface = std::make_shared<Surface>(Surface{vertex_positions(mesh), vertex_normals(mesh), {}});
+  // Corners in the order of ClosestPoint::barycentric (closest_point_grid.h: from, to, next).
+  surface->triangles.resize(static_cast<Eigen::Index>(mesh.n_faces()), 3);
+  for (auto f : mesh.faces()) {
+    const auto h = f.halfedge();
+    surface->triangles.row(f.idx()) << h.from().idx(), h.to().idx(), h.next().to().idx();
+  }
   return [grid = std::move(grid), surface](const Eigen::Vector3d& p) {
     const ClosestPoint c = grid->closest_point(p);
     std::array<Eigen::Vector3d, 3> x, n;
