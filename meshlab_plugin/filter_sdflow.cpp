@@ -215,10 +215,11 @@ void FilterSdflowPlugin::initParameterSet(QAction* action, MeshModel& model, Ric
                                   "the mesh's mean edge length at the start). The default is this mesh's mean "
                                   "edge length."));
     parameters.addParam(RichEnum("Curvature", 0, choices(sdflow::meshlab::curvature_names()), "Mean curvature H",
-                                 "How H is computed: normal_integral is eq. (9), the integral of normal curvatures "
-                                 "divided by 2π (the paper's, default); normal_integral_angle_sum divides by the "
-                                 "vertex's angle sum instead; cotangent takes H = ½ N·ΔX, more accurate on coarse "
-                                 "meshes. The result's quality holds this H."));
+                                 "How H is computed: cotangent takes H = ½ N·ΔX (default: it converges to the exact "
+                                 "flow on any smooth surface); normal_integral is the paper's eq. (9), the integral "
+                                 "of normal curvatures divided by 2π, which does not converge off spheres; "
+                                 "normal_integral_angle_sum divides by the vertex's angle sum instead. The result's "
+                                 "quality holds this H."));
     parameters.addParam(RichEnum("Mass", 0, choices(sdflow::meshlab::mass_names()), "Vertex areas",
                                  "The vertex areas M of the Laplacian Δ = M⁻¹L: voronoi is eq. (10)'s mixed Voronoi "
                                  "areas (the paper's, default); volume_gradient is the volume a vertex sweeps per "

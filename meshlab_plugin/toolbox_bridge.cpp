@@ -148,8 +148,8 @@ double natural_time_step(const double mean_edge_length) { return std::pow(mean_e
 
 std::vector<std::string> curvature_names()
 {
-  return {curvature_name({}), curvature_name({.normalisation = AngleNormalisation::angle_sum}),
-          curvature_name({.method = CurvatureMethod::cotangent})};
+  return {curvature_name({.method = CurvatureMethod::cotangent}), curvature_name({}),
+          curvature_name({.normalisation = AngleNormalisation::angle_sum})};
 }
 
 std::vector<std::string> mass_names()

@@ -34,7 +34,7 @@ struct DiffusionSettings {
   bool fixed_boundary = false;    //!< hold boundary vertices in place
   bool retriangulate = false;     //!< re-triangulate between steps when needed (`--retriangulate`)
   double edge_length = 0;         //!< ℓ of the re-triangulation; 0: the initial mean edge length
-  std::string curvature = "normal_integral"; //!< H, one of curvature_names(); eq. (9) by default
+  std::string curvature = "cotangent"; //!< H, one of curvature_names(); the flow's default, not eq. (9)
   std::string mass = "voronoi";   //!< vertex areas of Δ = M⁻¹L, one of mass_names(); eq. (10) by default
   bool extrapolate = false;       //!< Richardson-extrapolated steps: second order in τ, three solves a step
 };

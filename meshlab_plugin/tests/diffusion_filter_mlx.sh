@@ -4,7 +4,7 @@
 #   diffusion_filter_mlx STEPS AUTOMATIC_TAU TAU BETA CONSERVE_VOLUME FIXED_BOUNDARY RETRIANGULATE
 #                        EDGE_LENGTH CURVATURE MASS EXTRAPOLATE
 # prints the <filter> element with every parameter (meshlabserver asserts on a missing one).
-# CURVATURE and MASS are indices of the choices (0: the paper's); an enum parameter needs its
+# CURVATURE and MASS are indices of the choices (0: the defaults); an enum parameter needs its
 # choices in the script, or meshlabserver drops it and aborts as on a missing one.
 diffusion_filter_mlx() {
   cat <<MLX
@@ -17,8 +17,8 @@ diffusion_filter_mlx() {
   <Param type="RichBool" name="FixedBoundary" value="$6"/>
   <Param type="RichBool" name="Retriangulate" value="$7"/>
   <Param type="RichFloat" name="EdgeLength" value="$8"/>
-  <Param type="RichEnum" name="Curvature" value="$9" enum_cardinality="3" enum_val0="normal_integral"
-         enum_val1="normal_integral_angle_sum" enum_val2="cotangent"/>
+  <Param type="RichEnum" name="Curvature" value="$9" enum_cardinality="3" enum_val0="cotangent"
+         enum_val1="normal_integral" enum_val2="normal_integral_angle_sum"/>
   <Param type="RichEnum" name="Mass" value="${10}" enum_cardinality="2" enum_val0="voronoi" enum_val1="volume_gradient"/>
   <Param type="RichBool" name="Extrapolate" value="${11}"/>
  </filter>

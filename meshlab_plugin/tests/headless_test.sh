@@ -137,15 +137,15 @@ same-as-cli)
     --retriangulate --edge-length 0.3
   expect_changed "$work/retriangulated.meshlab.ply"
   # The constant case with one scheme option changed.
-  compare_with_cli angle_sum "8 false 0.05 0.5 true false false 0.1 1 0 false" --tau 0.05 --beta 0.5 \
+  compare_with_cli normal_integral "8 false 0.05 0.5 true false false 0.1 1 0 false" --tau 0.05 --beta 0.5 \
+    --conserve-volume --curvature normal_integral
+  compare_with_cli angle_sum "8 false 0.05 0.5 true false false 0.1 2 0 false" --tau 0.05 --beta 0.5 \
     --conserve-volume --curvature normal_integral_angle_sum
-  compare_with_cli cotangent "8 false 0.05 0.5 true false false 0.1 2 0 false" --tau 0.05 --beta 0.5 \
-    --conserve-volume --curvature cotangent
   compare_with_cli volume_gradient "8 false 0.05 0.5 true false false 0.1 0 1 false" --tau 0.05 --beta 0.5 \
     --conserve-volume --mass volume_gradient
   compare_with_cli extrapolated "8 false 0.05 0.5 true false false 0.1 0 0 true" --tau 0.05 --beta 0.5 \
     --conserve-volume --extrapolate
-  for name in angle_sum cotangent volume_gradient extrapolated; do
+  for name in normal_integral angle_sum volume_gradient extrapolated; do
     expect_different constant "$name"
   done
   echo "headless_test same-as-cli: the plugin's surfaces equal sdflow run's"
@@ -193,7 +193,7 @@ bad-choice)
   write_diffusion_script "$work/diffusion.mlx" 3 true 0.001 0.5 false false false 0.1 3 0 false
   run_meshlabserver -l "$work/log.txt" -i "$mesh" -o "$work/out.ply" -s "$work/diffusion.mlx"
   [[ $status -ne 0 ]] || fail "meshlabserver exited with 0 on a mean curvature index past the last choice"
-  grep -qF "Curvature must be 0 (normal_integral), 1 (normal_integral_angle_sum) or 2 (cotangent), got 3" \
+  grep -qF "Curvature must be 0 (cotangent), 1 (normal_integral) or 2 (normal_integral_angle_sum), got 3" \
     "$work/log.txt" || fail "the log does not name the choices: $(cat "$work/log.txt")"
   [[ ! -e "$work/out.ply" ]] || fail "an output file was written"
   echo "headless_test bad-choice: exit code $status, choices logged, no output written"

@@ -15,7 +15,7 @@
 
 namespace {
 
-constexpr double curvature_tolerance = 0.02; // relative, eq. (9) on a subdivided icosahedron
+constexpr double curvature_tolerance = 0.02; // relative, on a subdivided icosahedron
 constexpr double normal_tolerance = 1e-3;    // radial unit normals on the same sphere
 // A coordinate difference far above float rounding (3.6e-7 at 3): each scheme option moves the
 // ellipsoid's 3 steps by 5e-5 (volume-gradient areas) to 2e-3 (cotangent H).
@@ -195,12 +195,12 @@ TEST_F(FilterTest, default_edge_lengths_are_the_mean_edge_length)
   EXPECT_FALSE(parameters(1).getBool("Retriangulate"));
 }
 
-TEST_F(FilterTest, scheme_options_offer_the_command_line_names_and_default_to_the_papers)
+TEST_F(FilterTest, scheme_options_offer_the_command_line_names_and_default_to_the_command_lines)
 {
   add_sphere();
   const RichParameterList list = parameters(1);
   EXPECT_EQ(dynamic_cast<const RichEnum&>(list.getParameterByName("Curvature")).enumvalues,
-            QStringList({"normal_integral", "normal_integral_angle_sum", "cotangent"}));
+            QStringList({"cotangent", "normal_integral", "normal_integral_angle_sum"}));
   EXPECT_EQ(dynamic_cast<const RichEnum&>(list.getParameterByName("Mass")).enumvalues,
             QStringList({"voronoi", "volume_gradient"}));
   EXPECT_EQ(list.getEnum("Curvature"), 0);
@@ -210,11 +210,11 @@ TEST_F(FilterTest, scheme_options_offer_the_command_line_names_and_default_to_th
 
 TEST_F(FilterTest, each_scheme_option_changes_the_flow)
 {
-  const std::vector<Point3m> paper = flowed_ellipsoid("Curvature", EnumValue(0));
-  EXPECT_GT(largest_difference(paper, flowed_ellipsoid("Curvature", EnumValue(1))), least_option_effect);
-  EXPECT_GT(largest_difference(paper, flowed_ellipsoid("Curvature", EnumValue(2))), least_option_effect);
-  EXPECT_GT(largest_difference(paper, flowed_ellipsoid("Mass", EnumValue(1))), least_option_effect);
-  EXPECT_GT(largest_difference(paper, flowed_ellipsoid("Extrapolate", BoolValue(true))), least_option_effect);
+  const std::vector<Point3m> defaults = flowed_ellipsoid("Curvature", EnumValue(0));
+  EXPECT_GT(largest_difference(defaults, flowed_ellipsoid("Curvature", EnumValue(1))), least_option_effect);
+  EXPECT_GT(largest_difference(defaults, flowed_ellipsoid("Curvature", EnumValue(2))), least_option_effect);
+  EXPECT_GT(largest_difference(defaults, flowed_ellipsoid("Mass", EnumValue(1))), least_option_effect);
+  EXPECT_GT(largest_difference(defaults, flowed_ellipsoid("Extrapolate", BoolValue(true))), least_option_effect);
 }
 
 TEST_F(FilterTest, default_time_step_scales_like_the_fourth_power_of_edge_length)
@@ -274,7 +274,7 @@ TEST_F(FilterTest, choice_out_of_range_fails_naming_the_choices_and_leaves_the_m
   list.setValue("Curvature", EnumValue(3)); // meshlabserver takes any index from a script
   EXPECT_FALSE(plugin.applyFilter(action(), document, list, nullptr));
   EXPECT_TRUE(plugin.errorMsg().contains(
-      "Curvature must be 0 (normal_integral), 1 (normal_integral_angle_sum) or 2 (cotangent), got 3"))
+      "Curvature must be 0 (cotangent), 1 (normal_integral) or 2 (normal_integral_angle_sum), got 3"))
       << plugin.errorMsg().toStdString();
   EXPECT_TRUE(log_text().contains("Curvature must be")) << log_text().toStdString();
   EXPECT_EQ(model->cm.vert[7].cP(), before);
