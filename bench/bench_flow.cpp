@@ -1,4 +1,4 @@
-//! The flow step's cost on geodesic spheres of 10k, 100k and 400k vertices (DESIGN.md §2):
+//! The flow step's cost on geodesic spheres of 10k, 100k and 400k vertices (docs/design.md §2):
 //! operators, assembly, CHOLMOD factorisation and solve, and a full step amortised over a run.
 //!   bench_flow --benchmark_filter=Step --benchmark_repetitions=3
 //! PaperQrStep is the paper's solver on the same spheres (slow: minutes at 10k vertices).

@@ -1,6 +1,6 @@
 //! Side by side: sdflow against Surface Evolver (`evolver-nox`, method laplacian_mean_curvature,
 //! explicit) carrying the l = 2 mode of a perturbed unit sphere to t = 0.05. Each reports the decay
-//! rate it measured (exact: (l-1)l(l+1)(l+2)/2 = 12, DESIGN.md §1), its relative error and its time,
+//! rate it measured (exact: (l-1)l(l+1)(l+2)/2 = 12, docs/design.md §1), its relative error and its time,
 //! so the two can be compared at equal accuracy; sdflow runs with the paper's eq. (9) H, with the
 //! cotangent H, and with the cotangent H over volume-gradient areas (`mass = "volume_gradient"`, the
 //! spatial discretisation Evolver's method uses), plain or Richardson-extrapolated (docs/flow.md).

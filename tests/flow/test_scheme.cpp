@@ -67,7 +67,7 @@ TEST(FlowStep, unit_sphere_distances_do_not_grow_and_fall_with_refinement)
   }
 }
 
-//! The unit icosphere of `level` with the P2 mode r = 1 + amplitude·P2(z) (DESIGN.md §1).
+//! The unit icosphere of `level` with the P2 mode r = 1 + amplitude·P2(z) (docs/design.md §1).
 Mesh p2_perturbed_icosphere(int level, double amplitude)
 {
   Mesh mesh = analytic::icosphere(level);
@@ -101,7 +101,7 @@ double p2_amplitude(const Mesh& mesh)
 
 TEST(FlowStep, l2_mode_decays_at_the_analytic_rate)
 {
-  // DESIGN.md §1: a degree-l perturbation of a sphere of radius R decays at (l-1)l(l+1)(l+2)/(2R⁴).
+  // docs/design.md §1: a degree-l perturbation of a sphere of radius R decays at (l-1)l(l+1)(l+2)/(2R⁴).
   // The implicit part τβΔ² is not the mode's linearised operator, so the scheme is first order in
   // τ for this mode: refine h and τ together.
   constexpr double amplitude = 1e-3;

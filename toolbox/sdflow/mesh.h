@@ -2,7 +2,7 @@
 //! \file mesh.h
 //! \brief The surface type: an OpenMesh triangle mesh with double-precision points.
 //!
-//! Conventions (DESIGN.md §1): vertex i of every per-vertex array is `Mesh::VertexHandle(i)`, so
+//! Conventions (docs/design.md §1): vertex i of every per-vertex array is `Mesh::VertexHandle(i)`, so
 //! meshes handed to the geometry and flow code carry no deleted elements (call
 //! `garbage_collection()` after editing). Closed components are oriented with outward normals.
 

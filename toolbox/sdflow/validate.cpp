@@ -555,7 +555,7 @@ BuiltMesh build_mesh(const PolygonSoup& soup, std::string_view source, const Bui
                            isolated.size(), listed, isolated.size() > max_listed_elements ? ", ..." : ""));
   }
 
-  // Closed components are oriented outward (DESIGN.md §1): out of the material they bound. That
+  // Closed components are oriented outward (docs/design.md §1): out of the material they bound. That
   // is a positive signed volume for a body, and a negative one for a cavity (a component enclosed
   // by an odd number of others, e.g. the void left inside a sintered cluster). Flip the others.
   std::vector<bool> flip(components.count, false);
@@ -590,7 +590,7 @@ BuiltMesh build_mesh(const PolygonSoup& soup, std::string_view source, const Bui
   }
 
   std::vector<Finding> findings = report.take();
-  // Flipping is logged as DESIGN.md §1 asks; the other repairs only at debug level, since callers
+  // Flipping is logged as docs/design.md §1 asks; the other repairs only at debug level, since callers
   // (the CLI, the plugin) present the findings themselves.
   for (const Finding& f : findings)
     if (f.code == "orientation-flipped")

@@ -50,7 +50,7 @@ private:
 
 //! How a soup becomes a mesh.
 struct BuildOptions {
-  //! Flip closed components whose signed volume is negative (DESIGN.md §1).
+  //! Flip closed components whose signed volume is negative (docs/design.md §1).
   bool orient_outward = true;
   //! Merge vertices with bit-identical coordinates instead of reporting them (STL stores no
   //! shared vertices, so its reader turns this on).

@@ -1,6 +1,6 @@
 #pragma once
 //! \file solver.h
-//! \brief Linear solves of the semi-implicit step (DESIGN.md §2): the SPD system
+//! \brief Linear solves of the semi-implicit step (docs/design.md §2): the SPD system
 //! (M + τβ L M⁻¹ L) w = L H by CHOLMOD supernodal Cholesky (Chen, Davis, Hager, Rajamanickam 2008),
 //! optionally reused across steps as a conjugate-gradient preconditioner, or the paper's sparse QR
 //! (SuiteSparseQR, Davis 2011) on the non-symmetric form (I + τβΔ²) w = ΔH as a reference.

@@ -8,7 +8,7 @@ namespace sdflow {
 
 //! How normals are averaged at boundary vertices.
 enum class BoundaryNormalRule {
-  eq8,          //!< eq. (8) over the vertex's existing triangles (DESIGN.md §1, the default)
+  eq8,          //!< eq. (8) over the vertex's existing triangles (docs/design.md §1, the default)
   equal_weights //!< unit triangle normals with equal weights 1/m (the paper's §4.3 variant)
 };
 
@@ -17,7 +17,7 @@ struct NormalOptions {
 };
 
 //! Unit vertex normals (#V by 3), N' = Σ (e_i × e_{i+1}) / (|e_i|² |e_{i+1}|²), eq. (8).
-//! Outward on closed components oriented as DESIGN.md §1 requires.
+//! Outward on closed components oriented as docs/design.md §1 requires.
 //! Throws InvalidMesh if a vertex has no triangles or its normal is undefined (degenerate star).
 VertexVectors vertex_normals(const Mesh& mesh, const NormalOptions& options = {});
 

@@ -1,6 +1,6 @@
 #pragma once
 //! \file holes.h
-//! \brief Hole filling after Liepa 2003 ("Filling holes in meshes"), DESIGN.md §3.5: each boundary
+//! \brief Hole filling after Liepa 2003 ("Filling holes in meshes"), docs/design.md §3, stage 5: each boundary
 //! loop shorter than a bound is closed by the minimum-weight triangulation of its polygon
 //! (weights: the largest dihedral angle with the neighbouring triangles, then the area), refined
 //! until its triangles match the edge lengths around the hole, and faired by a discrete

@@ -3,7 +3,7 @@
 //! \brief Oriented normals of a point set: degree-2 jet fitting over the k nearest neighbours
 //! (Cazals & Pouget 2005), oriented along a minimum spanning tree of the k-NN graph (Hoppe,
 //! DeRose, Duchamp, McDonald, Stuetzle 1992). Points whose orientation disagrees with their
-//! neighbourhood are removed: in the re-triangulation pipeline (DESIGN.md §3.3) they mark where
+//! neighbourhood are removed: in the re-triangulation pipeline (docs/design.md §3, stage 3) they mark where
 //! two sheets of the surface meet.
 
 #include "sdflow/mesh.h"

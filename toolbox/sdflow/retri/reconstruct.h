@@ -1,7 +1,7 @@
 #pragma once
 //! \file reconstruct.h
 //! \brief Surface reconstruction from an oriented point set by greedy advancing front over the
-//! Delaunay tetrahedralisation (Cohen-Steiner & Da 2004), DESIGN.md §3.4.
+//! Delaunay tetrahedralisation (Cohen-Steiner & Da 2004), docs/design.md §3, stage 4.
 //!
 //! Every triangle of the result is a facet of the Delaunay tetrahedralisation of the points
 //! (TetGen), so the surface cannot intersect itself. Starting from the facet with the smallest

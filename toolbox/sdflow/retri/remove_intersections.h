@@ -1,7 +1,7 @@
 #pragma once
 //! \file remove_intersections.h
 //! \brief Removing the self-intersecting faces of a surface, then the vertices left without a face
-//! (paper §3.2.1, DESIGN.md §3 step 2): the surface that remains intersects itself nowhere, and
+//! (paper §3.2.1, docs/design.md §3 step 2): the surface that remains intersects itself nowhere, and
 //! its holes are what the point-normal and reconstruction steps repair.
 
 #include "sdflow/mesh.h"
