@@ -89,7 +89,8 @@ private:
   {
     if (size > bytes_.size() - at_)
       truncated();
-    std::memcpy(out, bytes_.data() + at_, size);
+    if (size > 0)  // memcpy's pointers must be valid even for zero bytes
+      std::memcpy(out, bytes_.data() + at_, size);
     at_ += size;
   }
   [[noreturn]] void truncated() const
