@@ -6,6 +6,7 @@
 //!              [--retriangulate [--edge-length L]] [--quiet]
 //!   sdflow run SCENARIO.toml [flags]     (flags override the file's keys)
 //!   sdflow run --resume DIR [--steps N] [--t-end T]
+//! SIGINT / SIGTERM stop the run after the current step with a checkpoint (exit 130 / 143).
 
 #include "exit_status.h"
 #include "verbs.h"
@@ -19,8 +20,8 @@
 #include <fmt/format.h>
 
 #include <chrono>
-#include <csignal>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <unistd.h>
