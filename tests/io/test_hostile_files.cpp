@@ -132,5 +132,22 @@ TEST(HostileFiles, flat_closed_surfaces_are_refused_with_zero_volume_component)
   EXPECT_NO_THROW(read_mesh(dir / "thin.off"));
 }
 
+// Found by fuzz/fuzz_read_ply: a binary element without properties and a huge count ran forever.
+TEST(HostileFiles, ply_element_without_properties_is_refused_at_once)
+{
+  test::TempDir dir;
+  test::write_file(dir / "empty.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\n"
+                                      "property float y\nproperty float z\nelement nothing 9000000000000000000\n"
+                                      "end_header\n");
+  try {
+    read_polygon_soup(dir / "empty.ply");
+    ADD_FAILURE() << "accepted";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("no properties"), std::string::npos) << e.what();
+  }
+  const std::string replay = std::string(SDFLOW_SOURCE_DIR) + "/fuzz/corpus/ply/regression_element_without_properties.ply";
+  EXPECT_THROW(read_mesh(replay), IoError);
+}
+
 } // namespace
 } // namespace sdflow

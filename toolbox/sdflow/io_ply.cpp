@@ -136,6 +136,11 @@ Header read_header(std::string_view bytes, const std::filesystem::path& file)
   }
   if (!have_format)
     fail(file, lines.line_number(), "the header has no 'format' line");
+  // An element without properties takes no bytes in a binary file: its count would be free, and
+  // reading 2^63 of them would never end (found by fuzz/fuzz_read_ply).
+  for (const Element& element : header.elements)
+    if (element.properties.empty() && element.count > 0)
+      fail(file, 0, fmt::format("element '{}' declares {} items but no properties", element.name, element.count));
   header.data_offset = lines.offset();
   header.lines = lines.line_number();
   return header;
