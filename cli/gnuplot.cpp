@@ -1,5 +1,7 @@
 #include "gnuplot.h"
 
+#include "sdflow/errors.h"
+
 #include <fmt/format.h>
 
 #include <cerrno>
@@ -18,8 +20,32 @@ namespace sdflow::cli {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+//! The text with control characters shown as \xNN, for the message that refuses it.
+std::string printable(const std::string& text)
+{
+  std::string out;
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    out += u < 0x20 || u == 0x7f ? fmt::format("\\x{:02x}", u) : std::string(1, c);
+  }
+  return out;
+}
+
+} // namespace
+
 std::string gnuplot_quoted(const std::string& text)
 {
+  // A newline ends gnuplot's command, and what follows would run as commands of its own (even
+  // `system`); no control character has a place in a title, a label or a path drawn by gnuplot.
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c < 0x20 || c == 0x7f)
+      throw InvalidParameter(fmt::format("'{}' holds a control character (byte 0x{:02x} at position {}), which "
+                                         "gnuplot cannot take in a string; remove it",
+                                         printable(text), c, i));
+  }
   std::string out = "'";
   for (char c : text)
     out += c == '\'' ? std::string("''") : std::string(1, c);

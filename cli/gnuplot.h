@@ -8,7 +8,9 @@
 
 namespace sdflow::cli {
 
-//! A string literal for a gnuplot script (single quotes, a quote doubled).
+//! A string literal for a gnuplot script (single quotes, a quote doubled, in which gnuplot expands
+//! nothing). Throws InvalidParameter for text with a control character (a newline would end the
+//! string and the command, and the rest would run as gnuplot commands).
 std::string gnuplot_quoted(const std::string& text);
 
 //! Run `gnuplot SCRIPT` without a shell (any character may appear in the path); its stderr goes to

@@ -1,8 +1,12 @@
 //! The `sdflow` command: surface diffusion flow and its toolbox from the shell.
 //!
 //! Exit codes: 0 success; 1 unexpected failure; 2 bad input (unreadable or invalid mesh, bad
-//! parameter, command-line error); 3 numerical failure (solver, unstable run).
+//! parameter, command-line error, a path that cannot be used); 3 numerical failure (solver,
+//! unstable run); 4 environment failure (disk or quota full, file size limit, read-only file
+//! system); 130 / 143 a run stopped by SIGINT / SIGTERM after writing a checkpoint.
 
+#include "exit_status.h"
+#include "numbers.h"
 #include "verbs.h"
 
 #include "sdflow/errors.h"
@@ -11,8 +15,11 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
+#include <new>
 
 namespace {
 
@@ -51,17 +58,33 @@ int main(int argc, char** argv)
   sdflow::cli::add_components_verb(app);
   sdflow::cli::add_union_verb(app);
   sdflow::cli::add_axisymmetric_verb(app);
+  sdflow::cli::require_plain_numbers(app);
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
+  } catch (const sdflow::cli::ExitStatus& e) {
+    return e.code;
   } catch (const sdflow::SolverFailure& e) {
     std::cerr << "sdflow: error: " << e.what() << '\n';
     return 3;
+  } catch (const sdflow::EnvironmentFailure& e) {
+    std::cerr << "sdflow: environment failure: " << e.what() << '\n';
+    return 4;
   } catch (const sdflow::Error& e) {
     std::cerr << "sdflow: error: " << e.what() << '\n';
     return 2;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A path the request named cannot be used (permissions, a file where a directory should be).
+    const int error = e.code().value();
+    const bool environment = error == ENOSPC || error == EDQUOT || error == EFBIG || error == EROFS || error == EIO;
+    std::cerr << "sdflow: " << (environment ? "environment failure: " : "error: ") << e.what() << '\n';
+    return environment ? 4 : 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "sdflow: out of memory (std::bad_alloc): the request needs more memory than this machine gives "
+                 "it; try a coarser resolution\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "sdflow: unexpected error: " << e.what() << '\n';
     return 1;

@@ -82,8 +82,9 @@ void plot(const PlotArguments& a)
                        "set grid\nset key top right\nset xlabel 'time'\n";
   for (const auto& e : events)
     script += fmt::format("set arrow from {},graph 0 to {},graph 1 nohead dashtype 2 linecolor rgb '#c03030'\n"
-                          "set label '{}' at {},graph 0.97 rotate by 90 right font ',9' textcolor rgb '#c03030'\n",
-                          e.time, e.time, e.name, e.time);
+                          "set label {} at {},graph 0.97 rotate by 90 right font ',9' textcolor rgb '#c03030' "
+                          "noenhanced\n",
+                          e.time, e.time, gnuplot_quoted(e.name), e.time);
   const std::string data = gnuplot_quoted((dir / "metrics.csv").string());
   script += fmt::format("set output {}\nset title 'Area and volume relative to the initial surface'\n"
                         "set ylabel 'relative to t = 0'\n"

@@ -5,6 +5,7 @@
 
 #include "sdflow/geometry/topology.h"
 #include "sdflow/io.h"
+#include "sdflow/limits.h"
 #include "sdflow/retri/remesh.h"
 
 #include <fmt/format.h>
@@ -21,6 +22,7 @@ struct RemeshArguments {
   double edge_length = 0;
   int iterations = RemeshOptions{}.iterations;
   bool keep_boundary = false;
+  bool force = false;
 };
 
 std::string topology_text(const Mesh& mesh)
@@ -34,7 +36,10 @@ std::string topology_text(const Mesh& mesh)
 void run(const RemeshArguments& args)
 {
   format_from_extension(args.output); // refuse an unknown format before the work
+  const SizeLimits limits{.force = args.force};
+  check_count(args.iterations, limits.max_iterations, "--iterations", limits);
   const BuiltMesh input = read_mesh(args.input);
+  check_remeshed_size(input.mesh, args.edge_length, fmt::format("remesh --edge-length {}", args.edge_length), limits);
   // Projection onto the input surface (its BVH) and its boundary polylines: the defaults.
   const RemeshResult result = isotropic_remesh(
       input.mesh, {.target_edge_length = args.edge_length,
@@ -65,6 +70,7 @@ void add_remesh_verb(CLI::App& app)
   verb->add_option("-o,--output", args->output, "Output mesh")->required();
   verb->add_option("--edge-length", args->edge_length, "Target edge length")->required()->check(CLI::PositiveNumber);
   verb->add_option("--iterations", args->iterations, "Remeshing iterations")->capture_default_str()->check(CLI::NonNegativeNumber);
+  verb->add_flag("--force", args->force, "Skip the plausibility limits (size of the result, iterations)");
   verb->add_flag("--keep-boundary", args->keep_boundary, "Leave boundary vertices and edges exactly as they are");
   verb->callback([args] { run(*args); });
 }

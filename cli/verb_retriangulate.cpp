@@ -4,6 +4,7 @@
 #include "verbs.h"
 
 #include "sdflow/io.h"
+#include "sdflow/limits.h"
 #include "sdflow/retri/pipeline.h"
 
 #include <fmt/format.h>
@@ -21,6 +22,7 @@ struct RetriangulateArguments {
   std::string output;
   RetriangulationOptions options;
   bool json = false;
+  bool force = false;
 };
 
 void report_json(const RetriangulateArguments& args, const BuiltMesh& input, const RetriangulationResult& r)
@@ -84,7 +86,11 @@ void report_text(const RetriangulateArguments& args, const BuiltMesh& input, con
 void run(const RetriangulateArguments& args)
 {
   format_from_extension(args.output); // refuse an unknown format before the work
+  const SizeLimits limits{.force = args.force};
+  check_count(args.options.remesh_iterations, limits.max_iterations, "--iterations", limits);
   const BuiltMesh input = read_mesh(args.input);
+  check_remeshed_size(input.mesh, args.options.target_edge_length,
+                      fmt::format("retriangulate --edge-length {}", args.options.target_edge_length), limits);
   const RetriangulationResult result = retriangulate(input.mesh, args.options);
   write_mesh(result.mesh, args.output, {.encoding = Encoding::binary});
   if (args.json)
@@ -130,6 +136,7 @@ void add_retriangulate_verb(CLI::App& app)
                    "Drop closed components whose volume is below this times ℓ times their area")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  verb->add_flag("--force", args->force, "Skip the plausibility limits (size of the result, iterations)");
   verb->add_flag("--json", args->json, "Print a JSON object with what each stage did (documented in README)");
   verb->callback([args] { run(*args); });
 }

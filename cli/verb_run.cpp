@@ -7,18 +7,22 @@
 //!              [--retriangulate [--edge-length L]] [--quiet]
 //!   sdflow run SCENARIO.toml [flags]     (flags override the file's keys)
 //!   sdflow run --resume DIR [--steps N] [--t-end T]
+//! SIGINT / SIGTERM stop the run after the current step with a checkpoint (exit 130 / 143).
 
+#include "exit_status.h"
 #include "verbs.h"
 
 #include "sdflow/errors.h"
 #include "sdflow/flow/simulation.h"
 #include "sdflow/io.h"
+#include "sdflow/limits.h"
 #include "sdflow/log.h"
 
 #include <fmt/format.h>
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <unistd.h>
@@ -32,7 +36,7 @@ struct RunArguments {
   int schedule_retries = 0;
   double end_time = 0, tau = 0, beta = 0, edge_length = 0, tolerance = 0, edges_per_radius = 0;
   bool adaptive = false, extrapolate = false, stop_at_topology_change = false, conserve_volume = false, fixed_boundary = false,
-       retriangulate = false, quiet = false;
+       retriangulate = false, quiet = false, force = false;
   std::map<std::string, CLI::Option*> given;
   bool has(const std::string& name) const { return given.at(name)->count() > 0; }
 };
@@ -146,6 +150,24 @@ void apply_flags(const RunArguments& a, RunParameters& p)
   }
 }
 
+//! The signal that asked the run to stop (0: none). Set by the handler, read between steps.
+volatile std::sig_atomic_t stop_signal = 0;
+
+void request_stop(int signal) { stop_signal = signal; }
+
+//! SIGINT and SIGTERM ask the run to stop after the current step (with a checkpoint); the
+//! handler only sets a flag, and is reset by the first signal, so a second one kills at once;
+//! interrupted system calls restart.
+void install_stop_handlers()
+{
+  struct sigaction action {};
+  action.sa_handler = request_stop;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESETHAND | SA_RESTART;
+  ::sigaction(SIGINT, &action, nullptr);
+  ::sigaction(SIGTERM, &action, nullptr);
+}
+
 void run(const RunArguments& a)
 {
   RunParameters p;
@@ -157,6 +179,10 @@ void run(const RunArguments& a)
         a.has("--solver") || a.has("--retriangulate") || a.has("--edge-length") || !a.scenario.empty())
       throw InvalidParameter("--resume continues a run with its own parameters (run.toml): only --steps, --t-end, "
                              "--snapshot-every and --checkpoint-every may be changed");
+    if (!std::filesystem::exists(std::filesystem::path(a.resume) / "run.toml"))
+      throw InvalidParameter(fmt::format("{} holds no run to resume (no run.toml: it was stopped before writing "
+                                         "anything, or is not a run directory); start the run again with --out",
+                                         a.resume));
     read_run_parameters(std::filesystem::path(a.resume) / "run.toml", p);
     p.output_dir = a.resume;
   } else if (!a.scenario.empty()) {
@@ -168,9 +194,13 @@ void run(const RunArguments& a)
   if (p.output_dir.empty())
     throw InvalidParameter("no run directory: give --out DIR or `out` in the scenario file");
   validate_run_parameters(p);
+  const SizeLimits limits{.force = a.force};
+  check_count(p.steps, limits.max_steps, "--steps", limits);
 
   Progress progress(p, a.quiet);
-  SimulationOptions options{.parameters = p, .progress = std::ref(progress)};
+  install_stop_handlers();
+  SimulationOptions options{.parameters = p, .progress = std::ref(progress),
+                            .stop_requested = [] { return stop_signal != 0; }};
   SimulationResult result;
   try {
     if (resuming) {
@@ -179,6 +209,11 @@ void run(const RunArguments& a)
       BuiltMesh built = read_mesh(p.input);
       for (const auto& f : built.findings)
         logger().warn("{}: {}", p.input.string(), f.message);
+      if (p.retriangulation.enabled)
+        check_remeshed_size(built.mesh, p.retriangulation.pipeline.target_edge_length,
+                            fmt::format("run --retriangulate --edge-length {}",
+                                        p.retriangulation.pipeline.target_edge_length),
+                            limits);
       result = run_simulation(built.mesh, options);
     }
   } catch (...) {
@@ -186,6 +221,14 @@ void run(const RunArguments& a)
     throw;
   }
   progress.finish();
+  if (result.interrupted) {
+    const int signal = stop_signal;
+    std::cerr << fmt::format("sdflow: {} received: stopped after step {} (t = {:.6g}) with a checkpoint; continue "
+                             "with: sdflow run --resume {}\n",
+                             signal == SIGTERM ? "SIGTERM" : signal == SIGINT ? "SIGINT" : "a signal", result.steps,
+                             result.time, p.output_dir.string());
+    throw ExitStatus{128 + signal};
+  }
   std::cout << fmt::format("{}: {} steps, t = {:.6g}, {} vertices; {} rejected trials, {} factorisations\n",
                            p.output_dir.string(), result.steps, result.time, result.mesh.n_vertices(),
                            result.rejected_trials, result.factorisations);
@@ -262,6 +305,7 @@ void add_run_verb(CLI::App& app)
   g["--resume"] = verb->add_option("--resume", args->resume, "Continue the run in DIR from its checkpoint")
                       ->check(CLI::ExistingDirectory);
   verb->add_flag("--quiet", args->quiet, "No progress output");
+  verb->add_flag("--force", args->force, "Skip the plausibility limits (steps, size of the re-triangulated surface)");
   verb->callback([args] { run(*args); });
 }
 

@@ -6,6 +6,7 @@
 #include "sdflow/errors.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/io.h"
+#include "sdflow/limits.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/expression.h"
 #include "sdflow/shapes/mesher.h"
@@ -32,6 +33,7 @@ struct ShapeArguments {
   int iterations = MesherOptions{}.iterations;
   double edges_per_radius = 0;
   double grid_cell = 0;
+  bool force = false;
   std::string output;
   std::map<std::string, double> values;      //!< every catalogue parameter, by name
   std::map<std::string, CLI::Option*> given; //!< to tell which were given
@@ -85,7 +87,14 @@ void run(const ShapeArguments& args)
   if (args.output.empty())
     throw InvalidParameter("no output file: give -o OUT (.off, .obj, .ply or .stl)");
   format_from_extension(args.output); // refuse an unknown format before meshing
+  const SizeLimits limits{.force = args.force};
+  check_count(args.iterations, limits.max_iterations, "--iterations", limits);
   const ImplicitSurface surface = chosen_surface(args);
+  if (args.vertices > 0)
+    check_surface_size(args.vertices, fmt::format("shape --vertices {}", args.vertices), limits, false);
+  else if (args.edge_length > 0)
+    check_surface_size(estimated_vertices_in_box(surface.box, args.edge_length),
+                       fmt::format("shape --edge-length {}", args.edge_length), limits, false);
   const MesherResult result = mesh_implicit_surface(
       surface, {.edge_length = args.edge_length, .vertices = args.vertices, .iterations = args.iterations,
                 .edges_per_radius = args.edges_per_radius, .grid_cell = args.grid_cell});
@@ -127,6 +136,7 @@ void add_shape_verb(CLI::App& app)
       ->check(CLI::NonNegativeNumber);
   verb->add_option("--grid-cell", args->grid_cell, "Marching grid spacing (default: from the edge length and shape)");
   verb->add_option("-o,--output", args->output, "Output mesh (.off, .obj, .ply, .stl)");
+  verb->add_flag("--force", args->force, "Skip the plausibility limits (size of the result, iterations)");
   // Every catalogue parameter once; which ones the chosen shape accepts is checked after parsing.
   std::map<std::string, std::set<std::string>> users;
   for (const auto& shape : shapes::shape_catalogue())

@@ -74,6 +74,7 @@ toml::table to_json_table(const std::string& file, const BuiltMesh& built, const
                    {"boundary_loops", s.boundary_loops},
                    {"area", s.area},
                    {"volume", s.volume},
+                   {"self_intersecting_pairs", static_cast<int64_t>(s.self_intersecting_pairs)},
                    {"mean_curvature", s.curvature.mean},
                    {"curvature_deviation", s.curvature.deviation},
                    {"quality",
@@ -109,8 +110,10 @@ void print_text(const std::string& file, const BuiltMesh& built, const MeshStati
   }
   std::cout << fmt::format("  area {:.10g}\n  volume {:.10g}", s.area, s.volume);
   if (s.tetgen_volume)
-    std::cout << fmt::format("  (TetGen {:.10g}, relative difference {:.2e})", *s.tetgen_volume,
-                             s.volume != 0 ? std::abs(*s.tetgen_volume - s.volume) / std::abs(s.volume) : 0.0);
+    std::cout << (s.volume != 0 ? fmt::format("  (TetGen {:.10g}, relative difference {:.2e})", *s.tetgen_volume,
+                                              std::abs(*s.tetgen_volume - s.volume) / std::abs(s.volume))
+                                : fmt::format("  (TetGen {:.10g}, difference {:.2e})", *s.tetgen_volume,
+                                              std::abs(*s.tetgen_volume - s.volume)));
   std::cout << fmt::format("\n  mean curvature H̃ {:.8g}, deviation H_dev {:.6g} ({})\n", s.curvature.mean,
                            s.curvature.deviation,
                            std::isfinite(s.curvature.deviation_pct) ? fmt::format("{:.4g}% of |H̃|", s.curvature.deviation_pct)
@@ -141,8 +144,14 @@ void add_stats_verb(CLI::App& app)
   verb->add_flag("--json", args->json, "Print a JSON object (keys documented in README.md)");
   verb->add_flag("--no-tetgen", args->no_tetgen, "Skip the TetGen volume cross-check");
   verb->callback([args] {
-    const BuiltMesh built = read_mesh(args->mesh);
+    BuiltMesh built = read_mesh(args->mesh);
     const MeshStatistics s = mesh_statistics(built.mesh, {.tetgen_check = !args->no_tetgen});
+    if (s.self_intersecting_pairs > 0)
+      built.findings.push_back(
+          {Severity::warning, "self-intersection",
+           fmt::format("{}: {} pair(s) of triangles intersect: the surface crosses itself (or its components cross "
+                       "each other), so its volume is not that of a solid and which component is a body or a "
+                       "cavity is not defined", args->mesh, s.self_intersecting_pairs)});
     if (args->json)
       std::cout << toml::json_formatter{to_json_table(args->mesh, built, s)} << '\n';
     else

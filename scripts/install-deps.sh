@@ -9,6 +9,7 @@
 #                                      headers) and Xvfb (meshlabserver needs an X server)
 #   scripts/install-deps.sh --screenshots  also xdotool and ImageMagick, to drive MeshLab under Xvfb
 #                                      and capture docs/images/meshlab-surface-diffusion.png
+#   scripts/install-deps.sh --fuzz     also clang and its libFuzzer/sanitizer runtime (scripts/fuzz.sh)
 # Flags combine.
 set -euo pipefail
 
@@ -29,6 +30,9 @@ if [[ " $* " == *" --paraview "* ]]; then
 fi
 if [[ " $* " == *" --meshlab "* ]]; then
   packages+=(meshlab qtbase5-dev libqt5opengl5-dev libglew-dev dpkg-dev xvfb xauth)
+fi
+if [[ " $* " == *" --fuzz "* ]]; then
+  packages+=(clang libclang-rt-14-dev)
 fi
 if [[ " $* " == *" --screenshots "* ]]; then
   packages+=(xdotool imagemagick)

@@ -50,5 +50,41 @@ TEST(TetgenVolume, self_intersecting_surface_is_rejected_with_a_reason)
   }
 }
 
+// Issue 13, defects 1 and 2: what crashed or aborted TetGen is refused before it with a reason.
+TEST(TetgenVolume, far_away_vertex_and_flat_body_are_refused_before_tetgen)
+{
+  Mesh far = analytic::icosphere(2);
+  far.set_point(*far.vertices().begin(), Mesh::Point(2e9, 0, 0));
+  try {
+    tetgen_volume_check(far);
+    FAIL() << "expected InvalidMesh";
+  } catch (const InvalidMesh& e) {
+    EXPECT_NE(std::string(e.what()).find("--no-tetgen"), std::string::npos) << e.what();
+  }
+  Mesh flat = analytic::icosphere(2);
+  for (auto v : flat.vertices())
+    flat.point(v)[2] = 0;
+  try {
+    tetgen_volume_check(flat);
+    FAIL() << "expected InvalidMesh";
+  } catch (const InvalidMesh& e) {
+    EXPECT_NE(std::string(e.what()).find("encloses no volume"), std::string::npos) << e.what();
+  }
+}
+
+// Issue 13, defect 4: a cavity's TetGen volume is negative like its divergence volume.
+TEST(TetgenVolume, cavity_volume_carries_the_sign_of_the_divergence_volume)
+{
+  const Mesh sphere = analytic::icosphere(2);
+  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> faces = face_indices(sphere);
+  faces.col(1).swap(faces.col(2));
+  const Mesh inverted = make_mesh(vertex_positions(sphere), faces);
+  const auto checks = tetgen_volume_check(inverted);
+  ASSERT_EQ(checks.size(), 1u);
+  EXPECT_LT(checks[0].divergence_volume, 0);
+  EXPECT_LT(checks[0].tetgen_volume, 0);
+  EXPECT_LT(checks[0].relative_difference(), kAgreement);
+}
+
 } // namespace
 } // namespace sdflow

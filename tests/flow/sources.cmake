@@ -2,6 +2,7 @@ target_sources(sdflow_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/test_exact_kinetics.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_parameters.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_retriangulation.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_run_control.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_samples.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_scheme.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_simulation.cpp

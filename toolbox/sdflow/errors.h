@@ -19,6 +19,14 @@ public:
   using Error::Error;
 };
 
+//! The environment failed us, not the input: the disk or quota is full, a file grew past the
+//! process's limit, the file system is read-only or reports an I/O error. Files written before it
+//! stay complete (every write is atomic).
+class EnvironmentFailure : public IoError {
+public:
+  using IoError::IoError;
+};
+
 //! A mesh violates a precondition: non-manifold, inconsistently oriented, degenerate, NaN...
 class InvalidMesh : public Error {
 public:

@@ -42,6 +42,20 @@ std::filesystem::path temporary_beside(const std::filesystem::path& file)
   return file.parent_path() / fmt::format(".{}.{:016x}.tmp", file.filename().string(), random());
 }
 
+//! Errors of the machine rather than of the request: a full disk or quota, a file past the
+//! process's size limit, a read-only file system, a failing device.
+bool is_environment_error(int error)
+{
+  return error == ENOSPC || error == EDQUOT || error == EFBIG || error == EROFS || error == EIO;
+}
+
+[[noreturn]] void throw_write_error(int error, const std::string& message)
+{
+  if (is_environment_error(error))
+    throw EnvironmentFailure(message + " (an environment failure: free space or raise the limit, then retry)");
+  throw IoError(message);
+}
+
 } // namespace
 
 MeshFormat format_from_extension(const std::filesystem::path& file)
@@ -65,11 +79,12 @@ PolygonSoup read_polygon_soup(const std::filesystem::path& file)
 {
   const MeshFormat format = format_from_extension(file);
   const std::string bytes = read_bytes(file);
+  const std::string_view text = io_detail::without_byte_order_mark(bytes, format);
   switch (format) {
-  case MeshFormat::off: return io_detail::read_off(bytes, file);
-  case MeshFormat::obj: return io_detail::read_obj(bytes, file);
-  case MeshFormat::ply: return io_detail::read_ply(bytes, file);
-  case MeshFormat::stl: return io_detail::read_stl(bytes, file);
+  case MeshFormat::off: return io_detail::read_off(text, file);
+  case MeshFormat::obj: return io_detail::read_obj(text, file);
+  case MeshFormat::ply: return io_detail::read_ply(text, file);
+  case MeshFormat::stl: return io_detail::read_stl(text, file);
   }
   throw IoError(fmt::format("{}: unhandled mesh format", file.string()));
 }
@@ -105,10 +120,13 @@ void write_atomically(const std::filesystem::path& file, const std::function<voi
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);
   };
+  errno = 0;
   std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-  if (!out)
-    throw IoError(fmt::format("{}: cannot create the temporary file {} ({})", file.string(), temporary.string(),
-                              std::strerror(errno)));
+  if (!out) {
+    const int error = errno;
+    throw_write_error(error, fmt::format("{}: cannot create the temporary file {} ({})", file.string(),
+                                         temporary.string(), std::strerror(error)));
+  }
   errno = 0;
   try {
     write(out);
@@ -121,9 +139,10 @@ void write_atomically(const std::filesystem::path& file, const std::function<voi
   const bool written = static_cast<bool>(out);
   out.close();
   if (!written || out.fail()) {
-    const std::string reason = errno != 0 ? std::strerror(errno) : "the stream reported an error";
+    const int error = errno;
+    const std::string reason = error != 0 ? std::strerror(error) : "the stream reported an error";
     discard();
-    throw IoError(fmt::format("{}: writing failed ({}); the file is unchanged", file.string(), reason));
+    throw_write_error(error, fmt::format("{}: writing failed ({}); the file is unchanged", file.string(), reason));
   }
   std::error_code ec;
   // A replaced file keeps its permissions, as it would if it had been overwritten in place.
@@ -133,7 +152,7 @@ void write_atomically(const std::filesystem::path& file, const std::function<voi
   std::filesystem::rename(temporary, file, ec);
   if (ec) {
     discard();
-    throw IoError(fmt::format("{}: cannot replace the file ({})", file.string(), ec.message()));
+    throw_write_error(ec.value(), fmt::format("{}: cannot replace the file ({})", file.string(), ec.message()));
   }
 }
 

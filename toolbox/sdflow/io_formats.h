@@ -3,6 +3,7 @@
 //! \brief Private to the toolbox: the per-format readers and writers behind io.h, and the small
 //! parsing helpers they share (line splitting, strict number parsing, error messages).
 
+#include "sdflow/io.h"
 #include "sdflow/mesh.h"
 #include "sdflow/soup.h"
 
@@ -24,6 +25,11 @@ PolygonSoup read_off(std::string_view bytes, const std::filesystem::path& file);
 PolygonSoup read_obj(std::string_view bytes, const std::filesystem::path& file);
 PolygonSoup read_ply(std::string_view bytes, const std::filesystem::path& file);
 PolygonSoup read_stl(std::string_view bytes, const std::filesystem::path& file);
+
+//! The file without a leading UTF-8 byte order mark (EF BB BF), which editors on Windows put in
+//! text files: every text format accepts it. A binary STL's 80-byte header is free text, so
+//! there the mark is only dropped when an ascii `solid` follows it.
+std::string_view without_byte_order_mark(std::string_view bytes, MeshFormat format);
 
 // Writers stream the mesh's non-deleted vertices (renumbered in order) and faces.
 void write_off(const Mesh& mesh, std::ostream& out);

@@ -136,6 +136,11 @@ Header read_header(std::string_view bytes, const std::filesystem::path& file)
   }
   if (!have_format)
     fail(file, lines.line_number(), "the header has no 'format' line");
+  // An element without properties takes no bytes in a binary file: its count would be free, and
+  // reading 2^63 of them would never end (found by fuzz/fuzz_read_ply).
+  for (const Element& element : header.elements)
+    if (element.properties.empty() && element.count > 0)
+      fail(file, 0, fmt::format("element '{}' declares {} items but no properties", element.name, element.count));
   header.data_offset = lines.offset();
   header.lines = lines.line_number();
   return header;
@@ -187,6 +192,40 @@ Roles find_roles(const Header& header, const std::filesystem::path& file)
   return roles;
 }
 
+const char* scalar_name(Scalar type)
+{
+  switch (type) {
+  case Scalar::int8: return "char";
+  case Scalar::uint8: return "uchar";
+  case Scalar::int16: return "short";
+  case Scalar::uint16: return "ushort";
+  case Scalar::int32: return "int";
+  case Scalar::uint32: return "uint";
+  case Scalar::float32: return "float";
+  case Scalar::float64: return "double";
+  }
+  return "?";
+}
+
+//! Whether an ascii value fits the declared type, as it would have to in a binary file: integer
+//! types take whole numbers in their range, float takes finite values within its range (NaN and
+//! infinities pass, validation reports them with their vertex).
+bool representable(double v, Scalar type)
+{
+  const auto whole_in = [v](double low, double high) { return v == std::floor(v) && v >= low && v <= high; };
+  switch (type) {
+  case Scalar::int8: return whole_in(-128, 127);
+  case Scalar::uint8: return whole_in(0, 255);
+  case Scalar::int16: return whole_in(-32768, 32767);
+  case Scalar::uint16: return whole_in(0, 65535);
+  case Scalar::int32: return whole_in(-2147483648.0, 2147483647.0);
+  case Scalar::uint32: return whole_in(0, 4294967295.0);
+  case Scalar::float32: return !std::isfinite(v) || std::abs(v) <= 3.4028234663852886e38;
+  case Scalar::float64: return true;
+  }
+  return true;
+}
+
 //! Values of ascii data: one element per line, blank lines skipped.
 class AsciiValues {
 public:
@@ -208,7 +247,7 @@ public:
     index_ = index;
   }
 
-  double value(Scalar, std::string_view property)
+  double value(Scalar type, std::string_view property)
   {
     if (next_ >= tokens_.size())
       fail(file_, line_number(), fmt::format("{} {}: the line ends before property '{}'", element_->name, index_, property));
@@ -216,6 +255,10 @@ public:
     if (!parse_double(tokens_[next_], v))
       fail(file_, line_number(),
            fmt::format("{} {}: '{}' is not a number (property '{}')", element_->name, index_, tokens_[next_], property));
+    if (!representable(v, type))
+      fail(file_, line_number(),
+           fmt::format("{} {}: {} is out of range for property '{}' of type {}", element_->name, index_,
+                       tokens_[next_], property, scalar_name(type)));
     ++next_;
     return v;
   }

@@ -36,6 +36,17 @@ bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' |
 
 } // namespace
 
+std::string_view without_byte_order_mark(std::string_view bytes, MeshFormat format)
+{
+  constexpr std::string_view mark = "\xEF\xBB\xBF";
+  if (bytes.substr(0, mark.size()) != mark)
+    return bytes;
+  const std::string_view rest = bytes.substr(mark.size());
+  if (format == MeshFormat::stl && !(rest.size() >= 5 && iequals(rest.substr(0, 5), "solid")))
+    return bytes;
+  return rest;
+}
+
 std::vector<std::string_view> split_tokens(std::string_view line)
 {
   std::vector<std::string_view> tokens;

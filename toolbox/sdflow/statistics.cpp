@@ -4,6 +4,7 @@
 #include "sdflow/geometry/curvature.h"
 #include "sdflow/geometry/laplacian.h"
 #include "sdflow/geometry/normals.h"
+#include "sdflow/retri/intersect.h"
 
 namespace sdflow {
 
@@ -31,6 +32,8 @@ MeshStatistics mesh_statistics(const Mesh& mesh, const StatisticsOptions& option
       s.volume += volumes[c];
     }
   }
+  if (options.intersection_check)
+    s.self_intersecting_pairs = static_cast<long>(self_intersections(mesh).size());
   if (options.tetgen_check) {
     double total = 0;
     for (const ComponentVolumeCheck& check : tetgen_volume_check(mesh)) {

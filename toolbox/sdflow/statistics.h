@@ -29,12 +29,18 @@ struct MeshStatistics {
   double volume = 0;                   //!< summed over closed components
   std::optional<double> tetgen_volume; //!< summed over closed components, when checked
   CurvatureDeviation curvature;        //!< H̃ and H_dev with eq. (9) and mixed Voronoi areas
+  //! Pairs of triangles that intersect (not counting neighbours meeting at their shared vertex or
+  //! edge): components crossing each other or one crossing itself. Where there are any, the
+  //! volumes are not those of a solid and the body/cavity orientation is not meaningful.
+  long self_intersecting_pairs = 0;
   MeshQuality quality;
 };
 
 struct StatisticsOptions {
   //! Cross-check each closed component's volume with TetGen (costs a tetrahedralisation).
   bool tetgen_check = true;
+  //! Count the intersecting triangle pairs (retri/intersect.h).
+  bool intersection_check = true;
 };
 
 //! Topology, area, volume (both methods), mean curvature deviation and quality of `mesh`.

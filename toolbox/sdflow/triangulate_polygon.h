@@ -16,4 +16,9 @@ namespace sdflow {
 //! no ear left) falls back to a fan over what remains, whose zero-area triangles validation reports.
 std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<Eigen::Vector3d>& corners);
 
+//! Whether the polygon's outline is simple: no two of its edges cross or touch except neighbours at
+//! their shared corner, in the best-fit plane through Newell's normal. A polygon with no area there
+//! (a symmetric bow-tie, collinear corners) is not simple.
+bool polygon_is_simple(const std::vector<Eigen::Vector3d>& corners);
+
 } // namespace sdflow

@@ -26,6 +26,11 @@ namespace {
 constexpr std::size_t max_listed_errors = 20;
 //! Elements named in one summarising warning (polygons triangulated, vertices removed).
 constexpr std::size_t max_listed_elements = 8;
+//! Largest accepted coordinate magnitude: the squared norms of cross products (fourth powers of
+//! coordinates) that areas and normals take stay far from overflow.
+constexpr double max_coordinate = 1e60;
+//! A closed component is flat when |volume| ≤ this × area^(3/2) (a sphere has 0.094).
+constexpr double flat_volume_tolerance = 1e-10;
 
 //! A triangle of the mesh being built, with the file polygon it comes from.
 struct Triangle {
@@ -219,6 +224,12 @@ std::vector<Triangle> triangulate(const PolygonSoup& soup, const std::vector<boo
     std::vector<Eigen::Vector3d> points(corners.size());
     for (std::size_t k = 0; k < corners.size(); ++k)
       points[k] = soup.points[corners[k]];
+    if (std::all_of(points.begin(), points.end(), is_finite) && !polygon_is_simple(points)) {
+      report.add(Severity::error, "self-intersecting-face",
+                 fmt::format("{}: face {} ({} corners) crosses itself (a bow-tie): its outline is not a simple "
+                             "polygon, so no triangulation of it is a surface", report.at_polygon(f), f, points.size()));
+      continue;
+    }
     for (const auto& [a, b, c] : triangulate_polygon(points))
       triangles.push_back({{corners[a], corners[b], corners[c]}, f});
   }
@@ -251,6 +262,8 @@ void check_areas(const PolygonSoup& soup, const std::vector<Triangle>& triangles
     const Eigen::Vector3d &pa = soup.points[a], &pb = soup.points[b], &pc = soup.points[c];
     if (!is_finite(pa) || !is_finite(pb) || !is_finite(pc))
       continue;
+    if (std::max({pa.cwiseAbs().maxCoeff(), pb.cwiseAbs().maxCoeff(), pc.cwiseAbs().maxCoeff()}) > max_coordinate)
+      continue; // reported as coordinate-too-large: its area is not computable
     if (has_zero_area(pa, pb, pc, tolerance)) {
       last = t.polygon;
       report.add(Severity::error, "zero-area-face",
@@ -476,6 +489,28 @@ std::vector<int> nesting_depths(const std::vector<Eigen::Vector3d>& points, cons
   return depth;
 }
 
+//! Closed components must bound a body: one whose signed volume vanishes against its area (all
+//! its triangles in one plane, folded onto each other like two triangles back to back) has no
+//! inside, and tetrahedralisers abort on it.
+void check_volumes(const std::vector<Eigen::Vector3d>& points, const std::vector<Triangle>& triangles,
+                   const Components& components, Report& report)
+{
+  const std::vector<double> volume = signed_volumes(points, triangles, components);
+  std::vector<double> area(components.count, 0.0);
+  std::vector<int> faces(components.count, 0);
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const auto& [a, b, c] = triangles[t].v;
+    area[components.of_triangle[t]] += 0.5 * (points[b] - points[a]).cross(points[c] - points[a]).norm();
+    ++faces[components.of_triangle[t]];
+  }
+  for (int c = 0; c < components.count; ++c)
+    if (!components.open[c] && std::abs(volume[c]) <= flat_volume_tolerance * std::pow(area[c], 1.5))
+      report.add(Severity::error, "zero-volume-component",
+                 fmt::format("{}: component {} ({} faces, area {:.6g}) is closed but encloses no volume (signed "
+                             "volume {:.3g}): it is flat, its faces folded onto each other, so it bounds no body",
+                             report.source(), c, faces[c], area[c], volume[c]));
+}
+
 //! The OpenMesh mesh of `triangles` over the points kept (renumbered in file order).
 Mesh assemble(const PolygonSoup& soup, const std::vector<Triangle>& triangles, const std::vector<int>& number,
               const std::vector<bool>& flip, const std::vector<int>& component, std::string_view source)
@@ -520,6 +555,15 @@ BuiltMesh build_mesh(const PolygonSoup& soup, std::string_view source, const Bui
                              p.y(), p.z()));
     }
 
+  for (std::size_t i = 0; i < soup.points.size(); ++i)
+    if (is_finite(soup.points[i]) && soup.points[i].cwiseAbs().maxCoeff() > max_coordinate) {
+      const Eigen::Vector3d& p = soup.points[i];
+      report.add(Severity::error, "coordinate-too-large",
+                 fmt::format("{}: vertex {} has a coordinate beyond ±{:g} ({:g}, {:g}, {:g}): its areas and normals "
+                             "(products of up to four coordinates) would overflow double precision; scale the "
+                             "mesh down", report.at_point(i), i, max_coordinate, p.x(), p.y(), p.z()));
+    }
+
   const std::vector<bool> usable = check_polygons(soup, report);
   std::vector<bool> used(soup.points.size(), false);
   for (std::size_t f = 0; f < soup.polygons.size(); ++f)
@@ -530,6 +574,8 @@ BuiltMesh build_mesh(const PolygonSoup& soup, std::string_view source, const Bui
   const std::vector<Triangle> triangles = triangulate(soup, usable, representative, report);
   check_areas(soup, triangles, options.zero_area_tolerance, report);
   const Components components = check_connectivity(soup.points.size(), triangles, report);
+  if (!report.has_errors())
+    check_volumes(soup.points, triangles, components, report);
   if (report.has_errors())
     report.throw_errors();
 

@@ -5,7 +5,10 @@
 //! Errors (throw InvalidMesh, listing every problem found with its element and line):
 //! `empty-mesh`, `non-finite-coordinate`, `face-too-few-vertices`, `face-index-out-of-range`,
 //! `face-repeated-index`, `zero-area-face` (also corners at one point after merging),
-//! `duplicate-vertex`, `non-manifold-edge`, `non-manifold-vertex`, `inconsistent-orientation`. Warnings (the mesh is repaired): `polygon-triangulated`,
+//! `duplicate-vertex`, `non-manifold-edge`, `non-manifold-vertex`, `inconsistent-orientation`,
+//! `coordinate-too-large` (beyond ±1e60: areas and normals would overflow), `self-intersecting-face`
+//! (a polygon whose outline crosses itself, a bow-tie), `zero-volume-component` (a closed component
+//! that bounds no body: flat, folded onto itself). Warnings (the mesh is repaired): `polygon-triangulated`,
 //! `isolated-vertex` (removed). Information: `orientation-flipped` (a closed component had inward
 //! normals: normals point out of the material, so a cavity, enclosed by an odd number of other
 //! components, has a negative signed volume), `duplicate-vertices-merged` (STL), `has-boundary`.

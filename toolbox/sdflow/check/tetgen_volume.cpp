@@ -6,12 +6,23 @@
 #include <fmt/format.h>
 #include <tetgen.h>
 
+#include <Eigen/Geometry>
+
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
 namespace sdflow {
 namespace {
+
+//! A closed component is flat when |volume| ≤ this × area^(3/2) (as validation decides).
+constexpr double flat_volume_tolerance = 1e-10;
+//! Largest ratio of a component's extent to its shortest edge handed to TetGen. Measured with
+//! Debian's TetGen 1.5.0 on an octahedron with one vertex moved out along x: 1e8 (ratio 7·10⁷)
+//! tetrahedralises, 3e8 (ratio 2·10⁸) crashes the process; 10⁶ keeps a wide margin.
+constexpr double max_extent_ratio = 1e6;
 
 //! TetGen's documented exit codes (tetgen.h, terminatetetgen).
 std::string tetgen_failure(int code)
@@ -25,6 +36,32 @@ std::string tetgen_failure(int code)
   case 10: return "invalid input";
   default: return fmt::format("TetGen error code {}", code);
   }
+}
+
+//! Refuse what TetGen 1.5.0 cannot take without aborting the process (an assertion in its
+//! predicates on a flat body) or crashing (a component whose extent dwarfs its edges, like one
+//! vertex far away): a reason instead of a dead process.
+void screen_for_tetgen(const std::vector<double>& points, const std::vector<int>& triangles, double volume,
+                       int component)
+{
+  const auto point = [&](int i) { return Eigen::Vector3d(points[3 * i], points[3 * i + 1], points[3 * i + 2]); };
+  Eigen::AlignedBox3d box;
+  double area = 0, shortest = std::numeric_limits<double>::infinity();
+  for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
+    const Eigen::Vector3d a = point(triangles[t]), b = point(triangles[t + 1]), c = point(triangles[t + 2]);
+    area += 0.5 * (b - a).cross(c - a).norm();
+    shortest = std::min({shortest, (b - a).norm(), (c - b).norm(), (a - c).norm()});
+    box.extend(a);
+  }
+  if (std::abs(volume) <= flat_volume_tolerance * std::pow(area, 1.5))
+    throw InvalidMesh(fmt::format("TetGen volume check: component {} encloses no volume (area {:.6g}, volume {:.3g}): "
+                                  "a flat, degenerate body that TetGen cannot tetrahedralise", component, area, volume));
+  const double extent = box.diagonal().norm();
+  if (!(extent <= max_extent_ratio * shortest))
+    throw InvalidMesh(fmt::format("TetGen volume check: component {} spans {:.3g} with edges as short as {:.3g} "
+                                  "(ratio {:.2g}, above {:g}): beyond what TetGen's tolerances can tetrahedralise "
+                                  "reliably; a vertex far from the others? (skip the cross-check with --no-tetgen)",
+                                  component, extent, shortest, extent / shortest, max_extent_ratio));
 }
 
 double tet_volume(const double* a, const double* b, const double* c, const double* d)
@@ -59,6 +96,8 @@ ComponentVolumeCheck check_component(const Mesh& mesh, const std::vector<int>& f
       triangles.push_back(local[v.idx()]);
     }
   }
+
+  screen_for_tetgen(points, triangles, result.divergence_volume, component);
 
   tetgenio in, out;
   in.firstnumber = 0;
@@ -108,6 +147,10 @@ ComponentVolumeCheck check_component(const Mesh& mesh, const std::vector<int>& f
     result.tetgen_volume += tet_volume(out.pointlist + 3 * corner[0], out.pointlist + 3 * corner[1],
                                        out.pointlist + 3 * corner[2], out.pointlist + 3 * corner[3]);
   }
+  // TetGen's volume is unsigned; a cavity (outward = into the void) counts negative in the
+  // divergence theorem, so it does here too: like is compared with like.
+  if (result.divergence_volume < 0)
+    result.tetgen_volume = -result.tetgen_volume;
   return result;
 }
 

@@ -3,6 +3,7 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/checkpoint.h"
 #include "sdflow/flow/retriangulation.h"
+#include "sdflow/flow/run_lock.h"
 #include "sdflow/flow/scheme.h"
 #include "sdflow/flow/volume.h"
 #include "sdflow/geometry/laplacian.h"
@@ -15,6 +16,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -112,10 +114,16 @@ public:
 
   void start(const Mesh& initial)
   {
+    prepare_directory();
+    lock_.emplace(dir_);
     if (std::filesystem::exists(dir_ / "metrics.csv") || std::filesystem::exists(dir_ / "checkpoint.bin"))
-      throw InvalidParameter(fmt::format("{} already holds a run: resume it or choose another output directory",
-                                         dir_.string()));
-    std::filesystem::create_directories(dir_ / "snapshots");
+      throw InvalidParameter(fmt::format("{} already holds a run: resume it (sdflow run --resume {}) or choose "
+                                         "another output directory", dir_.string(), dir_.string()));
+    begin(initial);
+  }
+
+  void begin(const Mesh& initial)
+  {
     mesh_ = canonical(initial);
     renew_connectivity();
     prepare_retriangulation();
@@ -130,8 +138,14 @@ public:
     save();
   }
 
-  void resume()
+  //! Resume from the checkpoint, or start again at step 0 when the run has none yet (true).
+  bool resume()
   {
+    lock_.emplace(dir_);
+    if (!std::filesystem::exists(dir_ / "checkpoint.bin")) {
+      restart();
+      return true;
+    }
     const Checkpoint c = read_checkpoint(dir_ / "checkpoint.bin");
     step_ = c.step;
     time_ = c.time;
@@ -164,13 +178,28 @@ public:
     write_atomically(dir_ / "run.toml", [&](std::ostream& out) { out << run_parameters_toml(p_); });
     log_event(fmt::format("resumed from the checkpoint at t = {}", time_));
     op_ = flow_operators(mesh_, p_.scheme, &*cache_);
+    return false;
+  }
+
+  //! Stop between steps: a checkpoint of the last accepted step, as an uninterrupted run would
+  //! have written had its checkpoint interval ended there.
+  void interrupt()
+  {
+    log_event("interrupted: checkpoint written, continue with --resume");
+    save();
+    result_.interrupted = true;
   }
 
   SimulationResult run()
   {
     try {
-      while (!finished())
+      while (!finished()) {
+        if (options_.stop_requested && options_.stop_requested()) {
+          interrupt();
+          return result();
+        }
         advance();
+      }
     } catch (const SolverFailure& e) {
       log_event(fmt::format("stopped: {}", e.what()));
       flush();
@@ -178,6 +207,11 @@ public:
     }
     log_event(fmt::format("finished at t = {}", time_));
     flush();
+    return result();
+  }
+
+  SimulationResult& result()
+  {
     result_.mesh = mesh_;
     result_.steps = step_;
     result_.time = time_;
@@ -191,6 +225,44 @@ private:
     Mesh anchor = make_mesh(positions, triangles);
     const FlowOperators anchor_op = flow_operators(anchor, p_.scheme, &*cache_);
     solver.restore(FlowSystem{anchor_op.laplacian, anchor_op.areas, anchor_op.held, tau_beta}, state);
+  }
+
+  //! The run directory and its snapshots folder, created if need be; a path that cannot be one
+  //! (an existing file, a path under a file, a name too long) is refused with the reason.
+  void prepare_directory()
+  {
+    std::error_code ec;
+    const auto status = std::filesystem::status(dir_, ec);
+    if (std::filesystem::exists(status) && !std::filesystem::is_directory(status))
+      throw InvalidParameter(fmt::format("{} exists and is not a directory: the run directory must be a new or an "
+                                         "empty directory", dir_.string()));
+    std::filesystem::create_directories(dir_ / "snapshots", ec);
+    if (ec) {
+      const std::string message =
+          fmt::format("{}: cannot create the run directory ({})", dir_.string(), ec.message());
+      if (ec.value() == ENOSPC || ec.value() == EDQUOT || ec.value() == EROFS || ec.value() == EIO)
+        throw EnvironmentFailure(message);
+      throw IoError(message);
+    }
+  }
+
+  //! A run with no checkpoint was stopped inside start(): all it wrote is step 0, so starting
+  //! again from the same surface gives the run it would have been.
+  void restart()
+  {
+    const std::filesystem::path step0 = dir_ / "snapshots" / "step_000000.ply";
+    const bool from_snapshot = std::filesystem::exists(step0);
+    const std::filesystem::path source = from_snapshot ? step0 : p_.input;
+    if (source.empty())
+      throw IoError(fmt::format("{}: no checkpoint, no step-0 snapshot and no input in run.toml: nothing to resume "
+                                "from; start the run again", dir_.string()));
+    logger().warn("{}: no checkpoint yet (the run was stopped before its first one): starting again at step 0 "
+                  "from {}", dir_.string(), source.string());
+    prepare_directory();
+    const Mesh initial = read_mesh(source).mesh;
+    snapshots_.clear();
+    begin(initial);
+    result_.restarted = true;
   }
 
   bool finished() const
@@ -359,6 +431,14 @@ private:
     const long next_step = step_ + 1;
     const TimeStepState controller_before = controller_.state();
     std::vector<std::string> events;
+    if (p_.time_step.mode == TimeStepMode::schedule && !p_.time_step.schedule.entries().empty() &&
+        next_step == p_.time_step.schedule.entries().back().last_step + 1) {
+      const std::string message = fmt::format("the τ schedule ends at step {}: the steps after it repeat its last "
+                                              "τ = {}", next_step - 1, p_.time_step.schedule.entries().back().tau);
+      logger().warn("{}", message);
+      events_ += fmt::format("step {} t={}: {}\n", next_step, time_, message);
+    }
+
     int rejections = 0;
     StepRecord record;
     StepResult trial;
@@ -485,6 +565,7 @@ private:
   }
 
   const SimulationOptions& options_;
+  std::optional<RunLock> lock_;
   RunParameters p_;
   RetriangulationHook retriangulate_;
   std::filesystem::path dir_;
@@ -522,8 +603,10 @@ SimulationResult run_simulation(const Mesh& initial, const SimulationOptions& op
 SimulationResult resume_simulation(const SimulationOptions& options)
 {
   Runner runner(options);
-  runner.resume();
-  return runner.run();
+  const bool restarted = runner.resume();
+  SimulationResult result = runner.run();
+  result.restarted = restarted;
+  return result;
 }
 
 } // namespace sdflow

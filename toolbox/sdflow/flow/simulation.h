@@ -9,6 +9,7 @@
 //! DIR/run.toml           the fully resolved parameters
 //! DIR/events.log         start, rejections, re-triangulations, resumption, the end or the failure
 //! DIR/checkpoint.bin     the state to resume from (checkpoint.h)
+//! DIR/run.lock           locked while a process works in DIR (run_lock.h)
 //! ```
 //! Every file is replaced atomically. metrics.csv and events.log are rewritten at each snapshot and
 //! checkpoint, at the end, and at most every two seconds otherwise, so a killed run leaves complete
@@ -68,6 +69,9 @@ struct SimulationOptions {
   RunParameters parameters;
   RetriangulationHook retriangulate;             //!< optional
   std::function<void(const StepRecord&)> progress; //!< optional, called after every accepted step
+  //! Optional, asked before every step: when it answers true the run writes a checkpoint and
+  //! returns with `interrupted` set (a signal handler's flag, say; resume continues exactly).
+  std::function<bool()> stop_requested;
 };
 
 struct SimulationResult {
@@ -76,17 +80,24 @@ struct SimulationResult {
   double time = 0;
   long rejected_trials = 0; //!< over this call
   long factorisations = 0;  //!< over this call
+  bool interrupted = false; //!< stopped early on `stop_requested`, with a checkpoint of `steps`
+  bool restarted = false;   //!< resumed a run that had no checkpoint yet: it started again at step 0
 };
 
 //! Run the flow from `initial` into `options.parameters.output_dir`, which must not already hold a
-//! run (metrics.csv or checkpoint.bin). Throws InvalidParameter on bad parameters, InvalidMesh on
-//! a mesh the scheme cannot use, SolverFailure when the run becomes unstable (the files written so
-//! far stay complete), IoError when an output cannot be written.
+//! run (metrics.csv or checkpoint.bin) nor be in use by another process (run_lock.h: the directory
+//! is locked while this runs). Throws InvalidParameter on bad parameters, a directory that is a
+//! file or holds a run or is locked, InvalidMesh on a mesh the scheme cannot use, SolverFailure
+//! when the run becomes unstable (the files written so far stay complete), IoError when an output
+//! cannot be written (EnvironmentFailure when the disk is full).
 SimulationResult run_simulation(const Mesh& initial, const SimulationOptions& options);
 
 //! Continue the run in `options.parameters.output_dir` from its checkpoint, exactly as if it had
 //! not stopped (the parameters should be those of its run.toml; the step and time limits may be
-//! raised). Throws IoError if there is no readable checkpoint.
+//! raised). A run stopped before its first checkpoint (killed in its first moments, or its first
+//! checkpoint hit a full disk) starts again at step 0 from its step-0 snapshot, or from its input
+//! when even that is missing. Throws IoError if the checkpoint is unreadable, InvalidParameter
+//! when another process works in the directory.
 SimulationResult resume_simulation(const SimulationOptions& options);
 
 } // namespace sdflow

@@ -3,6 +3,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/cotangent_cache.cpp
   sdflow/flow/parameters.cpp
   sdflow/flow/retriangulation.cpp
+  sdflow/flow/run_lock.cpp
   sdflow/flow/scheme.cpp
   sdflow/flow/simulation.cpp
   sdflow/flow/solver.cpp

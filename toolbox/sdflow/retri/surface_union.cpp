@@ -7,12 +7,43 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
 
 namespace sdflow {
 namespace {
+
+//! The triangles of a mesh as sets of corner coordinates, each rotated to start at its smallest
+//! corner (the orientation is kept), sorted: equal for two meshes of the same surface.
+std::vector<std::array<Eigen::Vector3d, 3>> triangle_set(const Mesh& mesh)
+{
+  const auto less = [](const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+    return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
+  };
+  std::vector<std::array<Eigen::Vector3d, 3>> set;
+  set.reserve(mesh.n_faces());
+  for (auto f : mesh.faces()) {
+    std::array<Eigen::Vector3d, 3> t;
+    int k = 0;
+    for (auto v : f.vertices())
+      t[k++] = to_eigen(mesh.point(v));
+    const auto first = std::min_element(t.begin(), t.end(), less);
+    std::rotate(t.begin(), first, t.end());
+    set.push_back(t);
+  }
+  std::sort(set.begin(), set.end(), [&](const auto& s, const auto& t) {
+    return std::lexicographical_compare(s.begin(), s.end(), t.begin(), t.end(), less);
+  });
+  return set;
+}
+
+bool same_triangles(const Mesh& a, const Mesh& b)
+{
+  return a.n_faces() == b.n_faces() && a.n_faces() > 0 && triangle_set(a) == triangle_set(b);
+}
 
 //! Side of a surface through the angle-weighted pseudonormal at the closest point (Bærentzen &
 //! Aanæs 2005): exact sign for closed surfaces, whether the closest point is inside a face, on an
@@ -192,6 +223,13 @@ Mesh compact(const VertexVectors& x, const std::vector<std::array<int, 3>>& face
 UnionResult surface_union(const Mesh& a, const Mesh& b)
 {
   UnionResult result;
+  // A surface united with itself is itself; the general path would find every face both inside
+  // and on the other surface and remove them all.
+  if (same_triangles(a, b)) {
+    result.mesh = a;
+    result.mesh.garbage_collection();
+    return result;
+  }
   const std::vector<FacePair> crossing = surface_intersections(a, b);
   const SideOracle inside_a(a), inside_b(b);
 
@@ -235,6 +273,10 @@ UnionResult surface_union(const Mesh& a, const Mesh& b)
     bridge(loop, loops_b[partner], faces);
     ++result.joined_loops;
   }
+  if (faces.empty() && a.n_faces() > 0 && b.n_faces() > 0)
+    throw InvalidMesh(fmt::format("surface union: nothing is left after removing the overlap ({} + {} faces "
+                                  "removed): the surfaces coincide over large parts, which has no single boundary",
+                                  result.removed_faces_a, result.removed_faces_b));
   try {
     result.mesh = compact(x, faces);
   } catch (const InvalidMesh& e) {

@@ -18,7 +18,8 @@ struct UnionResult {
 
 //! Union of two outward-oriented closed surfaces (each may have several components).
 //! Without intersections the result is the disjoint union, or the outer surface when one encloses
-//! the other. Throws InvalidMesh when the loops left by the removal cannot be paired one to one
+//! the other; a surface united with itself (the same triangles) gives itself back. Throws InvalidMesh
+//! when nothing would be left (the surfaces coincide over large parts), or when the loops left by the removal cannot be paired one to one
 //! (the surfaces touch along a curve too short for the mesh resolution).
 UnionResult surface_union(const Mesh& a, const Mesh& b);
 

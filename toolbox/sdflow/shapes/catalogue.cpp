@@ -347,7 +347,7 @@ ImplicitSurface make_shape(std::string_view name, const std::map<std::string, do
   }
   const auto& known = entry->description.parameters;
   for (const auto& [key, value] : parameters) {
-    if (std::none_of(known.begin(), known.end(), [&](const ShapeParameter& p) { return p.name == key; })) {
+    if (std::none_of(known.begin(), known.end(), [&key = key](const ShapeParameter& p) { return p.name == key; })) {
       std::string names;
       for (const auto& p : known)
         names += (names.empty() ? "" : ", ") + p.name;

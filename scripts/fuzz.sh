@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer harnesses of fuzz/ with clang (SDFLOW_BUILD_FUZZERS, AddressSanitizer and
+# UndefinedBehaviorSanitizer on the whole toolbox) and runs each for a short time on a copy of the
+# seed corpus in fuzz/corpus/. A crash, a leak of a non-sdflow exception or a sanitizer report
+# stops the script with the reproducer (crash-*, in build/fuzz/findings/NAME/).
+#   scripts/fuzz.sh                  every harness for 10 s (CI: about 1.5 minutes in all)
+#   scripts/fuzz.sh --seconds 600    longer runs (README: "Fuzzing")
+#   scripts/fuzz.sh --only ply       one harness (fuzz_read_ply); --jobs N builds with N jobs
+#   scripts/fuzz.sh --no-build       run what build/fuzz already holds
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=10
+only=""
+jobs=$(nproc)
+build=1
+while (($#)); do
+  case "$1" in
+    --seconds) seconds=$2; shift 2 ;;
+    --only) only=$2; shift 2 ;;
+    --jobs) jobs=$2; shift 2 ;;
+    --no-build) build=0; shift ;;
+    *) echo "fuzz.sh: unknown argument $1" >&2; exit 2 ;;
+  esac
+done
+
+dir=build/fuzz
+harnesses=(read_off read_obj read_ply read_stl validate scenario schedule checkpoint)
+if [[ -n $only ]]; then harnesses=("$only"); fi
+if ((build)); then
+  scripts/install-deps.sh --fuzz
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
+    -DCMAKE_CXX_COMPILER=clang++ -DSDFLOW_BUILD_FUZZERS=ON -DSDFLOW_BUILD_TESTS=OFF -DSDFLOW_BUILD_CLI=OFF \
+    -DSDFLOW_BUILD_MESHLAB_PLUGIN=OFF > /dev/null
+  cmake --build "$dir" -j "$jobs" --target "${harnesses[@]/#/fuzz_}"
+fi
+
+export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+status=0
+for h in "${harnesses[@]}"; do
+  seeds=fuzz/corpus/${h#read_}
+  work=$dir/corpus/$h findings=$dir/findings/$h
+  mkdir -p "$work" "$findings"
+  cp -n "$seeds"/* "$work"/ 2>/dev/null || true
+  log=$dir/fuzz_$h.log
+  if "$dir/fuzz/fuzz_$h" -max_total_time="$seconds" -max_len=4096 -rss_limit_mb=2048 -timeout=10 \
+       -artifact_prefix="$findings/" -print_final_stats=1 "$work" > "$log" 2>&1; then
+    runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo '?')
+    echo "fuzz.sh: fuzz_$h: $runs executions in ${seconds} s, no finding"
+  else
+    status=1
+    echo "fuzz.sh: fuzz_$h FOUND A PROBLEM (reproducer in $findings/):" >&2
+    grep -E 'ERROR|SUMMARY|terminate|what\(\)' "$log" | head -5 >&2 || tail -20 "$log" >&2
+  fi
+done
+exit $status

@@ -1,0 +1,53 @@
+#pragma once
+//! \file limits.h
+//! \brief Plausibility limits: what a request will produce, estimated before the work, and the
+//! refusal (InvalidParameter, with the estimate and what to do) of what will not fit in memory,
+//! cannot be meshed, or would run for no purpose. Every check can be overridden (`force`).
+
+#include "sdflow/mesh.h"
+
+#include <Eigen/Geometry>
+
+#include <string_view>
+
+namespace sdflow {
+
+struct SizeLimits {
+  //! Most vertices of one surface: the flow's factorisation and the re-triangulation's point
+  //! structures need about `bytes_per_vertex` each, so 20 million already need some 40 GB.
+  double max_vertices = 2e7;
+  //! Fewest vertices a surface re-triangulated to an edge length may have: the jet normals of the
+  //! rebuild fit 18 neighbours, and a closed surface coarser than an icosahedron loses its shape.
+  double min_vertices = 20;
+  //! Most iterations of remeshing (a few converge: Botsch & Kobbelt 2004 use 5 to 10).
+  long max_iterations = 1000;
+  //! Most time steps of one run.
+  long max_steps = 100'000'000;
+  //! Memory per vertex of the heaviest verb (measured peak of `run --retriangulate`, rounded up).
+  double bytes_per_vertex = 2048;
+  //! Skip every check (`--force`).
+  bool force = false;
+};
+
+//! Vertices of a triangulation of `area` with edges of about `edge_length`: equilateral triangles
+//! of area √3/4 ℓ², and about half as many vertices as triangles on a closed surface.
+double estimated_vertices(double area, double edge_length);
+
+//! Vertices of a surface meshed with edges of about `edge_length` inside `box`, before it exists:
+//! its area taken as half the box's (a sphere in its bounding cube has 0.52 of it).
+double estimated_vertices_in_box(const Eigen::AlignedBox3d& box, double edge_length);
+
+//! Refuse a surface of `vertices` (an estimate) that is larger than the limit or than half this
+//! machine's physical memory at `bytes_per_vertex`, or (when `check_minimum`) smaller than
+//! `min_vertices`. `what` names the request in the message ("remesh --edge-length 1e-05").
+void check_surface_size(double vertices, std::string_view what, const SizeLimits& limits = {},
+                        bool check_minimum = true);
+
+//! Check the surface `mesh` becomes when re-triangulated to `edge_length` (the estimate above
+//! from its area).
+void check_remeshed_size(const Mesh& mesh, double edge_length, std::string_view what, const SizeLimits& limits = {});
+
+//! Refuse more than `limit` iterations or steps (`what` names the option).
+void check_count(long count, long limit, std::string_view what, const SizeLimits& limits = {});
+
+} // namespace sdflow
