@@ -133,7 +133,7 @@ reference() { # axisymmetric ARGS...: "BODIES T*" of the 1-D reference (T* of th
   { "$sdflow" axisymmetric "$@" --json 2>/dev/null || true; } |
     awk 'match($0, /"event_time" *: *[-0-9.eE+]+/) { s = substr($0, RSTART, RLENGTH); sub(/.*: */, "", s); t = s }
          match($0, /"bodies" *: *[0-9]+/) { s = substr($0, RSTART, RLENGTH); sub(/.*: */, "", s); b = s }
-         END { printf "%s %s", (b == "" ? "–" : b), (t == "" ? (b == "" ? "–" : "none") : sprintf("%.5g", t)) }'
+         END { printf "%s %s\n", (b == "" ? "–" : b), (t == "" ? (b == "" ? "–" : "none") : sprintf("%.5g", t)) }'
 }
 relative_error() { # VALUE REFERENCE
   awk -v x="$1" -v r="$2" 'BEGIN { if (r + 0 > 0 && x + 0 > 0) printf "%+.1f%%", 100 * (x - r) / r; else printf "–" }'
