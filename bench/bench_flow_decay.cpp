@@ -9,7 +9,7 @@
 //! (scripts/install-deps.sh --bench).
 //!   bench_flow_decay --benchmark_counters_tabular=true
 
-#include "sdflow/flow/cotangent_cache.h"
+#include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/flow/scheme.h"
 #include "support/analytic_meshes.h"
 
@@ -100,20 +100,17 @@ void Sdflow(benchmark::State& state)
   state.SetLabel(fmt::format("{}{}", name, extrapolate ? ", extrapolated" : ""));
   const Mesh start = perturbed_sphere(level);
   for (auto _ : state) {
-    Mesh mesh = start;
     const double cpu_begin = cpu_seconds(RUSAGE_SELF);
     const auto begin = std::chrono::steady_clock::now();
-    const sdflow::CotangentCache cache(mesh);
-    sdflow::FlowSolver solver, half_solver;
-    Eigen::VectorXd w;
-    for (int s = 0; s < steps; ++s) {
-      const auto operators = sdflow::flow_operators(mesh, scheme, &cache);
-      auto step = extrapolate ? sdflow::extrapolated_step(mesh, operators, end_time / steps, scheme, solver, half_solver,
-                                                          &cache, w)
-                              : sdflow::solve_step(mesh, operators, end_time / steps, 0.5, solver, w);
-      sdflow::set_vertex_positions(mesh, step.positions);
-      w = std::move(step.w);
-    }
+    sdflow::RunParameters p;
+    p.steps = steps;
+    p.time_step.mode = sdflow::TimeStepMode::constant;
+    p.time_step.tau = end_time / steps;
+    p.scheme = scheme;
+    sdflow::SurfaceDiffusion flow(start, p);
+    while (!flow.finished())
+      flow.step();
+    const Mesh& mesh = flow.mesh();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
     report(state, p2_amplitude(points_of(start)), p2_amplitude(points_of(mesh)), seconds,
            static_cast<int>(mesh.n_vertices()));

@@ -18,7 +18,7 @@ namespace {
 sdflow::Mesh torus(int around, int tube)
 {
   sdflow::VertexVectors x(around * tube, 3);
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> t(2 * around * tube, 3);
+  sdflow::FaceIndices t(2 * around * tube, 3);
   for (int i = 0; i < around; ++i)
     for (int j = 0; j < tube; ++j) {
       const double u = 2 * std::numbers::pi * i / around, v = 2 * std::numbers::pi * j / tube;

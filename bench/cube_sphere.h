@@ -50,7 +50,7 @@ inline Mesh cube_sphere(int n, double radius = 1.0)
   VertexVectors x(points.size(), 3);
   for (std::size_t i = 0; i < points.size(); ++i)
     x.row(i) = points[i].transpose();
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> t(faces.size(), 3);
+  sdflow::FaceIndices t(faces.size(), 3);
   for (std::size_t f = 0; f < faces.size(); ++f)
     t.row(f) << faces[f][0], faces[f][1], faces[f][2];
   return make_mesh(x, t);

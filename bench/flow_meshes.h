@@ -64,7 +64,7 @@ inline Mesh geodesic_sphere(int k, double amplitude = 0.0)
     const double radius = 1.0 + amplitude * 0.5 * (3 * u.z() * u.z() - 1);
     positions.row(v) = (radius * u).transpose();
   }
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> tri(triangles.size(), 3);
+  sdflow::FaceIndices tri(triangles.size(), 3);
   for (std::size_t f = 0; f < triangles.size(); ++f)
     tri.row(f) << triangles[f][0], triangles[f][1], triangles[f][2];
   return make_mesh(positions, tri);

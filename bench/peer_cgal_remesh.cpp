@@ -63,7 +63,7 @@ Mesh from_cgal(CgalMesh mesh)
     const auto& p = mesh.point(v);
     x.row(v.idx()) << p.x(), p.y(), p.z();
   }
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> t(mesh.number_of_faces(), 3);
+  sdflow::FaceIndices t(mesh.number_of_faces(), 3);
   for (auto f : mesh.faces()) {
     int k = 0;
     for (auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))

@@ -3,7 +3,7 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/parameters.h"
 #include "sdflow/flow/scheme.h"
-#include "sdflow/flow/simulation.h"
+#include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/geometry/curvature.h"
 #include "sdflow/geometry/normals.h"
 #include "sdflow/geometry/quality.h"
@@ -15,8 +15,6 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
 #include <mutex>
 
 namespace sdflow::meshlab {
@@ -59,29 +57,6 @@ public:
   ~LoggerScope() { set_logger(std::make_shared<spdlog::logger>("sdflow")); }
   LoggerScope(const LoggerScope&) = delete;
   LoggerScope& operator=(const LoggerScope&) = delete;
-};
-
-//! A fresh private directory, removed with its contents at the end of the scope.
-class TemporaryDirectory {
-public:
-  TemporaryDirectory()
-  {
-    std::string pattern = (std::filesystem::temp_directory_path() / "sdflow-meshlab-XXXXXX").string();
-    if (!mkdtemp(pattern.data()))
-      throw IoError("cannot create a temporary directory from " + pattern);
-    path_ = pattern;
-  }
-  ~TemporaryDirectory()
-  {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  TemporaryDirectory(const TemporaryDirectory&) = delete;
-  TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-
-private:
-  std::filesystem::path path_;
 };
 
 PolygonSoup to_soup(const Surface& surface)
@@ -165,13 +140,8 @@ ShadedSurface surface_diffusion(const Surface& input, const std::string& name, c
     throw InvalidParameter("steps must be at least 1, got " + std::to_string(settings.steps));
   const Mesh initial = checked_mesh(input, name);
 
-  // The same run as `sdflow run` with the same options; the run directory it needs for its files
-  // is private and temporary, and only the first and last surfaces are written there.
-  const TemporaryDirectory run_directory;
-  SimulationOptions options;
-  RunParameters& p = options.parameters;
-  p.input = name; // recorded in the run's parameters only
-  p.output_dir = run_directory.path();
+  // The same flow as `sdflow run` with the same options, in memory.
+  RunParameters p;
   p.steps = settings.steps;
   p.time_step.mode = settings.automatic_tau ? TimeStepMode::adaptive : TimeStepMode::constant;
   p.time_step.tau = settings.automatic_tau ? 0.0 : settings.tau;
@@ -183,20 +153,18 @@ ShadedSurface surface_diffusion(const Surface& input, const std::string& name, c
   p.conserve_volume = settings.conserve_volume;
   p.retriangulation.enabled = settings.retriangulate;
   p.retriangulation.pipeline.target_edge_length = settings.edge_length;
-  p.snapshot_every = 0;
-  p.checkpoint_every = settings.steps;
-  if (reporter.progress)
-    options.progress = [&](const StepRecord& record) {
+  SurfaceDiffusion flow(initial, p);
+  while (!flow.finished()) {
+    const StepRecord record = flow.step();
+    if (reporter.progress)
       reporter.progress(static_cast<int>(100 * record.step / settings.steps),
                         fmt::format("surface diffusion: step {} of {}, τ = {:.3g}", record.step, settings.steps,
                                     record.tau));
-    };
-  const SimulationResult result = run_simulation(initial, options);
-  logger().info("surface diffusion: {} steps to t = {:.6g} ({} rejected trial steps)", result.steps, result.time,
-                result.rejected_trials);
-  // The H the run steps with and `sdflow run` writes: the cotangent H divides by the run's vertex areas.
-  const FlowOperators final_operators = flow_operators(result.mesh, p.scheme);
-  return shaded(result.mesh, final_operators.normals, final_operators.curvature);
+  }
+  logger().info("surface diffusion: {} steps to t = {:.6g} ({} rejected trial steps)", flow.steps(), flow.time(),
+                flow.rejected_trials());
+  // The H the flow steps with and `sdflow run` writes: the cotangent H divides by the flow's vertex areas.
+  return shaded(flow.mesh(), flow.operators().normals, flow.operators().curvature);
 }
 
 ShadedSurface retriangulate_surface(const Surface& input, const std::string& name,

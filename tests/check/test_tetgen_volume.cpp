@@ -76,7 +76,7 @@ TEST(TetgenVolume, far_away_vertex_and_flat_body_are_refused_before_tetgen)
 TEST(TetgenVolume, cavity_volume_carries_the_sign_of_the_divergence_volume)
 {
   const Mesh sphere = analytic::icosphere(2);
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> faces = face_indices(sphere);
+  FaceIndices faces = face_indices(sphere);
   faces.col(1).swap(faces.col(2));
   const Mesh inverted = make_mesh(vertex_positions(sphere), faces);
   const auto checks = tetgen_volume_check(inverted);

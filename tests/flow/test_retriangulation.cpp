@@ -2,6 +2,7 @@
 //! of the paper's dumbbell pinch-off (§3.2.2) and torus hole sealing (§4.1), and their resumption.
 #include "sdflow/errors.h"
 #include "sdflow/flow/retriangulation.h"
+#include "sdflow/flow/simulation.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/shapes/catalogue.h"

@@ -2,6 +2,7 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/scheme.h"
 #include "sdflow/flow/solver.h"
+#include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/geometry/laplacian.h"
 #include "sdflow/geometry/measures.h"
 #include "support/analytic_meshes.h"
@@ -28,19 +29,20 @@ Mesh noisy_sphere(int level, double amplitude)
   return mesh;
 }
 
-//! Run `steps` steps of constant τ with one solver, as the driver does (warm-started solves).
-Mesh evolve(Mesh mesh, double tau, int steps, const SchemeOptions& scheme = {}, const SolverOptions& solver_options = {})
+//! `steps` steps of constant τ of the flow in memory, without re-triangulation.
+Mesh evolve(const Mesh& mesh, double tau, int steps, const SchemeOptions& scheme = {},
+            const SolverOptions& solver_options = {})
 {
-  FlowSolver solver(solver_options), half_solver(solver_options);
-  Eigen::VectorXd w;
-  for (int s = 0; s < steps; ++s) {
-    const FlowOperators operators = flow_operators(mesh, scheme);
-    auto step = scheme.extrapolate ? extrapolated_step(mesh, operators, tau, scheme, solver, half_solver, nullptr, w)
-                                   : solve_step(mesh, operators, tau, scheme.beta, solver, w);
-    set_vertex_positions(mesh, step.positions);
-    w = step.w;
-  }
-  return mesh;
+  RunParameters p;
+  p.steps = steps;
+  p.time_step.mode = TimeStepMode::constant;
+  p.time_step.tau = tau;
+  p.scheme = scheme;
+  p.solver = solver_options;
+  SurfaceDiffusion flow(mesh, p);
+  while (!flow.finished())
+    flow.step();
+  return flow.mesh();
 }
 
 SphereDeviation deviation(const Mesh& mesh) { return sphere_deviation(mesh, mixed_voronoi_areas(mesh)); }

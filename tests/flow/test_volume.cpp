@@ -20,7 +20,7 @@ TEST(RestoreVolumes, each_closed_component_gets_its_target_volume_back)
     b.set_point(v, b.point(v) + Mesh::Point(20, 0, 0));
   VertexVectors positions(a.n_vertices() + b.n_vertices(), 3);
   positions << vertex_positions(a), vertex_positions(b);
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> triangles(a.n_faces() + b.n_faces(), 3);
+  FaceIndices triangles(a.n_faces() + b.n_faces(), 3);
   triangles << face_indices(a), face_indices(b).array() + static_cast<int>(a.n_vertices());
   Mesh both = make_mesh(positions, triangles);
 

@@ -99,7 +99,7 @@ TEST(Laplacian, obtuse_triangle_splits_its_area_half_and_quarters)
 {
   VertexVectors x(3, 3);
   x << 0, 0, 0, 4, 0, 0, 2, 0.5, 0; // obtuse at vertex 2
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> t(1, 3);
+  FaceIndices t(1, 3);
   t << 0, 1, 2;
   const Eigen::VectorXd areas = mixed_voronoi_areas(make_mesh(x, t));
   EXPECT_DOUBLE_EQ(areas[2], 0.5);
@@ -111,7 +111,7 @@ TEST(Laplacian, equilateral_triangle_has_equal_voronoi_thirds)
 {
   VertexVectors x(3, 3);
   x << 0, 0, 0, 1, 0, 0, 0.5, std::sqrt(3.0) / 2, 0;
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> t(1, 3);
+  FaceIndices t(1, 3);
   t << 0, 1, 2;
   const Mesh mesh = make_mesh(x, t);
   const Eigen::VectorXd areas = mixed_voronoi_areas(mesh);

@@ -84,7 +84,7 @@ TEST(Normals, single_triangle_gives_the_cross_product_of_its_edges)
 {
   VertexVectors x(3, 3);
   x << 0, 0, 0, 2, 0, 0, 0, 1, 0;
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> t(1, 3);
+  FaceIndices t(1, 3);
   t << 0, 1, 2;
   const VertexVectors n = vertex_normals(make_mesh(x, t));
   for (int i = 0; i < 3; ++i)

@@ -112,7 +112,7 @@ TEST(RoundTrip, extreme_doubles_survive_text_formats)
                          -1e-300, 1e300, 0.7,                                               //
                          3.0, 1e-7, -1e300)
                             .finished(),
-                        (Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>(1, 3) << 0, 1, 2).finished());
+                        (FaceIndices(1, 3) << 0, 1, 2).finished());
   test::TempDir dir;
   for (const std::string extension : {"off", "obj", "ply"}) {
     SCOPED_TRACE(extension);

@@ -18,11 +18,10 @@ namespace {
 constexpr double float_slack = 1e-6;
 constexpr double distance_tolerance = 1e-12;
 
-using Triangles = Bvh::Triangles;
 
 struct Soup {
   VertexVectors x;
-  Triangles t;
+  FaceIndices t;
 };
 
 //! Random triangles of random sizes in the unit cube (many overlapping boxes, some huge).
@@ -30,7 +29,7 @@ Soup random_soup(int count, unsigned seed)
 {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  Soup s{VertexVectors(3 * count, 3), Triangles(count, 3)};
+  Soup s{VertexVectors(3 * count, 3), FaceIndices(count, 3)};
   for (int f = 0; f < count; ++f) {
     const Eigen::Vector3d centre(unit(rng), unit(rng), unit(rng));
     const double size = std::pow(10.0, -2.5 + 2.0 * unit(rng));
@@ -184,7 +183,7 @@ TEST(Bvh, first_hit_equals_brute_force)
 {
   const Mesh torus = analytic::torus(24, 12, 3, 1);
   const Bvh tree(torus);
-  const Bvh::Triangles tri = face_indices(torus);
+  const FaceIndices tri = face_indices(torus);
   const VertexVectors x = vertex_positions(torus);
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> coord(-5.0, 5.0);
@@ -257,7 +256,7 @@ TEST(Bvh, bad_input_is_rejected_with_clear_errors)
 {
   VertexVectors x(3, 3);
   x << 0, 0, 0, 1, 0, 0, 0, 1, 0;
-  Triangles t(1, 3);
+  FaceIndices t(1, 3);
   t << 0, 1, 3;
   EXPECT_THROW(Bvh(x, t), InvalidMesh);
   t << 0, 1, 2;

@@ -19,7 +19,7 @@ Mesh several_bodies()
   const Mesh small = analytic::icosphere(1, 0.5, Eigen::Vector3d(-10, 0, 0));
   VertexVectors x(3, 3);
   x << 0, 20, 0, 1, 20, 0, 0, 21, 0;
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> t(1, 3);
+  FaceIndices t(1, 3);
   t << 0, 1, 2;
   const Mesh triangle = make_mesh(x, t);
   return test::disjoint_union({&sphere, &triangle, &torus, &small});
@@ -85,7 +85,7 @@ TEST(Components, bodies_touching_at_a_vertex_are_separate_and_split_cleanly)
   // Two fans meeting only at vertex 0: two components through edges, one pinched vertex.
   VertexVectors x(7, 3);
   x << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, -1, 0, 0.5, -1, -1, 0.5, 0, -1, 0.5;
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> t(4, 3);
+  FaceIndices t(4, 3);
   t << 0, 1, 2, 0, 2, 3, 0, 4, 5, 0, 5, 6;
   const Mesh bowtie = make_mesh(x, t);
   const auto parts = split_components(bowtie);

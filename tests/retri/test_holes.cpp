@@ -17,7 +17,6 @@
 namespace sdflow {
 namespace {
 
-using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 //! The mesh without the faces for which `cut` holds, and without the vertices left isolated.
 Mesh without_faces(const Mesh& mesh, const std::function<bool(Mesh::FaceHandle)>& cut)
@@ -43,7 +42,7 @@ Mesh without_faces(const Mesh& mesh, const std::function<bool(Mesh::FaceHandle)>
   for (auto v : mesh.vertices())
     if (index[v.idx()] >= 0)
       x.row(index[v.idx()]) = to_eigen(mesh.point(v)).transpose();
-  Triangles t(kept.size(), 3);
+  FaceIndices t(kept.size(), 3);
   for (std::size_t f = 0; f < kept.size(); ++f)
     for (int k = 0; k < 3; ++k)
       t(static_cast<Eigen::Index>(f), k) = index[kept[f][k]];

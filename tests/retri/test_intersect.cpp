@@ -38,7 +38,7 @@ FacePairCase face_pair(const Tri& t, const Tri& u, int shared)
   VertexVectors x(6 - shared, 3);
   for (int i = 0; i < 3; ++i)
     x.row(i) = t[i].transpose();
-  Bvh::Triangles tri(2, 3);
+  FaceIndices tri(2, 3);
   tri.row(0) << 0, 1, 2;
   if (shared == 2) {
     c.u[0] = t[1];
@@ -219,7 +219,7 @@ std::vector<NamedMesh> adversarial_meshes()
   {
     VertexVectors x(3, 3);
     x << 0, 0, 0, 1, 0, 0, 0, 1, 0;
-    Bvh::Triangles t(2, 3);
+    FaceIndices t(2, 3);
     t << 0, 1, 2, 0, 2, 1;
     cases.push_back({"doubled face", make_mesh(x, t), true});
   }

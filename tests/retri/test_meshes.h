@@ -11,7 +11,6 @@
 
 namespace sdflow::test {
 
-using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 //! An nx × ny quad grid of the unit square [0, nx] × [0, ny] (z = 0), each quad split into two
 //! triangles (alternating diagonals when `alternate`), then every vertex mapped by `map`.
@@ -21,7 +20,7 @@ inline Mesh grid(int nx, int ny, const std::function<Eigen::Vector3d(double, dou
   for (int j = 0; j <= ny; ++j)
     for (int i = 0; i <= nx; ++i)
       x.row(j * (nx + 1) + i) = map(i, j).transpose();
-  Triangles t(2 * nx * ny, 3);
+  FaceIndices t(2 * nx * ny, 3);
   int f = 0;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
@@ -46,7 +45,7 @@ inline Mesh disjoint_union(const std::vector<const Mesh*>& parts)
     nf += static_cast<int>(m->n_faces());
   }
   VertexVectors x(nv, 3);
-  Triangles t(nf, 3);
+  FaceIndices t(nf, 3);
   int v0 = 0, f0 = 0;
   for (const Mesh* m : parts) {
     x.middleRows(v0, m->n_vertices()) = vertex_positions(*m);

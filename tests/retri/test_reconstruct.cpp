@@ -281,7 +281,6 @@ namespace {
 // The brute-force checker itself must see what it is meant to catch.
 TEST(ReconstructChecks, brute_force_check_finds_known_intersections)
 {
-  using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
   VertexVectors x(10, 3);
   x << 0, 0, 0, 1, 0, 0, 0, 1, 0,   // 0-2: triangle in z = 0
       0.2, 0.2, -1, 0.3, 0.2, 1, 0.2, 0.3, 1, // 3-5: pierces it
@@ -289,22 +288,22 @@ TEST(ReconstructChecks, brute_force_check_finds_known_intersections)
       0.5, 0.5, 0.5, 0.4, 0.4, -0.5, // 7, 8
       0.1, 0.1, 0;                  // 9: inside the first triangle, in its plane
   {
-    Triangles t(2, 3);
+    FaceIndices t(2, 3);
     t << 0, 1, 2, 3, 4, 5;
     EXPECT_EQ(checks::self_intersecting_pairs(make_mesh(x, t)), 1);
   }
   {
-    Triangles t(2, 3); // share edge 1-2, opposite sides in the plane: a valid surface
+    FaceIndices t(2, 3); // share edge 1-2, opposite sides in the plane: a valid surface
     t << 0, 1, 2, 2, 1, 6;
     EXPECT_EQ(checks::self_intersecting_pairs(make_mesh(x, t)), 0);
   }
   {
-    Triangles t(2, 3); // share edge 1-2, folded onto each other in the plane
+    FaceIndices t(2, 3); // share edge 1-2, folded onto each other in the plane
     t << 0, 1, 2, 2, 1, 9;
     EXPECT_EQ(checks::self_intersecting_pairs(make_mesh(x, t)), 1);
   }
   {
-    Triangles t(2, 3); // share vertex 0; the opposite edge 7-8 passes through the first triangle
+    FaceIndices t(2, 3); // share vertex 0; the opposite edge 7-8 passes through the first triangle
     t << 0, 1, 2, 0, 7, 8;
     EXPECT_EQ(checks::self_intersecting_pairs(make_mesh(x, t)), 1);
   }

@@ -7,7 +7,6 @@ namespace sdflow {
 namespace {
 
 using Points = VertexVectors;
-using Faces = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 std::size_t pairs_of(std::initializer_list<Eigen::Vector3d> points, std::initializer_list<std::array<int, 3>> faces)
 {
@@ -15,7 +14,7 @@ std::size_t pairs_of(std::initializer_list<Eigen::Vector3d> points, std::initial
   int i = 0;
   for (const auto& p : points)
     x.row(i++) = p.transpose();
-  Faces f(faces.size(), 3);
+  FaceIndices f(faces.size(), 3);
   i = 0;
   for (const auto& t : faces)
     f.row(i++) << t[0], t[1], t[2];

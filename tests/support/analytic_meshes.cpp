@@ -10,7 +10,6 @@
 namespace sdflow::analytic {
 namespace {
 
-using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 //! Unit icosahedron subdivided `level` times, every vertex on the unit sphere.
 std::pair<std::vector<Eigen::Vector3d>, std::vector<std::array<int, 3>>> unit_icosphere(int level)
@@ -52,7 +51,7 @@ Mesh mesh_from(const std::vector<Eigen::Vector3d>& points, const std::vector<std
   VertexVectors x(points.size(), 3);
   for (std::size_t i = 0; i < points.size(); ++i)
     x.row(i) = points[i].transpose();
-  Triangles t(faces.size(), 3);
+  FaceIndices t(faces.size(), 3);
   for (std::size_t i = 0; i < faces.size(); ++i)
     t.row(i) << faces[i][0], faces[i][1], faces[i][2];
   return make_mesh(x, t);
@@ -170,7 +169,7 @@ Mesh disjoint_union(const Mesh& a, const Mesh& b)
 {
   VertexVectors x(a.n_vertices() + b.n_vertices(), 3);
   x << vertex_positions(a), vertex_positions(b);
-  Triangles t(a.n_faces() + b.n_faces(), 3);
+  FaceIndices t(a.n_faces() + b.n_faces(), 3);
   t << face_indices(a), (face_indices(b).array() + static_cast<int>(a.n_vertices())).matrix();
   return make_mesh(x, t);
 }

@@ -23,7 +23,7 @@ void set_vertex_positions(Mesh& mesh, const VertexVectors& positions)
     mesh.set_point(v, to_point(positions.row(v.idx()).transpose()));
 }
 
-Mesh make_mesh(const VertexVectors& positions, const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>& triangles)
+Mesh make_mesh(const VertexVectors& positions, const FaceIndices& triangles)
 {
   Mesh mesh;
   mesh.reserve(positions.rows(), 3 * triangles.rows() / 2, triangles.rows());
@@ -41,9 +41,9 @@ Mesh make_mesh(const VertexVectors& positions, const Eigen::Matrix<int, Eigen::D
   return mesh;
 }
 
-Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> face_indices(const Mesh& mesh)
+FaceIndices face_indices(const Mesh& mesh)
 {
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> f(mesh.n_faces(), 3);
+  FaceIndices f(mesh.n_faces(), 3);
   for (auto face : mesh.faces()) {
     int k = 0;
     for (auto v : face.vertices())

@@ -30,6 +30,9 @@ using Mesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
 //! Per-vertex 3-vectors (#V by 3), row i for vertex i: positions, normals, displacements.
 using VertexVectors = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
+//! Triangles as rows of three vertex indices (#F by 3).
+using FaceIndices = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
 //! OpenMesh point to Eigen vector.
 inline Eigen::Vector3d to_eigen(const Mesh::Point& p) { return {p[0], p[1], p[2]}; }
 
@@ -62,9 +65,9 @@ void set_vertex_positions(Mesh& mesh, const VertexVectors& positions);
 
 //! Make a mesh from vertex positions and triangles (indices into `positions`), in this order.
 //! Throws InvalidMesh if OpenMesh rejects a triangle (non-manifold or inconsistently oriented).
-Mesh make_mesh(const VertexVectors& positions, const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>& triangles);
+Mesh make_mesh(const VertexVectors& positions, const FaceIndices& triangles);
 
 //! Triangles as a #F by 3 matrix of vertex indices, in face order.
-Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> face_indices(const Mesh& mesh);
+FaceIndices face_indices(const Mesh& mesh);
 
 } // namespace sdflow

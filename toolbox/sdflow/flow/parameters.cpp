@@ -1,7 +1,6 @@
 #include "sdflow/flow/parameters.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/flow/retriangulation.h"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -295,10 +294,15 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
 
 void validate_run_parameters(const RunParameters& p)
 {
-  if (p.steps < 0)
-    throw InvalidParameter(fmt::format("steps must be ≥ 0, got {}", p.steps));
   if (p.steps == 0 && std::isinf(p.end_time))
     throw InvalidParameter("no stop condition: give a number of steps or an end time");
+  validate_flow_parameters(p);
+}
+
+void validate_flow_parameters(const RunParameters& p)
+{
+  if (p.steps < 0)
+    throw InvalidParameter(fmt::format("steps must be ≥ 0, got {}", p.steps));
   if (!(p.end_time > 0))
     throw InvalidParameter(fmt::format("the end time must be positive, got {}", p.end_time));
   if (!(p.scheme.beta >= 0) || !std::isfinite(p.scheme.beta))

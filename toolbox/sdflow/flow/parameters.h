@@ -36,7 +36,7 @@
 //! max_tau = 1e300
 //! max_rejections = 25
 //! tolerance = 0.0              # bound on the extrapolated step's local error estimate (0: off)
-//! [retriangulation]            # see RetriangulationSchedule below and retri/pipeline.h
+//! [retriangulation]            # see RetriangulationSchedule (retriangulation.h) and retri/pipeline.h
 //! enabled = false
 //! every = 1
 //! min_angle = 15.0             # degrees
@@ -59,10 +59,10 @@
 //! radius = 1.0
 //! ```
 
+#include "sdflow/flow/retriangulation.h"
 #include "sdflow/flow/scheme.h"
 #include "sdflow/flow/solver.h"
 #include "sdflow/flow/time_step.h"
-#include "sdflow/retri/pipeline.h"
 
 #include <Eigen/Core>
 
@@ -70,31 +70,6 @@
 #include <limits>
 
 namespace sdflow {
-
-//! When a run re-triangulates (retriangulation.h): every `every` steps the surface is looked at, and
-//! the pipeline of retri/pipeline.h runs when it intersects itself (a pinch-off, a hole sealing,
-//! bodies touching), when its triangles have degraded (more than `degraded_fraction` of the
-//! triangle count are triangles with an angle below `min_angle_deg` or edges outside [ℓ/r, r·ℓ]
-//! with r = `edge_ratio` and ℓ the local target of the pipeline's curvature-adapted sizing, and more
-//! than the last re-triangulation left behind), or every time with `always` (the paper's practice).
-struct RetriangulationSchedule {
-  bool enabled = false;
-  long every = 1;             //!< look at the surface after every k-th step (≥ 1)
-  double min_angle_deg = 15;  //!< re-triangulate when a triangle's smallest angle is below this
-  double edge_ratio = 2;      //!< ... or an edge is longer than r·ℓ or shorter than ℓ/r (r > 1)
-  //! ... counting such triangles and edges: more than this fraction of the triangle count. The
-  //! default 0 reacts to a single one: a thinning neck shows only a few, and without remeshing it
-  //! stalls instead of pinching off. Elements the remesher could not fix are tolerated until more
-  //! appear; larger values save remeshings on large surfaces.
-  double degraded_fraction = 0;
-  bool always = false;        //!< run the whole pipeline after every k-th step (the paper's practice)
-  //! Give each closed component (or group of components that split or fused) back the volume the
-  //! re-triangulation took or added (flow/volume.h, restore_volumes_from).
-  bool restore_volume = true;
-  //! The pipeline; its ℓ (0 = automatic) is fixed when the run starts, to the initial surface's
-  //! mean edge length, so that it stays the same for the whole run and its resumption.
-  RetriangulationOptions pipeline;
-};
 
 struct RunParameters {
   std::filesystem::path input;       //!< the initial mesh
@@ -142,7 +117,11 @@ void apply_preset(const std::string& name, RunParameters& parameters);
 //! InvalidParameter on an unknown key or a value of the wrong type or range.
 void read_run_parameters(const std::filesystem::path& file, RunParameters& parameters);
 
-//! Check ranges and consistency (a stop condition, τ for the chosen mode...); throws InvalidParameter.
+//! Check ranges and consistency of what the flow uses (τ for the chosen mode, β, the
+//! re-triangulation schedule...); throws InvalidParameter.
+void validate_flow_parameters(const RunParameters& parameters);
+
+//! validate_flow_parameters, and a stop condition (a number of steps or an end time) for a run.
 void validate_run_parameters(const RunParameters& parameters);
 
 //! The fully resolved parameters as TOML (the schedule inline, absolute paths).

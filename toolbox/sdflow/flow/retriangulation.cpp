@@ -37,7 +37,7 @@ class IntersectionWatch {
 public:
   std::size_t count(const Mesh& mesh)
   {
-    Triangles triangles = face_indices(mesh);
+    FaceIndices triangles = face_indices(mesh);
     if (tracker_ && vertices_ == mesh.n_vertices() && triangles.rows() == triangles_.rows() && triangles == triangles_)
       return tracker_->update(mesh).size();
     tracker_.emplace(mesh);
@@ -47,9 +47,8 @@ public:
   }
 
 private:
-  using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
   std::optional<SelfIntersectionTracker> tracker_;
-  Triangles triangles_;
+  FaceIndices triangles_;
   std::size_t vertices_ = 0;
 };
 

@@ -1,19 +1,74 @@
 #pragma once
 //! \file retriangulation.h
 //! \brief The hook that re-triangulates a run's surface between steps (paper §3.2.1) when its
-//! RetriangulationSchedule (parameters.h) says so. The paper chose the moments by hand or ran the
+//! RetriangulationSchedule (below) says so. The paper chose the moments by hand or ran the
 //! pipeline after every step; the schedule's triggers make the choice automatic.
 
-#include "sdflow/flow/parameters.h"
-#include "sdflow/flow/simulation.h"
+#include "sdflow/mesh.h"
+#include "sdflow/retri/pipeline.h"
+
+#include <functional>
+#include <string>
 
 namespace sdflow {
+
+//! When a run re-triangulates: every `every` steps the surface is looked at, and
+//! the pipeline of retri/pipeline.h runs when it intersects itself (a pinch-off, a hole sealing,
+//! bodies touching), when its triangles have degraded (more than `degraded_fraction` of the
+//! triangle count are triangles with an angle below `min_angle_deg` or edges outside [ℓ/r, r·ℓ]
+//! with r = `edge_ratio` and ℓ the local target of the pipeline's curvature-adapted sizing, and more
+//! than the last re-triangulation left behind), or every time with `always` (the paper's practice).
+struct RetriangulationSchedule {
+  bool enabled = false;
+  long every = 1;             //!< look at the surface after every k-th step (≥ 1)
+  double min_angle_deg = 15;  //!< re-triangulate when a triangle's smallest angle is below this
+  double edge_ratio = 2;      //!< ... or an edge is longer than r·ℓ or shorter than ℓ/r (r > 1)
+  //! ... counting such triangles and edges: more than this fraction of the triangle count. The
+  //! default 0 reacts to a single one: a thinning neck shows only a few, and without remeshing it
+  //! stalls instead of pinching off. Elements the remesher could not fix are tolerated until more
+  //! appear; larger values save remeshings on large surfaces.
+  double degraded_fraction = 0;
+  bool always = false;        //!< run the whole pipeline after every k-th step (the paper's practice)
+  //! Give each closed component (or group of components that split or fused) back the volume the
+  //! re-triangulation took or added (flow/volume.h, restore_volumes_from).
+  bool restore_volume = true;
+  //! The pipeline; its ℓ (0 = automatic) is fixed when the run starts, to the initial surface's
+  //! mean edge length, so that it stays the same for the whole run and its resumption.
+  RetriangulationOptions pipeline;
+};
+
+//! Where a re-triangulation hook is called: after step `step` reached `time`.
+struct RetriangulationContext {
+  long step = 0;
+  double time = 0;
+  //! Degraded elements (short or long edges, sharp triangles) that the last re-triangulation could
+  //! not remove: the hook tolerates that many until more appear (kept in checkpoints).
+  long tolerated_degraded = 0;
+  //! Re-triangulate now, whatever the schedule says: the step from this surface could not be taken.
+  bool force = false;
+};
+
+//! What a re-triangulation hook did to the mesh (each flag becomes an event of the step's row).
+struct RetriangulationReport {
+  bool remeshed = false; //!< triangulation improved (same topology)
+  bool surgery = false;  //!< self-intersections removed and the surface rebuilt
+  bool split = false;    //!< a component broke into several
+  bool merged = false;   //!< components were joined
+  std::string detail;    //!< one line for events.log
+  long degraded_left = -1; //!< degraded elements left by the pipeline when it ran (-1: it did not)
+  bool changed() const { return remeshed || surgery || split || merged; }
+};
+
+//! Called between steps; may change the mesh in place (positions and connectivity), returning what
+//! it did. It must leave a valid mesh (no deleted elements, outward-oriented closed components) and
+//! be deterministic for resumed runs to match uninterrupted ones.
+using RetriangulationHook = std::function<RetriangulationReport(Mesh&, const RetriangulationContext&)>;
 
 //! Throws InvalidParameter for a schedule out of range (the pipeline's options included).
 void validate_retriangulation_schedule(const RetriangulationSchedule& schedule);
 
-//! The hook for SimulationOptions::retriangulate. `schedule.pipeline.target_edge_length` must be
-//! resolved (> 0). Deterministic: its only state is a cache of the self-intersection search
+//! The hook a flow makes from its schedule (SurfaceDiffusion, surface_diffusion.h).
+//! `schedule.pipeline.target_edge_length` must be resolved (> 0). Deterministic: its only state is a cache of the self-intersection search
 //! (refitted between steps), and what it reports in RetriangulationReport::degraded_left comes back
 //! through the context (and the checkpoint), so a resumed run re-triangulates exactly as the original.
 RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& schedule);

@@ -1,7 +1,6 @@
 #pragma once
 //! \file simulation.h
-//! \brief The run driver: steps the flow (scheme.h) under a time-step controller (time_step.h),
-//! calls a re-triangulation hook between steps, and writes the run directory:
+//! \brief A run: the flow in memory (surface_diffusion.h) recorded in a run directory:
 //! ```
 //! DIR/metrics.csv        one row per accepted step (row 0 = the initial surface)
 //! DIR/snapshots/step_NNNNNN.ply, .vtp   surfaces; the .vtp carry per-vertex H, N and w
@@ -16,6 +15,7 @@
 //! files that may lag the computation; `resume_simulation` truncates them to the checkpoint.
 
 #include "sdflow/flow/parameters.h"
+#include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/mesh.h"
 
 #include <functional>
@@ -27,47 +27,12 @@ namespace sdflow {
 inline constexpr const char* metrics_header =
     "step,time,tau,vertices,faces,components,genus,area,volume,mean_curvature,curvature_deviation_pct,d1,d2,event";
 
-//! Where a re-triangulation hook is called: after step `step` reached `time`.
-struct RetriangulationContext {
-  long step = 0;
-  double time = 0;
-  //! Degraded elements (short or long edges, sharp triangles) that the last re-triangulation could
-  //! not remove: the hook tolerates that many until more appear (kept in checkpoints).
-  long tolerated_degraded = 0;
-  //! Re-triangulate now, whatever the schedule says: the step from this surface could not be taken.
-  bool force = false;
-};
-
-//! What a re-triangulation hook did to the mesh (each flag becomes an event of the step's row).
-struct RetriangulationReport {
-  bool remeshed = false; //!< triangulation improved (same topology)
-  bool surgery = false;  //!< self-intersections removed and the surface rebuilt
-  bool split = false;    //!< a component broke into several
-  bool merged = false;   //!< components were joined
-  std::string detail;    //!< one line for events.log
-  long degraded_left = -1; //!< degraded elements left by the pipeline when it ran (-1: it did not)
-  bool changed() const { return remeshed || surgery || split || merged; }
-};
-
-//! Called between steps; may change the mesh in place (positions and connectivity), returning what
-//! it did. It must leave a valid mesh (no deleted elements, outward-oriented closed components) and
-//! be deterministic for resumed runs to match uninterrupted ones.
-using RetriangulationHook = std::function<RetriangulationReport(Mesh&, const RetriangulationContext&)>;
-
-//! One accepted step, for progress reporting.
-struct StepRecord {
-  long step = 0;
-  double time = 0;
-  double tau = 0;
-  int rejections = 0;
-  int cg_iterations = 0;
-  bool factorised = false;
-  std::string event;
-};
+//! One line of metrics.csv (with its newline): the step, time, τ and event, and the flow's metrics.
+std::string metrics_row(long step, double time, double tau, const FlowMetrics& metrics, const std::string& event);
 
 struct SimulationOptions {
   RunParameters parameters;
-  RetriangulationHook retriangulate;             //!< optional
+  RetriangulationHook retriangulate;             //!< optional (else from the parameters' schedule)
   std::function<void(const StepRecord&)> progress; //!< optional, called after every accepted step
   //! Optional, asked before every step: when it answers true the run writes a checkpoint and
   //! returns with `interrupted` set (a signal handler's flag, say; resume continues exactly).

@@ -7,5 +7,6 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/scheme.cpp
   sdflow/flow/simulation.cpp
   sdflow/flow/solver.cpp
+  sdflow/flow/surface_diffusion.cpp
   sdflow/flow/time_step.cpp
   sdflow/flow/volume.cpp)

@@ -234,4 +234,45 @@ bool TimeStepController::judge(long step, double tau, const StepCheck& check)
   return false;
 }
 
+StepCheck check_trial(const TrialMotion& trial, const TimeStepOptions& options)
+{
+  StepCheck c;
+  if (!trial.next.allFinite()) {
+    c.non_finite = true;
+    return c;
+  }
+  c.displacement_ratio = (trial.tau * trial.w.cwiseAbs()).cwiseQuotient(trial.edge_lengths).maxCoeff();
+  if (trial.error.rows() > 0)
+    c.error_estimate = trial.error.rowwise().norm().cwiseQuotient(trial.edge_lengths).maxCoeff();
+  for (Eigen::Index f = 0; f < trial.triangles.rows(); ++f) {
+    const auto normal = [&](const VertexVectors& x) {
+      const Eigen::Vector3d a = x.row(trial.triangles(f, 0)), b = x.row(trial.triangles(f, 1)),
+                            d = x.row(trial.triangles(f, 2));
+      return Eigen::Vector3d((b - a).cross(d - a));
+    };
+    if (normal(trial.now).dot(normal(trial.next)) <= 0)
+      ++c.inverted_triangles;
+  }
+  c.volume_change = trial.volume_change;
+  if (options.mode == TimeStepMode::adaptive) {
+    const AdaptiveOptions& a = options.adaptive;
+    c.displacement_exceeded = c.displacement_ratio > a.max_displacement;
+    c.volume_exceeded = c.volume_change > a.max_volume_change;
+    c.error_exceeded = a.tolerance > 0 && c.error_estimate > a.tolerance;
+  }
+  return c;
+}
+
+double automatic_tau(const Eigen::VectorXd& explicit_speed, const std::vector<bool>& held,
+                     const Eigen::VectorXd& edge_lengths, const AdaptiveOptions& options)
+{
+  double tau = std::numeric_limits<double>::infinity();
+  for (Eigen::Index v = 0; v < explicit_speed.size(); ++v)
+    if (explicit_speed[v] > 0 && (held.empty() || !held[v]))
+      tau = std::min(tau, edge_lengths[v] / explicit_speed[v]);
+  if (std::isinf(tau))
+    return std::pow(edge_lengths.mean(), 4);
+  return options.safety * options.max_displacement * tau;
+}
+
 } // namespace sdflow

@@ -21,6 +21,10 @@
 //! step is tried again with τ halved, up to that many times in a row, and the next step returns to
 //! the table's τ (the step count follows the table; the time falls behind it by what was halved).
 
+#include "sdflow/mesh.h"
+
+#include <Eigen/Core>
+
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -96,6 +100,29 @@ struct StepCheck {
   }
   std::string describe() const;
 };
+
+//! A trial step's motion, as the acceptance checks see it.
+struct TrialMotion {
+  double tau = 0;
+  const VertexVectors& now;           //!< positions before the step
+  const VertexVectors& next;          //!< positions after it
+  const Eigen::VectorXd& w;           //!< the solved normal speed (|τw| is each vertex's displacement)
+  const VertexVectors& error;         //!< the extrapolated step's error estimate (0 rows: none)
+  const FaceIndices& triangles;
+  const Eigen::VectorXd& edge_lengths; //!< mean length of the edges at each vertex (h_v)
+  double volume_change = 0;           //!< largest relative volume change of a closed component
+};
+
+//! The checks of the rule above on one trial: finite positions, no triangle turned over, and in
+//! adaptive mode the displacement, volume and error bounds.
+StepCheck check_trial(const TrialMotion& trial, const TimeStepOptions& options);
+
+//! τ of the first adaptive step when no initial τ is given: the explicit speed |ΔH| bounds the
+//! semi-implicit one (the inverse of I + τβΔ² is a contraction), so safety · max_displacement ·
+//! min_v h_v / |ΔH|_v meets the displacement bound at once; vertices `held` in place do not count.
+//! A surface at rest gets h⁴, the bi-Laplacian's time scale for the mean edge length h.
+double automatic_tau(const Eigen::VectorXd& explicit_speed, const std::vector<bool>& held,
+                     const Eigen::VectorXd& edge_lengths, const AdaptiveOptions& options);
 
 //! The state of the time-step controller between steps (saved in checkpoints).
 struct TimeStepState {

@@ -13,11 +13,10 @@
 namespace sdflow {
 namespace {
 
-using Faces = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 //! Signed volume of each component, and the derivative of each volume when every vertex moves
 //! along `direction` at unit speed: Σ_f (b×c·d_a + c×a·d_b + a×b·d_c)/6.
-void volumes_and_rates(const VertexVectors& x, const VertexVectors& direction, const Faces& faces,
+void volumes_and_rates(const VertexVectors& x, const VertexVectors& direction, const FaceIndices& faces,
                        const std::vector<int>& component, std::vector<double>& volume, std::vector<double>& rate)
 {
   std::fill(volume.begin(), volume.end(), 0.0);
@@ -33,7 +32,7 @@ void volumes_and_rates(const VertexVectors& x, const VertexVectors& direction, c
 
 } // namespace
 
-std::vector<double> component_volumes(const VertexVectors& positions, const Faces& triangles,
+std::vector<double> component_volumes(const VertexVectors& positions, const FaceIndices& triangles,
                                       const std::vector<int>& face_component, int count)
 {
   std::vector<double> volume(count, 0.0);
@@ -54,7 +53,7 @@ VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& t
                                        count));
   const std::vector<ComponentTopology> topology = component_topology(mesh);
   const VertexVectors normals = vertex_normals(mesh);
-  const Faces faces = face_indices(mesh);
+  const FaceIndices faces = face_indices(mesh);
   std::vector<int> vertex_component(mesh.n_vertices(), -1);
   for (auto f : mesh.faces())
     for (auto v : f.vertices())

@@ -18,7 +18,7 @@ struct VolumeRestoration {
 //! Signed enclosed volume of each component: Σ a·(b×c)/6 over its triangles, for positions and
 //! triangles given as arrays (`face_component[f]` in 0..count-1), e.g. to test trial positions.
 std::vector<double> component_volumes(const VertexVectors& positions,
-                                      const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>& triangles,
+                                      const FaceIndices& triangles,
                                       const std::vector<int>& face_component, int count);
 
 //! Offset each closed component so that its signed volume equals `target_volumes[c]` (components

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -80,6 +81,29 @@ SphereDeviation sphere_deviation(const Mesh& mesh, const Eigen::VectorXd& vertex
   d.d1 = gap.dot(vertex_areas) / total;
   d.d2 = (gap.array() - d.d1).abs().matrix().dot(vertex_areas) / total;
   return d;
+}
+
+double mean_edge_length(const Mesh& mesh)
+{
+  double sum = 0;
+  for (const auto e : mesh.edges())
+    sum += mesh.calc_edge_length(e);
+  return sum / static_cast<double>(std::max<std::size_t>(mesh.n_edges(), 1));
+}
+
+Eigen::VectorXd vertex_mean_edge_lengths(const Mesh& mesh)
+{
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(mesh.n_vertices());
+  Eigen::VectorXd count = Eigen::VectorXd::Zero(mesh.n_vertices());
+  for (const auto e : mesh.edges()) {
+    const double length = mesh.calc_edge_length(e);
+    const int a = e.v0().idx(), b = e.v1().idx();
+    sum[a] += length;
+    sum[b] += length;
+    count[a] += 1;
+    count[b] += 1;
+  }
+  return sum.cwiseQuotient(count.cwiseMax(1.0));
 }
 
 } // namespace sdflow

@@ -1,6 +1,6 @@
 #pragma once
 //! \file measures.h
-//! \brief Area, enclosed volume, mean-curvature deviation and the sphere distances D1/D2 of §4.4.
+//! \brief Area, enclosed volume, edge lengths, mean-curvature deviation and the sphere distances D1/D2 of §4.4.
 
 #include "sdflow/mesh.h"
 
@@ -19,6 +19,13 @@ double enclosed_volume(const Mesh& mesh);
 
 //! Signed volume of each component, in the order of face_component_ids().
 std::vector<double> component_volumes(const Mesh& mesh);
+
+//! Mean edge length over the mesh (0 without edges): the scale of ℓ when none is given.
+double mean_edge_length(const Mesh& mesh);
+
+//! Mean length of the edges at each vertex (0 at an isolated vertex): the local scale h_v of the
+//! time-step rule's displacement bound (time_step.h).
+Eigen::VectorXd vertex_mean_edge_lengths(const Mesh& mesh);
 
 //! Area-weighted mean curvature H̃ and its L1 deviation H_dev (§2.2.4), weights A(U_i).
 struct CurvatureDeviation {

@@ -61,7 +61,7 @@ void sort_by_key(std::vector<std::uint64_t>& keys, std::vector<std::int32_t>& va
 
 } // namespace
 
-Bvh::Bvh(const VertexVectors& positions, const Triangles& triangles, const BvhOptions& options)
+Bvh::Bvh(const VertexVectors& positions, const FaceIndices& triangles, const BvhOptions& options)
 {
   copy_positions(positions);
   const int n = vertex_count();

@@ -8,7 +8,7 @@
 //!
 //! The tree keeps its own copy of the vertex positions and triangles in flat arrays, so it stays
 //! valid while the mesh it came from changes, and `refit()` moves it to new positions of the same
-//! triangles in O(n) without rebuilding. Triangles are identified by their index in the input
+//! triangles in O(n) without rebuilding. FaceIndices are identified by their index in the input
 //! (the face index `f.idx()` for a mesh). Boxes use the exact double coordinates, so overlap
 //! queries never miss a pair of touching triangles.
 
@@ -154,13 +154,12 @@ inline Eigen::Vector3d nearest_barycentric(const Eigen::Vector3d& p, const Eigen
 //! Axis-aligned bounding-box tree over triangles (a class: it is kept and refitted across steps).
 class Bvh {
 public:
-  using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
   Bvh() = default;
   //! Tree over `triangles` (rows of vertex indices into `positions`). Throws InvalidMesh for an
   //! index out of range or a coordinate that is not finite or beyond ±1e30, InvalidParameter for
   //! bad options.
-  Bvh(const VertexVectors& positions, const Triangles& triangles, const BvhOptions& options = {});
+  Bvh(const VertexVectors& positions, const FaceIndices& triangles, const BvhOptions& options = {});
   //! Tree over the faces of `mesh` (which must carry no deleted faces: garbage-collect first).
   explicit Bvh(const Mesh& mesh, const BvhOptions& options = {});
 

@@ -61,7 +61,7 @@ private:
   const Bvh& tree() const;
 
   VertexVectors points_;
-  Bvh::Triangles triangles_;
+  FaceIndices triangles_;
   //! What a query reads of a triangle, in one place: its box rounded outward (lo, hi) and its
   //! corners (the index rows and the scattered points they name cost a cache miss each).
   struct Record {

@@ -419,7 +419,7 @@ bool triangles_intersect(const std::array<Eigen::Vector3d, 3>& a, const std::arr
     x.row(i) = a[i].transpose();
     x.row(3 + i) = b[i].transpose();
   }
-  Bvh::Triangles t(2, 3);
+  FaceIndices t(2, 3);
   t << 0, 1, 2, 3, 4, 5;
   const Bvh tree(x, t);
   const FaceTester tester(tree, Execution::sequential);
@@ -435,7 +435,7 @@ bool faces_intersect(const Mesh& mesh, Mesh::FaceHandle f, Mesh::FaceHandle g)
   exact::prepare_exact_predicates();
   // A two-triangle tree holds exactly what the pair rule reads; shared vertices keep one index.
   std::vector<Mesh::VertexHandle> vertices;
-  Bvh::Triangles triangles(2, 3);
+  FaceIndices triangles(2, 3);
   int row = 0;
   for (auto face : {f, g}) {
     int k = 0;

@@ -123,7 +123,7 @@ int merge_intersecting_components(Mesh& mesh)
   for (std::size_t i = 1; i < parts.size(); ++i) {
     VertexVectors x(mesh.n_vertices() + parts[i].n_vertices(), 3);
     x << vertex_positions(mesh), vertex_positions(parts[i]);
-    Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> t(mesh.n_faces() + parts[i].n_faces(), 3);
+    FaceIndices t(mesh.n_faces() + parts[i].n_faces(), 3);
     t << face_indices(mesh), (face_indices(parts[i]).array() + static_cast<int>(mesh.n_vertices())).matrix();
     mesh = make_mesh(x, t);
   }

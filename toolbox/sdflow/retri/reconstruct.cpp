@@ -641,7 +641,7 @@ Reconstruction reconstruct_surface(const VertexVectors& points, const VertexVect
   VertexVectors positions(result.source.size(), 3);
   for (std::size_t i = 0; i < result.source.size(); ++i)
     positions.row(static_cast<Eigen::Index>(i)) = points.row(result.source[i]);
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> faces(front.triangles().size(), 3);
+  FaceIndices faces(front.triangles().size(), 3);
   for (std::size_t t = 0; t < front.triangles().size(); ++t)
     for (int k = 0; k < 3; ++k)
       faces(static_cast<Eigen::Index>(t), k) = index[front.triangles()[t][k]];

@@ -636,7 +636,7 @@ PointProjection curved_projection(const Mesh& mesh, std::shared_ptr<const Closes
   constexpr double kSmoothPatchCosine = 0.866; // corner normals within 30° of the triangle's
   struct Surface {
     VertexVectors points, normals;
-    Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> triangles;
+    FaceIndices triangles;
   };
   auto surface = std::make_shared<Surface>(Surface{vertex_positions(mesh), vertex_normals(mesh), {}});
   // Corners in the order of ClosestPoint::barycentric (closest_point_grid.h: from, to, next).

@@ -212,7 +212,7 @@ Mesh compact(const VertexVectors& x, const std::vector<std::array<int, 3>>& face
   for (Eigen::Index v = 0; v < x.rows(); ++v)
     if (number[v] >= 0)
       y.row(number[v]) = x.row(v);
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> t(faces.size(), 3);
+  FaceIndices t(faces.size(), 3);
   for (std::size_t f = 0; f < faces.size(); ++f)
     t.row(f) << number[faces[f][0]], number[faces[f][1]], number[faces[f][2]];
   return make_mesh(y, t);

@@ -18,7 +18,6 @@
 namespace sdflow {
 namespace {
 
-using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using Id = std::uint64_t;
 
 //! Zeros closer than this fraction of an edge to its ends are pulled inside, so no two vertices
@@ -53,7 +52,7 @@ Mesh mesh_from(const std::vector<Eigen::Vector3d>& points, const std::vector<std
   VertexVectors x(points.size(), 3);
   for (std::size_t i = 0; i < points.size(); ++i)
     x.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
-  Triangles t(triangles.size(), 3);
+  FaceIndices t(triangles.size(), 3);
   for (std::size_t i = 0; i < triangles.size(); ++i)
     t.row(static_cast<Eigen::Index>(i)) << triangles[i][0], triangles[i][1], triangles[i][2];
   return make_mesh(x, t);
@@ -341,7 +340,7 @@ private:
 
   TetMarcher::Node node(const Point& p) { return {id(p), position(p), value(p)}; }
 
-  //! Triangles of a face square (origin, axes u and v, size) as both cells sharing it see it:
+  //! FaceIndices of a face square (origin, axes u and v, size) as both cells sharing it see it:
   //! split into four where the other side is finer, fanned from the centre where an edge carries
   //! a finer cell's corner, else cut along the Kuhn diagonal (lowest to highest corner).
   void face_triangles(const Point& origin, int u, int v, std::int64_t size, std::vector<std::array<Point, 3>>& out) const

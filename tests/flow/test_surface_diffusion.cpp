@@ -1,0 +1,143 @@
+//! The flow in memory (surface_diffusion.h): no files, the same states a run directory records,
+//! its state restored bit for bit, its notes.
+#include "sdflow/errors.h"
+#include "sdflow/flow/simulation.h"
+#include "sdflow/flow/surface_diffusion.h"
+#include "sdflow/geometry/topology.h"
+#include "sdflow/io.h"
+#include "sdflow/shapes/catalogue.h"
+#include "sdflow/shapes/mesher.h"
+#include "io/temp_dir.h"
+#include "support/analytic_meshes.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace sdflow {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> lines_of(const fs::path& file)
+{
+  std::ifstream in(file);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);)
+    lines.push_back(line + '\n');
+  return lines;
+}
+
+RunParameters adaptive_run(long steps)
+{
+  RunParameters p;
+  p.steps = steps;
+  return p;
+}
+
+TEST(SurfaceDiffusion, a_dumbbell_pinches_off_in_memory_exactly_as_its_recorded_run)
+{
+  // The paper's dumbbell at half size (1000 vertices), to its pinch-off.
+  const Mesh start =
+      mesh_implicit_surface(shapes::dumbbell({.radius = 3, .separation = 9}), {.edge_length = 0.5}).mesh;
+  RunParameters p;
+  p.end_time = 1.0;
+  p.stop_at_topology_change = true;
+  p.retriangulation.enabled = true;
+
+  SurfaceDiffusion flow(start, p);
+  std::vector<std::string> rows{metrics_row(0, 0, 0, flow.metrics(), {})};
+  std::vector<std::string> events;
+  while (!flow.finished()) {
+    const StepRecord step = flow.step();
+    rows.push_back(metrics_row(flow.steps(), flow.time(), step.tau, flow.metrics(), step.event));
+    events.push_back(step.event);
+  }
+  EXPECT_NE(std::find(events.begin(), events.end(), "remeshed+surgery+split"), events.end())
+      << "the last step's re-triangulation should cut the neck";
+  const auto parts = component_topology(flow.mesh());
+  ASSERT_EQ(parts.size(), 2u);
+  for (const auto& c : parts)
+    EXPECT_TRUE(c.closed());
+
+  // The same flow recorded in a run directory: the same rows, the same last surface.
+  test::TempDir dir;
+  p.output_dir = dir / "run";
+  p.snapshot_every = 0;
+  const SimulationResult recorded = run_simulation(start, {.parameters = p});
+  const std::vector<std::string> written = lines_of(dir / "run/metrics.csv");
+  ASSERT_EQ(written.size(), rows.size() + 1);
+  EXPECT_EQ(written[0], std::string(metrics_header) + '\n');
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    EXPECT_EQ(written[i + 1], rows[i]) << "row " << i;
+  EXPECT_EQ(vertex_positions(recorded.mesh), vertex_positions(flow.mesh()));
+  const Mesh last = read_mesh(dir / fmt::format("run/snapshots/step_{:06d}.ply", flow.steps())).mesh;
+  EXPECT_EQ(vertex_positions(last), vertex_positions(flow.mesh()));
+  EXPECT_EQ(face_indices(last), face_indices(flow.mesh()));
+}
+
+TEST(SurfaceDiffusion, a_restored_state_continues_bit_for_bit)
+{
+  for (const bool extrapolate : {false, true}) {
+    SCOPED_TRACE(extrapolate ? "extrapolated steps" : "plain steps");
+    RunParameters p = adaptive_run(24);
+    p.scheme.extrapolate = extrapolate;
+    SurfaceDiffusion whole(analytic::ellipsoid(2, 5, 4, 3), p);
+    for (int s = 0; s < 12; ++s)
+      whole.step();
+    const FlowState middle = whole.state();
+    while (!whole.finished())
+      whole.step();
+
+    SurfaceDiffusion resumed(middle, whole.parameters());
+    EXPECT_EQ(resumed.steps(), 12);
+    while (!resumed.finished())
+      resumed.step();
+    EXPECT_EQ(resumed.time(), whole.time());
+    EXPECT_EQ(vertex_positions(resumed.mesh()), vertex_positions(whole.mesh()));
+    EXPECT_EQ(resumed.velocity(), whole.velocity());
+  }
+}
+
+TEST(SurfaceDiffusion, needs_no_stop_condition_but_a_run_does)
+{
+  RunParameters p; // no steps, no end time
+  SurfaceDiffusion flow(analytic::icosphere(2), p);
+  EXPECT_FALSE(flow.finished());
+  const StepRecord first = flow.step();
+  EXPECT_EQ(first.step, 1);
+  EXPECT_GT(first.tau, 0);
+  EXPECT_EQ(flow.time(), first.tau);
+  EXPECT_THROW(validate_run_parameters(p), InvalidParameter);
+  p.scheme.beta = -1;
+  EXPECT_THROW(SurfaceDiffusion(analytic::icosphere(2), p), InvalidParameter);
+}
+
+TEST(SurfaceDiffusion, rejected_trials_are_noted_and_the_notes_outlive_a_failed_step)
+{
+  RunParameters p = adaptive_run(5);
+  p.time_step.adaptive.max_volume_change = 1e-300; // no step of an ellipsoid keeps its volume that well
+  p.time_step.adaptive.max_rejections = 3;         // the fourth rejection ends the flow
+  SurfaceDiffusion flow(analytic::ellipsoid(2, 5, 4, 3), p);
+  const Eigen::VectorXd before = vertex_positions(flow.mesh()).reshaped();
+  EXPECT_THROW(flow.step(), SolverFailure);
+  const std::vector<FlowNote> notes = flow.take_notes();
+  ASSERT_EQ(notes.size(), 3u);
+  for (const FlowNote& n : notes) {
+    EXPECT_EQ(n.step, 1);
+    EXPECT_EQ(n.time, 0);
+    EXPECT_EQ(n.line().rfind("step 1 t=0: rejected τ = ", 0), 0u) << n.line();
+  }
+  EXPECT_TRUE(flow.take_notes().empty());
+  EXPECT_EQ(flow.rejected_trials(), 3);
+  EXPECT_EQ(flow.steps(), 0);
+  EXPECT_EQ(vertex_positions(flow.mesh()).reshaped(), before) << "a failed step leaves the surface as it was";
+}
+
+} // namespace
+} // namespace sdflow

@@ -1,0 +1,334 @@
+#include "sdflow/flow/surface_diffusion.h"
+
+#include "sdflow/errors.h"
+#include "sdflow/flow/volume.h"
+#include "sdflow/geometry/measures.h"
+#include "sdflow/geometry/topology.h"
+#include "sdflow/log.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace sdflow {
+namespace {
+
+//! The mesh rebuilt from its arrays, so that a flow and its restoration from a state (which stores
+//! the arrays) traverse identical halfedge structures and round identically.
+Mesh canonical(const Mesh& mesh) { return make_mesh(vertex_positions(mesh), face_indices(mesh)); }
+
+std::string join_events(const std::vector<std::string>& events)
+{
+  std::string s;
+  for (const auto& e : events)
+    s += (s.empty() ? "" : "+") + e;
+  return s;
+}
+
+} // namespace
+
+std::string FlowNote::line() const { return fmt::format("step {} t={}: {}", step, time, text); }
+
+SurfaceDiffusion::SurfaceDiffusion(const Mesh& initial, RunParameters parameters, RetriangulationHook retriangulate)
+    : p_(std::move(parameters)), solver_(p_.solver), half_solver_(p_.solver), controller_(p_.time_step)
+{
+  validate_flow_parameters(p_);
+  mesh_ = canonical(initial);
+  renew_connectivity();
+  prepare_retriangulation(std::move(retriangulate));
+  last_w_ = Eigen::VectorXd::Zero(mesh_.n_vertices());
+  op_ = flow_operators(mesh_, p_.scheme, &*cache_);
+}
+
+SurfaceDiffusion::SurfaceDiffusion(const FlowState& state, RunParameters parameters,
+                                   RetriangulationHook retriangulate)
+    : p_(std::move(parameters)), solver_(p_.solver), half_solver_(p_.solver),
+      controller_(p_.time_step, state.time_step)
+{
+  validate_flow_parameters(p_);
+  step_ = state.step;
+  time_ = state.time;
+  mesh_ = make_mesh(state.positions, state.triangles);
+  renew_connectivity();
+  prepare_retriangulation(std::move(retriangulate));
+  previous_w_ = state.previous_w;
+  last_w_ = state.previous_w.size() == static_cast<Eigen::Index>(mesh_.n_vertices())
+                ? state.previous_w
+                : Eigen::VectorXd::Zero(mesh_.n_vertices());
+  tolerated_degraded_ = state.tolerated_degraded;
+  // Refactorise the anchors' systems: the preconditioners are then the ones the uninterrupted flow
+  // would be using, so the CG iterates (and every later decision) are identical.
+  if (state.has_anchor) {
+    restore_solver(solver_, state.anchor_positions, state.triangles, state.anchor_tau_beta, state.solver);
+    has_anchor_ = true;
+    anchor_positions_ = state.anchor_positions;
+    anchor_tau_beta_ = state.anchor_tau_beta;
+  }
+  if (state.has_half_anchor) {
+    restore_solver(half_solver_, state.half_anchor_positions, state.triangles, state.half_anchor_tau_beta,
+                   state.half_solver);
+    has_half_anchor_ = true;
+    half_anchor_positions_ = state.half_anchor_positions;
+    half_anchor_tau_beta_ = state.half_anchor_tau_beta;
+  }
+  op_ = flow_operators(mesh_, p_.scheme, &*cache_);
+}
+
+bool SurfaceDiffusion::finished() const
+{
+  constexpr double end_time_tolerance = 1e-12; // relative: the last step is clipped to land on t_end
+  return (p_.steps > 0 && step_ >= p_.steps) ||
+         (std::isfinite(p_.end_time) && time_ >= p_.end_time * (1 - end_time_tolerance)) || topology_changed_;
+}
+
+StepRecord SurfaceDiffusion::step()
+{
+  const long next_step = step_ + 1;
+  const TimeStepState controller_before = controller_.state();
+  std::vector<std::string> events;
+  const auto& schedule = p_.time_step.schedule.entries();
+  if (p_.time_step.mode == TimeStepMode::schedule && !schedule.empty() && next_step == schedule.back().last_step + 1)
+    note(next_step, time_,
+         fmt::format("the τ schedule ends at step {}: the steps after it repeat its last τ = {}", next_step - 1,
+                     schedule.back().tau),
+         true);
+
+  int rejections = 0;
+  StepRecord record;
+  StepResult trial;
+  double tau = 0;
+  std::vector<double> volumes;
+  // A step that no τ makes acceptable (a triangle beside a closing neck that turns over
+  // whatever the step) is retried once after a re-triangulation of the surface it starts from.
+  for (bool forced = false;;) {
+    try {
+      tau = trial_step(next_step, trial, record, rejections, volumes);
+      break;
+    } catch (const SolverFailure& e) {
+      if (!retriangulate_ || forced)
+        throw;
+      forced = true;
+      note(next_step, time_, fmt::format("no acceptable step ({}): re-triangulating, then trying again", e.what()));
+      RetriangulationReport report = call_retriangulation(true);
+      if (!report.changed())
+        throw;
+      adopt_retriangulation(report, events);
+      op_ = flow_operators(mesh_, p_.scheme, &*cache_);
+      controller_ = TimeStepController(p_.time_step, {.next_tau = controller_before.next_tau});
+    }
+  }
+  if (rejections > 0)
+    events.insert(events.begin(), "rejected");
+
+  set_vertex_positions(mesh_, trial.positions);
+  if (p_.conserve_volume)
+    set_vertex_positions(mesh_, restore_volumes(mesh_, volumes).positions);
+  step_ = next_step;
+  time_ += tau;
+  previous_w_ = trial.w;
+  last_w_ = trial.w;
+
+  if (retriangulate_) {
+    const RetriangulationReport report = call_retriangulation(false);
+    if (report.changed())
+      adopt_retriangulation(report, events);
+  }
+  op_ = flow_operators(mesh_, p_.scheme, &*cache_);
+
+  record.step = step_;
+  record.time = time_;
+  record.tau = tau;
+  record.rejections = rejections;
+  record.event = join_events(events);
+  return record;
+}
+
+FlowMetrics SurfaceDiffusion::metrics() const
+{
+  const CurvatureDeviation h = curvature_deviation(op_.curvature, op_.areas);
+  const SphereDeviation d = sphere_deviation(mesh_, op_.areas, p_.reference_centre, p_.reference_radius);
+  return {.vertices = static_cast<long>(mesh_.n_vertices()),
+          .faces = static_cast<long>(mesh_.n_faces()),
+          .components = topology_.count,
+          .genus = topology_.genus,
+          .area = surface_area(mesh_),
+          .volume = enclosed_volume(mesh_),
+          .mean_curvature = h.mean,
+          .curvature_deviation_pct = h.deviation_pct,
+          .d1 = d.d1,
+          .d2 = d.d2};
+}
+
+FlowState SurfaceDiffusion::state() const
+{
+  FlowState s;
+  s.step = step_;
+  s.time = time_;
+  s.positions = vertex_positions(mesh_);
+  s.triangles = triangles_;
+  s.previous_w = previous_w_;
+  s.time_step = controller_.state();
+  s.solver = solver_.state();
+  s.has_anchor = has_anchor_;
+  if (has_anchor_)
+    s.anchor_positions = anchor_positions_;
+  s.anchor_tau_beta = anchor_tau_beta_;
+  s.tolerated_degraded = tolerated_degraded_;
+  s.half_solver = half_solver_.state();
+  s.has_half_anchor = has_half_anchor_;
+  if (has_half_anchor_)
+    s.half_anchor_positions = half_anchor_positions_;
+  s.half_anchor_tau_beta = half_anchor_tau_beta_;
+  return s;
+}
+
+std::vector<FlowNote> SurfaceDiffusion::take_notes() { return std::exchange(notes_, {}); }
+
+void SurfaceDiffusion::renew_connectivity()
+{
+  triangles_ = face_indices(mesh_);
+  topology_ = {};
+  topology_.face_component = face_component_ids(mesh_, &topology_.count);
+  for (const auto& c : component_topology(mesh_)) {
+    topology_.closed.push_back(c.closed());
+    topology_.genus += c.genus;
+  }
+  cache_.emplace(mesh_);
+}
+
+//! The hook: the caller's, or the one of the parameters' schedule with its ℓ fixed now.
+void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
+{
+  if (hook) {
+    retriangulate_ = std::move(hook);
+    return;
+  }
+  RetriangulationSchedule& schedule = p_.retriangulation;
+  if (!schedule.enabled)
+    return;
+  if (!(schedule.pipeline.target_edge_length > 0))
+    schedule.pipeline.target_edge_length = mean_edge_length(mesh_);
+  retriangulate_ = make_retriangulation_hook(schedule);
+}
+
+void SurfaceDiffusion::restore_solver(FlowSolver& solver, const VertexVectors& positions,
+                                      const FaceIndices& triangles, double tau_beta, const SolverState& state)
+{
+  const Mesh anchor = make_mesh(positions, triangles);
+  const FlowOperators anchor_op = flow_operators(anchor, p_.scheme, &*cache_);
+  solver.restore(FlowSystem{anchor_op.laplacian, anchor_op.areas, anchor_op.held, tau_beta}, state);
+}
+
+//! The hook's failure stops the flow like an unstable step: the surface stays the last accepted one.
+RetriangulationReport SurfaceDiffusion::call_retriangulation(bool force)
+{
+  try {
+    RetriangulationReport report = retriangulate_(mesh_, {step_, time_, tolerated_degraded_, force});
+    if (report.degraded_left >= 0)
+      tolerated_degraded_ = report.degraded_left;
+    return report;
+  } catch (const SolverFailure&) {
+    throw;
+  } catch (const Error& e) {
+    throw SolverFailure(fmt::format("re-triangulation after step {} failed: {}", step_, e.what()));
+  }
+}
+
+//! Take the re-triangulated mesh: new connectivity, fresh factorisations, its events.
+void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report, std::vector<std::string>& events)
+{
+  const int components = topology_.count, genus = topology_.genus;
+  mesh_ = canonical(mesh_);
+  renew_connectivity();
+  topology_changed_ =
+      topology_changed_ || (p_.stop_at_topology_change && (topology_.count != components || topology_.genus != genus));
+  solver_.forget_factorisation();
+  half_solver_.forget_factorisation();
+  has_anchor_ = has_half_anchor_ = false;
+  previous_w_.resize(0);
+  last_w_ = Eigen::VectorXd::Zero(mesh_.n_vertices());
+  std::vector<std::string> these;
+  for (const auto& [flag, name] : {std::pair{report.remeshed, "remeshed"}, std::pair{report.surgery, "surgery"},
+                                   std::pair{report.split, "split"}, std::pair{report.merged, "merged"}})
+    if (flag && std::find(events.begin(), events.end(), name) == events.end()) {
+      events.emplace_back(name);
+      these.emplace_back(name);
+    }
+  note(step_, time_, fmt::format("re-triangulated ({}): {}", join_events(these), report.detail));
+}
+
+//! Trials of step `next_step` until the controller accepts one (returned: its τ); throws
+//! SolverFailure as the controller does.
+double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecord& record, int& rejections,
+                                    std::vector<double>& volumes)
+{
+  const VertexVectors positions = vertex_positions(mesh_);
+  const Eigen::VectorXd edge_lengths = vertex_mean_edge_lengths(mesh_);
+  volumes = component_volumes(positions, triangles_, topology_.face_component, topology_.count);
+  const AdaptiveOptions& adaptive = p_.time_step.adaptive;
+  const bool need_automatic_tau =
+      p_.time_step.mode == TimeStepMode::adaptive && controller_.state().next_tau == 0 && adaptive.initial_tau == 0;
+  const double automatic =
+      need_automatic_tau ? automatic_tau(op_.rhs.cwiseQuotient(op_.areas).cwiseAbs(), op_.held, edge_lengths, adaptive)
+                         : 0.0;
+  const double time_left = std::isfinite(p_.end_time) ? p_.end_time - time_ : std::numeric_limits<double>::infinity();
+  for (;;) {
+    const double tau = controller_.propose(next_step, automatic, time_left);
+    trial = p_.scheme.extrapolate
+                ? extrapolated_step(mesh_, op_, tau, p_.scheme, solver_, half_solver_, &*cache_, previous_w_)
+                : solve_step(mesh_, op_, tau, p_.scheme.beta, solver_, previous_w_);
+    record.cg_iterations += trial.solve.iterations;
+    factorisations_ += trial.factorisations;
+    if (trial.solve.factorised) {
+      has_anchor_ = p_.solver.kind == SolverKind::cholmod;
+      anchor_positions_ = trial.factorised_positions;
+      anchor_tau_beta_ = trial.factorised_tau_beta;
+    }
+    if (trial.half_factorised) {
+      has_half_anchor_ = p_.solver.kind == SolverKind::cholmod;
+      half_anchor_positions_ = trial.half_factorised_positions;
+      half_anchor_tau_beta_ = trial.half_factorised_tau_beta;
+    }
+    if (trial.factorisations > 0) {
+      record.factorised = true;
+      logger().debug("step {}: {} factorisations (τ = {})", next_step, trial.factorisations, tau);
+    }
+    double volume_change = 0;
+    if (trial.positions.allFinite()) {
+      const std::vector<double> after =
+          component_volumes(trial.positions, triangles_, topology_.face_component, topology_.count);
+      for (int k = 0; k < topology_.count; ++k)
+        if (topology_.closed[k] && volumes[k] != 0)
+          volume_change = std::max(volume_change, std::abs(after[k] - volumes[k]) / std::abs(volumes[k]));
+    }
+    const StepCheck check = check_trial({.tau = tau,
+                                         .now = positions,
+                                         .next = trial.positions,
+                                         .w = trial.w,
+                                         .error = trial.error,
+                                         .triangles = triangles_,
+                                         .edge_lengths = edge_lengths,
+                                         .volume_change = volume_change},
+                                        p_.time_step);
+    if (controller_.judge(next_step, tau, check))
+      return tau;
+    ++rejections;
+    ++rejected_trials_;
+    note(next_step, time_, fmt::format("rejected τ = {}: {}", tau, check.describe()));
+  }
+}
+
+void SurfaceDiffusion::note(long step, double time, std::string text, bool warning)
+{
+  FlowNote n{.step = step, .time = time, .text = std::move(text), .warning = warning};
+  if (warning)
+    logger().warn("{}", n.text);
+  else
+    logger().info("{}", n.line());
+  notes_.push_back(std::move(n));
+}
+
+} // namespace sdflow

@@ -1,0 +1,143 @@
+#pragma once
+//! \file surface_diffusion.h
+//! \brief The flow in memory: a surface stepped by the semi-implicit scheme (scheme.h, eq. 6 of the
+//! paper) under the time-step rule (time_step.h) and re-triangulated between steps
+//! (retriangulation.h). It writes no files: simulation.h records a run of it in a run directory,
+//! and the MeshLab plugin and tests step it directly.
+//!
+//! ```cpp
+//! RunParameters p;                          // sdflow's defaults: adaptive τ, cotangent H
+//! p.end_time = 0.5;
+//! p.retriangulation.enabled = true;
+//! SurfaceDiffusion flow(mesh, p);
+//! while (!flow.finished())
+//!   flow.step();
+//! const Mesh& result = flow.mesh();
+//! ```
+
+#include "sdflow/flow/cotangent_cache.h"
+#include "sdflow/flow/flow_state.h"
+#include "sdflow/flow/parameters.h"
+#include "sdflow/flow/retriangulation.h"
+#include "sdflow/flow/scheme.h"
+#include "sdflow/mesh.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sdflow {
+
+//! A line of a flow's log: a rejected trial, a re-triangulation, a warning, at the step and time
+//! where it happened (a run directory keeps them in events.log).
+struct FlowNote {
+  long step = 0;
+  double time = 0;
+  std::string text;
+  bool warning = false;
+  std::string line() const; //!< "step N t=T: text"
+};
+
+//! One accepted step.
+struct StepRecord {
+  long step = 0;
+  double time = 0;
+  double tau = 0;
+  int rejections = 0;      //!< trials rejected before the accepted one
+  int cg_iterations = 0;
+  bool factorised = false;
+  //! What happened besides the step, joined by '+': rejected, remeshed, surgery, split, merged.
+  std::string event;
+};
+
+//! The measures of one row of metrics.csv (the step, time, τ and event aside).
+struct FlowMetrics {
+  long vertices = 0, faces = 0;
+  int components = 0, genus = 0;
+  double area = 0, volume = 0;
+  double mean_curvature = 0, curvature_deviation_pct = 0; //!< H̃ and δH (measures.h)
+  double d1 = 0, d2 = 0;                                  //!< from the reference sphere
+};
+
+class SurfaceDiffusion {
+public:
+  //! Start from `initial` (a valid mesh, closed components oriented outward). Without a hook, the
+  //! flow makes one from `parameters.retriangulation` when it is enabled, fixing its ℓ (0: the
+  //! initial mean edge length) in parameters(). Throws InvalidParameter on parameters out of range
+  //! (validate_flow_parameters; a stop condition is not needed), InvalidMesh on a mesh the scheme
+  //! cannot use.
+  SurfaceDiffusion(const Mesh& initial, RunParameters parameters, RetriangulationHook retriangulate = {});
+
+  //! Continue from `state` exactly as the flow that saved it would have (same parameters, as
+  //! parameters() of that flow, and the same hook).
+  SurfaceDiffusion(const FlowState& state, RunParameters parameters, RetriangulationHook retriangulate = {});
+
+  //! Take one accepted step: trials until the time-step rule accepts one (a step that no τ makes
+  //! acceptable is retried once after a forced re-triangulation), then the re-triangulation hook.
+  //! Never past `end_time`. Throws SolverFailure when the flow cannot go on stably (the surface is
+  //! that of the last accepted step).
+  StepRecord step();
+
+  //! The step limit or end time is reached, or (with stop_at_topology_change) the topology changed.
+  bool finished() const;
+
+  const Mesh& mesh() const { return mesh_; }
+  long steps() const { return step_; }      //!< index of the last accepted step (0 at the start)
+  double time() const { return time_; }
+  //! N, H, L, M of the current surface (what the next step uses).
+  const FlowOperators& operators() const { return op_; }
+  //! w of the last step (the normal velocity is −w), on the current vertices; 0 after a
+  //! re-triangulation and at the start.
+  const Eigen::VectorXd& velocity() const { return last_w_; }
+  //! The parameters as resolved (the re-triangulation's ℓ fixed).
+  const RunParameters& parameters() const { return p_; }
+  FlowMetrics metrics() const;
+  FlowState state() const;
+  //! Trial steps rejected, and numeric factorisations made, since construction.
+  long rejected_trials() const { return rejected_trials_; }
+  long factorisations() const { return factorisations_; }
+
+  //! The notes made since the last call (also sent to the log as they are made), in order; kept
+  //! when step() throws, so the reason can follow them.
+  std::vector<FlowNote> take_notes();
+
+private:
+  struct Topology {
+    std::vector<int> face_component;
+    int count = 0;
+    std::vector<bool> closed;
+    int genus = 0;
+  };
+
+  void renew_connectivity();
+  void prepare_retriangulation(RetriangulationHook hook);
+  void restore_solver(FlowSolver& solver, const VertexVectors& positions, const FaceIndices& triangles, double tau_beta,
+                      const SolverState& state);
+  RetriangulationReport call_retriangulation(bool force);
+  void adopt_retriangulation(const RetriangulationReport& report, std::vector<std::string>& events);
+  double trial_step(long next_step, StepResult& trial, StepRecord& record, int& rejections,
+                    std::vector<double>& volumes);
+  void note(long step, double time, std::string text, bool warning = false);
+
+  RunParameters p_;
+  RetriangulationHook retriangulate_;
+  FlowSolver solver_, half_solver_; // the half steps of extrapolated steps keep a factor of their own
+  TimeStepController controller_;
+  Mesh mesh_;
+  FaceIndices triangles_;
+  Topology topology_;
+  std::optional<CotangentCache> cache_;
+  FlowOperators op_;
+  long step_ = 0;
+  double time_ = 0;
+  long tolerated_degraded_ = 0;   // see RetriangulationContext
+  bool topology_changed_ = false; // with stop_at_topology_change: finished after this step
+  Eigen::VectorXd previous_w_, last_w_;
+  bool has_anchor_ = false, has_half_anchor_ = false;
+  VertexVectors anchor_positions_, half_anchor_positions_;
+  double anchor_tau_beta_ = 0, half_anchor_tau_beta_ = 0;
+  long rejected_trials_ = 0, factorisations_ = 0;
+  std::vector<FlowNote> notes_;
+};
+
+} // namespace sdflow
