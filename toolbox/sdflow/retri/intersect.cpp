@@ -1,6 +1,7 @@
 #include "sdflow/retri/intersect.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/geometry/measures.h"
 #include "sdflow/retri/predicates.h"
 
 #include <fmt/format.h>
@@ -399,14 +400,6 @@ void adjacent_intersections(const Bvh& tree, const FaceTester& tester, const Sta
   collect_blocks(execution, tree.vertex_count(), [&](std::size_t begin, std::size_t end, std::vector<FacePair>& found) {
     adjacent_intersections(tester, stars, static_cast<int>(begin), static_cast<int>(end), found);
   }, out);
-}
-
-double mean_edge_length(const Mesh& mesh)
-{
-  double sum = 0;
-  for (auto e : mesh.edges())
-    sum += mesh.calc_edge_length(e);
-  return mesh.n_edges() > 0 ? sum / mesh.n_edges() : 0.0;
 }
 
 } // namespace

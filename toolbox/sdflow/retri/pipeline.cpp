@@ -1,6 +1,7 @@
 #include "sdflow/retri/pipeline.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/log.h"
 #include "sdflow/retri/components.h"
@@ -55,14 +56,6 @@ void validate_retriangulation_options(const RetriangulationOptions& o)
 }
 
 namespace {
-
-double mean_edge_length(const Mesh& mesh)
-{
-  double sum = 0;
-  for (const auto e : mesh.edges())
-    sum += mesh.calc_edge_length(e);
-  return mesh.n_edges() > 0 ? sum / static_cast<double>(mesh.n_edges()) : 0.0;
-}
 
 //! Length of every boundary loop of `mesh`.
 std::vector<double> boundary_loop_lengths(const Mesh& mesh)

@@ -3,6 +3,7 @@
 #include "sdflow/errors.h"
 #include "sdflow/geometry/curvature.h"
 #include "sdflow/geometry/laplacian.h"
+#include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/normals.h"
 #include "sdflow/geometry/principal_curvature.h"
 #include "sdflow/log.h"
@@ -617,14 +618,6 @@ struct SizingSites {
 };
 using SizingTree = nanoflann::KDTreeSingleIndexAdaptor<
     nanoflann::L2_Simple_Adaptor<double, SizingSites, double, std::uint32_t>, SizingSites, 3, std::uint32_t>;
-
-double mean_edge_length(const Mesh& mesh)
-{
-  double sum = 0;
-  for (auto e : mesh.edges())
-    sum += mesh.calc_edge_length(e);
-  return mesh.n_edges() ? sum / mesh.n_edges() : 0;
-}
 
 //! Closest point on the input's triangles, lifted onto the smooth surface they sample: a Phong
 //! tessellation (Boubekeur & Alexa 2008) with shape factor ½, q + ½ Σ b_i ((x_i − q)·n_i) n_i for
