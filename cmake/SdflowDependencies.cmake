@@ -9,21 +9,13 @@ find_package(nanoflann REQUIRED)         # libnanoflann-dev (k nearest neighbour
 find_package(TBB REQUIRED)               # libtbb-dev
 find_package(muparser REQUIRED)          # libmuparser-dev (user level-set formulas)
 
-# SuiteSparse (CHOLMOD, SPQR) and TetGen ship no CMake package files in Debian.
-find_path(SUITESPARSE_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)
-foreach(_lib cholmod spqr amd colamd camd ccolamd suitesparseconfig metis)
-  find_library(SDFLOW_${_lib}_LIBRARY ${_lib} REQUIRED)
-endforeach()
-add_library(sdflow_suitesparse INTERFACE)
-target_include_directories(sdflow_suitesparse SYSTEM INTERFACE ${SUITESPARSE_INCLUDE_DIR})
-target_link_libraries(sdflow_suitesparse INTERFACE
-  ${SDFLOW_cholmod_LIBRARY} ${SDFLOW_spqr_LIBRARY} ${SDFLOW_amd_LIBRARY} ${SDFLOW_colamd_LIBRARY}
-  ${SDFLOW_camd_LIBRARY} ${SDFLOW_ccolamd_LIBRARY} ${SDFLOW_metis_LIBRARY}
-  ${SDFLOW_suitesparseconfig_LIBRARY})
-
-find_path(TETGEN_INCLUDE_DIR tetgen.h REQUIRED)
-find_library(TETGEN_LIBRARY tet REQUIRED)
-add_library(sdflow_tetgen INTERFACE)
-target_include_directories(sdflow_tetgen SYSTEM INTERFACE ${TETGEN_INCLUDE_DIR})
-target_compile_definitions(sdflow_tetgen INTERFACE TETLIBRARY)
-target_link_libraries(sdflow_tetgen INTERFACE ${TETGEN_LIBRARY})
+# SuiteSparse (CHOLMOD, SPQR) and TetGen ship no CMake package files in Debian: sdflow::suitesparse
+# and sdflow::tetgen come from a file the installed package uses too. tests/ and bench/ use the
+# old names.
+include(sdflowSystemLibraries)
+if(sdflow_SYSTEM_LIBRARIES_MISSING)
+  message(FATAL_ERROR "sdflow: not found: ${sdflow_SYSTEM_LIBRARIES_MISSING} "
+                      "(Debian: libsuitesparse-dev libmetis-dev libtet1.5-dev; scripts/install-deps.sh)")
+endif()
+add_library(sdflow_suitesparse ALIAS sdflow::suitesparse)
+add_library(sdflow_tetgen ALIAS sdflow::tetgen)
