@@ -21,15 +21,16 @@ experiments=(
   "spheres_on_plane_late|§4.3, App. B|the same from step 400 with adaptive τ, to t = 774.6|a bubble separates and merges back (t = 187.3)"
 )
 
-# The measured cell of one run: how it ended, its steps and time, each topology change, and the
-# area, volume and curvature deviation at the end relative to the start.
+# The measured cell of one run: how it ended, its steps and time, each topology change, the area,
+# volume and curvature deviation at the end relative to the start, and D1/D2 (§4.4) for a run that
+# starts on its reference sphere.
 measure() { # RUN_DIR
   local run=$1
   [[ -f $run/metrics.csv ]] || { echo "not run"; return; }
   local stopped=""
   grep -q ': stopped: ' "$run/events.log" 2>/dev/null && stopped="stops (numerical failure) after"
   awk -F, -v stopped="$stopped" '
-    NR == 2 { a0 = $8; v0 = $9; c = $6; g = $7; h0 = $11 }
+    NR == 2 { a0 = $8; v0 = $9; c = $6; g = $7; h0 = $11; on_sphere = ($12 + 0 < 1e-3) }
     NR > 2 {
       if ($7 != g || $6 != c) {
         changes = changes sprintf("%s%s t = %.4g", (changes == "" ? "" : "; "),
@@ -44,7 +45,7 @@ measure() { # RUN_DIR
       if (changes != "") printf " (%s)", changes
       printf ": area %+.2f%%, volume %+.3f%%, H_dev %.3g%% → %.3g%%", 100 * (f[8] / a0 - 1),
              (v0 != 0 ? 100 * (f[9] / v0 - 1) : 0), h0, f[11]
-      if (f[12] != "" && f[12] + 0 > 0) printf ", D1 %.2g, D2 %.2g", f[12], f[13]
+      if (on_sphere) printf ", D1 %.2g, D2 %.2g", f[12], f[13] # only for a run that starts on the reference sphere
     }' "$run/metrics.csv"
 }
 
