@@ -10,21 +10,23 @@
 # Each run's directory is kept under build/validation/ and reused when it finished, so a second call
 # only redraws the tables; --force re-runs everything. Runs go two at a time (--jobs N to change).
 #   - the sphere-mode rates and the remeshed tori's curvature errors, from the test suite's measurements.
-#   scripts/validation.sh [--jobs N] [--force] [--only modes|torus|dumbbell|capsules] [--sdflow PATH]
+# --tables-only redraws the tables from the runs on disk without starting any (unfinished ones show "–").
+#   scripts/validation.sh [--jobs N] [--force] [--tables-only] [--only modes|torus|dumbbell|capsules] [--sdflow PATH]
 set -euo pipefail
 # Everything runs inside main(), which bash reads whole before it starts: editing this file while a
 # validation runs cannot change what the running one does.
 main() {
 cd "$(dirname "$0")/.."
 
-jobs=2 force=0 only="" sdflow=build/release/cli/sdflow
+jobs=2 force=0 tables_only=0 only="" sdflow=build/release/cli/sdflow
 while (($#)); do
   case $1 in
     --jobs) jobs=$2; shift 2 ;;
     --force) force=1; shift ;;
+    --tables-only) tables_only=1; shift ;;
     --only) only=$2; shift 2 ;;
     --sdflow) sdflow=$2; shift 2 ;;
-    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "validation.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -95,12 +97,13 @@ run_one() { # NAME|MESH ARGS|RUN ARGS
 }
 export -f run_one
 export sdflow work force
-if ((${#plan[@]} > 0)); then
+if ((${#plan[@]} > 0 && !tables_only)); then
   printf '%s\n' "${plan[@]}" | xargs -d '\n' -P "$jobs" -I{} bash -c 'run_one "$1"' _ {}
 fi
 
 # --- what the runs measured ---------------------------------------------------------------------
-metrics() { echo "$work/$1/run/metrics.csv"; }
+# Only finished runs count: an unfinished one (killed, or still running) shows "–".
+metrics() { [[ -f $work/$1/done ]] && echo "$work/$1/run/metrics.csv" || echo "$work/$1/unfinished"; }
 # Time of the first row after which the genus fell (a hole sealed) or the component count rose.
 event_time() { # NAME genus|components
   local file; file=$(metrics "$1")
