@@ -764,17 +764,12 @@ std::vector<double> radius_targets(const Mesh& mesh, const RadiusSizingOptions& 
                                        "got {}, min = {}, max = {}",
                                        options.edges_per_radius, options.min_length, options.max_length));
   const Eigen::VectorXd kappa = largest_principal_curvature(mesh);
-  std::vector<double> edge_sum(mesh.n_vertices(), 0.0);
-  std::vector<int> edge_count(mesh.n_vertices(), 0);
-  for (auto e : mesh.edges())
-    for (auto v : {e.v0(), e.v1()}) {
-      edge_sum[v.idx()] += mesh.calc_edge_length(e);
-      ++edge_count[v.idx()];
-    }
+  const Eigen::VectorXd mean_lengths = vertex_mean_edge_lengths(mesh);
   std::vector<double> lengths;
   lengths.reserve(static_cast<std::size_t>(kappa.size()));
   for (Eigen::Index v = 0; v < kappa.size(); ++v) {
-    const double local = edge_count[v] > 0 ? edge_sum[v] / edge_count[v] : options.max_length;
+    const bool isolated = mesh.valence(Mesh::VertexHandle(static_cast<int>(v))) == 0;
+    const double local = isolated ? options.max_length : mean_lengths[v];
     double length = options.max_length;
     if (kappa[v] * local > 1) // a crease or a fold, not a curvature the mesh resolves: keep its scale
       length = local;
