@@ -25,8 +25,8 @@ for n in 15000 60000; do
   run="$sdflow -q run --input $work/torus_$n.ply --tau 0.01 --steps $steps --retriangulate --snapshot-every 0 --quiet"
   hyperfine -N -w 1 -r "$runs" --export-json "$work/$n.json" \
     --prepare "rm -rf $work/default $work/paper" \
-    -n "defaults, $n vertices" "$run --out $work/default" \
-    -n "--preset paper, $n vertices" "$run --out $work/paper --preset paper" > /dev/null
+    --command-name="defaults, $n vertices" "$run --out $work/default" \
+    --command-name="--preset paper, $n vertices" "$run --out $work/paper --preset paper" > /dev/null
   python3 - "$work/$n.json" "$steps" <<'EOF'
 import json, statistics, sys
 results = json.load(open(sys.argv[1]))["results"]
