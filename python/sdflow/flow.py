@@ -1,0 +1,360 @@
+"""The flow in memory (`Flow`, over the C++ `SurfaceDiffusion`) and runs recorded in a run
+directory (`run`, `resume`), as `sdflow run` records them."""
+
+import math
+import os
+import tomllib
+from dataclasses import dataclass
+from typing import NamedTuple
+
+from . import _parameters, _sdflow
+from ._progress import make_progress
+
+
+@dataclass(frozen=True)
+class Event:
+    """Something that happened in a step besides the step itself (metrics.csv's `event` column).
+
+    `kind` is one of "rejected", "remeshed", "surgery", "split", "merged"; `detail` is the
+    re-triangulation's line of events.log for the last four.
+    """
+    kind: str
+    step: int
+    time: float
+    detail: str = ""
+
+
+class Rejected(Event):
+    """Trial steps were rejected before the accepted one (τ was reduced)."""
+
+
+class Remeshed(Event):
+    """The triangulation was improved (same topology)."""
+
+
+class Surgery(Event):
+    """Self-intersections were removed and the surface rebuilt (a pinch-off, a seal, bodies touching)."""
+
+
+class Split(Event):
+    """A component broke into several (a pinch-off)."""
+
+
+class Merged(Event):
+    """Components were joined."""
+
+
+_EVENT_TYPES = {"rejected": Rejected, "remeshed": Remeshed, "surgery": Surgery, "split": Split, "merged": Merged}
+
+
+@dataclass(frozen=True)
+class Step:
+    """One accepted step: its index, the time reached, τ, rejected trials, CG iterations, whether
+    it factorised, its events and the flow's notes (rejected trials, re-triangulations)."""
+    step: int
+    time: float
+    tau: float
+    rejections: int
+    cg_iterations: int
+    factorised: bool
+    events: tuple = ()
+    notes: tuple = ()
+
+    @property
+    def event(self):
+        """The events joined by '+', as metrics.csv writes them."""
+        return "+".join(e.kind for e in self.events)
+
+    @property
+    def topology_changed(self):
+        """A split or a merge happened (a seal changes the genus: see the metrics)."""
+        return any(isinstance(e, (Split, Merged)) for e in self.events)
+
+
+def _notes(raw):
+    return tuple(f"step {s} t={t}: {text}" for s, t, text, _ in raw)
+
+
+def _step(raw):
+    step, time, tau, rejections, cg, factorised, event, notes = raw
+    details = {}
+    for _, _, text, _ in notes:
+        # "re-triangulated (surgery+split): detail" (SurfaceDiffusion::adopt_retriangulation)
+        if text.startswith("re-triangulated (") and "): " in text:
+            kinds, detail = text[len("re-triangulated ("):].split("): ", 1)
+            for kind in kinds.split("+"):
+                details[kind] = detail
+    events = tuple(_EVENT_TYPES.get(kind, Event)(kind, step, time, details.get(kind, ""))
+                   for kind in event.split("+") if kind)
+    return Step(step, time, tau, rejections, cg, factorised, events, _notes(notes))
+
+
+class State(NamedTuple):
+    """A snapshot of the flow: arrays (copied out of the flow, theirs to keep), time, τ of the last
+    step, step index and the metrics row (metrics.csv's columns)."""
+    V: object
+    F: object
+    t: float
+    tau: float
+    step: int
+    metrics: dict
+
+
+class Flow:
+    """Surface diffusion flow of a surface in memory: the C++ `SurfaceDiffusion`.
+
+    ``Flow(V, F, **parameters)``: V (n×3 reals), F (m×3 integers), validated and oriented as a mesh
+    file is when read (`findings` has what was found). Parameters are the scenario keys of
+    `sdflow run` (toolbox/sdflow/flow/parameters.h) with their defaults, names, checks and
+    messages: ``beta``, ``curvature``, ``mass``, ``tau``, ``time_step``, ``extrapolate``,
+    ``conserve_volume``, ``fixed_boundary``, ``steps``, ``t_end``, ``adaptive={...}``,
+    ``retriangulation={...}``, ``preset``, ... Re-triangulation is **on** by default
+    (``retriangulation=False`` turns it off); its ℓ defaults to the initial mean edge length.
+    ``scenario=`` reads a TOML scenario first (keyword arguments override it).
+    """
+
+    def __init__(self, V, F, *, scenario=None, **parameters):
+        for key in ("input", "out"):
+            if key in parameters:
+                raise _sdflow.InvalidParameter(
+                    f"keyword argument {key}: a Flow holds its surface in memory; sdflow.run() reads "
+                    "`input` and writes `out`")
+        p = _parameters.read(parameters, scenario=scenario)
+        self._core = _sdflow.FlowCore(V, F, p)
+        self.events = []
+        """Every event so far, in order."""
+
+    # -- stepping -----------------------------------------------------------------------------
+    def step(self):
+        """Take one accepted step (the GIL is released meanwhile) and return its `Step`.
+
+        Raises sdflow.NumericalError when the flow cannot go on stably; the surface stays that of
+        the last accepted step, and the exception's `notes` hold the flow's notes before it.
+        """
+        if self._core.finished:
+            raise RuntimeError(f"the flow is finished at step {self._core.step_index}, t = {self._core.time:.6g} "
+                               "(its steps or t_end limit, or a topology change with "
+                               "stop_at_topology_change): advance(t_end=...) or advance(steps=...) goes further")
+        try:
+            record = _step(self._core.step())
+        except _sdflow.Error as e:
+            e.notes = _notes(self._core.failure_notes())
+            raise
+        self.events.extend(record.events)
+        return record
+
+    def advance(self, t_end=None, *, steps=None, callback=None, progress=False):
+        """Step until `t_end` (the last step lands on it), or `steps` more steps, or the flow's own
+        limits; returns the list of `Step` records taken.
+
+        callback(step) is called after every step; returning True stops. progress=True shows a
+        bar (tqdm when installed, else a line on stderr); a callable is called like callback.
+        Ctrl-C (KeyboardInterrupt) stops after the step under way: the flow stays consistent at
+        the last accepted step and can be advanced again.
+        """
+        core = self._core
+        if t_end is not None:
+            t_end = float(t_end)
+            if not t_end > core.time:
+                return []
+            if t_end != core.t_end:
+                core.set_limits(core.steps_limit, t_end)
+        elif steps is None and core.steps_limit == 0 and math.isinf(core.t_end):
+            raise _sdflow.InvalidParameter("no stop condition: give a number of steps or an end time")
+        if core.finished and steps is not None and t_end is None:
+            # Further steps past the flow's own step limit.
+            core.set_limits(core.step_index + int(steps), core.t_end)
+        bar = make_progress(progress, t_start=core.time, t_end=core.t_end,
+                            steps=steps if steps is not None else (core.steps_limit - core.step_index
+                                                                   if core.steps_limit else None))
+        taken = []
+        try:
+            while not core.finished and (steps is None or len(taken) < steps):
+                record = self.step()
+                taken.append(record)
+                bar.update(record)
+                if callback is not None and callback(record) is True:
+                    break
+        finally:
+            bar.close()
+        return taken
+
+    # -- state --------------------------------------------------------------------------------
+    @property
+    def finished(self):
+        """The step limit or end time is reached, or (stop_at_topology_change) the topology changed."""
+        return self._core.finished
+
+    @property
+    def t(self):
+        """The time reached."""
+        return self._core.time
+
+    @property
+    def tau(self):
+        """τ of the last step (0 before the first)."""
+        return self._core.tau
+
+    @property
+    def step_index(self):
+        """Index of the last accepted step (0 at the start)."""
+        return self._core.step_index
+
+    @property
+    def t_end(self):
+        """The flow's end time (inf: none); advance(t_end) moves it."""
+        return self._core.t_end
+
+    @property
+    def V(self):
+        """Vertex positions (n×3 float64), a copy the caller owns."""
+        return self._core.V()
+
+    @property
+    def F(self):
+        """Triangles (m×3 int32), a copy the caller owns."""
+        return self._core.F()
+
+    @property
+    def N(self):
+        """Unit normals of the current surface (eq. 8), as the next step uses them."""
+        return self._core.N()
+
+    @property
+    def H(self):
+        """Mean curvature of the current surface, as the next step uses it (the `curvature` option)."""
+        return self._core.H()
+
+    @property
+    def L(self):
+        """The cotangent matrix L of the current surface (scipy.sparse.csc_matrix)."""
+        return self._core.L()
+
+    @property
+    def M(self):
+        """The vertex areas of Δ = M⁻¹L (the `mass` option)."""
+        return self._core.M()
+
+    @property
+    def w(self):
+        """w of the last step (the normal velocity is −w); zeros at the start and after a re-triangulation."""
+        return self._core.w()
+
+    @property
+    def metrics(self):
+        """The current row of metrics.csv as a dict (step, time, tau, vertices, ..., event)."""
+        return self._core.metrics()
+
+    @property
+    def metrics_row(self):
+        """The current line of metrics.csv (without its newline), exactly as `sdflow run` writes it."""
+        return self._core.metrics_row().rstrip("\n")
+
+    @property
+    def state(self):
+        """`State(V, F, t, tau, step, metrics)`."""
+        m = self.metrics
+        return State(self.V, self.F, self.t, self.tau, self.step_index, m)
+
+    @property
+    def parameters(self):
+        """Every parameter as resolved (ℓ fixed), as a dict of run.toml's keys."""
+        return tomllib.loads(self._core.parameters.toml())
+
+    @property
+    def findings(self):
+        """What validating the initial V, F found (sdflow.Finding list)."""
+        return self._core.findings
+
+    @property
+    def rejected_trials(self):
+        return self._core.rejected_trials
+
+    @property
+    def factorisations(self):
+        return self._core.factorisations
+
+    def __repr__(self):
+        m = self.metrics
+        return (f"<sdflow.Flow step {m['step']} t={m['time']:.6g}: {m['vertices']} vertices, "
+                f"{m['components']} component(s), genus {m['genus']}>")
+
+
+class RunResult(NamedTuple):
+    """What `run` and `resume` return: the final surface and the run's counters."""
+    V: object
+    F: object
+    steps: int
+    time: float
+    rejected_trials: int
+    factorisations: int
+    interrupted: bool
+    restarted: bool
+    out: str
+
+
+def _run_callback(progress, callback, p, t_start=0.0):
+    bar = make_progress(progress, t_start=t_start, t_end=p.t_end, steps=p.steps or None)
+
+    def on_step(raw):
+        record = _step(raw)
+        bar.update(record)
+        return callback is not None and callback(record) is True
+    return on_step, bar
+
+
+def _result(d, out):
+    return RunResult(d["V"], d["F"], d["steps"], d["time"], d["rejected_trials"], d["factorisations"],
+                     d["interrupted"], d["restarted"], out)
+
+
+def run(V=None, F=None, *, scenario=None, progress=False, callback=None, force=False, **parameters):
+    """Run the flow into a run directory, exactly as `sdflow run` does (metrics.csv, snapshots,
+    series.pvd, run.toml, events.log, checkpoint.bin); returns a `RunResult`.
+
+    The surface: V, F arrays, or ``input=MESH`` (or `input` in the scenario). ``out=DIR`` (or `out`
+    in the scenario) names the directory, which must not hold a run. Parameters as for `Flow`
+    (re-triangulation on by default) and a stop condition (``steps`` or ``t_end``).
+    callback(step) after every step (True: stop, with a checkpoint; `resume` continues).
+    Ctrl-C stops after the step under way with a checkpoint and raises KeyboardInterrupt.
+    force=True skips the plausibility limits (as --force).
+    """
+    if isinstance(V, (str, os.PathLike)):
+        if F is not None:
+            raise _sdflow.InvalidParameter("give V, F arrays or a mesh path, not both")
+        parameters["input"], V = V, None
+    p = _parameters.read(parameters, scenario=scenario)
+    if V is None and not p.input:
+        raise _sdflow.InvalidParameter("no input mesh: give V, F, input=MESH or `input` in the scenario file")
+    if V is not None and F is None:
+        raise _sdflow.InvalidParameter("F is missing: give V and F")
+    if not p.out:
+        raise _sdflow.InvalidParameter("no run directory: give out=DIR or `out` in the scenario file")
+    _sdflow.validate_run_parameters(p)
+    on_step, bar = _run_callback(progress, callback, p)
+    try:
+        d = _sdflow.run_simulation(V, F, p, on_step, force)
+    finally:
+        bar.close()
+    return _result(d, p.out)
+
+
+def resume(out, *, steps=None, t_end=None, snapshot_every=None, checkpoint_every=None, progress=False,
+           callback=None, force=False):
+    """Continue the run in `out` from its checkpoint, bit for bit, as ``sdflow run --resume`` does;
+    only the limits (steps, t_end) and the snapshot and checkpoint intervals may change."""
+    toml = os.path.join(os.fspath(out), "run.toml")
+    if not os.path.exists(toml):
+        raise _sdflow.InvalidParameter(
+            f"{os.fspath(out)} holds no run to resume (no run.toml: it was stopped before writing anything, or is "
+            "not a run directory); start the run again with out=")
+    p = _sdflow.read_parameters([toml])
+    _sdflow.set_output_dir(p, os.fspath(out))
+    _sdflow.set_limits(p, steps, t_end, snapshot_every, checkpoint_every)
+    _sdflow.validate_run_parameters(p)
+    on_step, bar = _run_callback(progress, callback, p)
+    try:
+        d = _sdflow.resume_simulation(p, on_step, force)
+    finally:
+        bar.close()
+    return _result(d, os.fspath(out))
