@@ -121,20 +121,20 @@ class Flow:
                     "`input` and writes `out`")
         p = _parameters.read(parameters, scenario=scenario)
         self._core = _sdflow.FlowCore(V, F, p)
+        self._limits = (self._core.steps_limit, self._core.t_end)
         self.events = []
         """Every event so far, in order."""
 
     # -- stepping -----------------------------------------------------------------------------
     def step(self):
-        """Take one accepted step (the GIL is released meanwhile) and return its `Step`.
+        """Take one accepted step (the GIL is released meanwhile) and return its `Step`. The limits
+        (steps, t_end) bound `advance`, not `step`: a finished flow is stepped further.
 
         Raises sdflow.NumericalError when the flow cannot go on stably; the surface stays that of
         the last accepted step, and the exception's `notes` hold the flow's notes before it.
         """
         if self._core.finished:
-            raise RuntimeError(f"the flow is finished at step {self._core.step_index}, t = {self._core.time:.6g} "
-                               "(its steps or t_end limit, or a topology change with "
-                               "stop_at_topology_change): advance(t_end=...) or advance(steps=...) goes further")
+            self._core.set_limits(0, math.inf)
         try:
             record = _step(self._core.step())
         except _sdflow.Error as e:
@@ -144,29 +144,31 @@ class Flow:
         return record
 
     def advance(self, t_end=None, *, steps=None, callback=None, progress=False):
-        """Step until `t_end` (the last step lands on it), or `steps` more steps, or the flow's own
-        limits; returns the list of `Step` records taken.
+        """Step until time `t_end` (the last step lands on it) and/or for `steps` more steps; with
+        neither, until the limits given to the constructor (steps, t_end, stop_at_topology_change).
+        Returns the list of `Step` records taken.
 
         callback(step) is called after every step; returning True stops. progress=True shows a
         bar (tqdm when installed, else a line on stderr); a callable is called like callback.
         Ctrl-C (KeyboardInterrupt) stops after the step under way: the flow stays consistent at
         the last accepted step and can be advanced again.
+
+        A new t_end continues the flow from its state with that end time, as ``sdflow run
+        --resume --t-end`` does (bit for bit; the reused factorisation is rebuilt once).
         """
         core = self._core
-        if t_end is not None:
-            t_end = float(t_end)
-            if not t_end > core.time:
+        if t_end is None and steps is None:
+            limit_steps, limit_time = self._limits
+            if limit_steps == 0 and math.isinf(limit_time):
+                raise _sdflow.InvalidParameter("no stop condition: give a number of steps or an end time")
+            core.set_limits(limit_steps, limit_time)
+        else:
+            if t_end is not None and not float(t_end) > core.time:
                 return []
-            if t_end != core.t_end:
-                core.set_limits(core.steps_limit, t_end)
-        elif steps is None and core.steps_limit == 0 and math.isinf(core.t_end):
-            raise _sdflow.InvalidParameter("no stop condition: give a number of steps or an end time")
-        if core.finished and steps is not None and t_end is None:
-            # Further steps past the flow's own step limit.
-            core.set_limits(core.step_index + int(steps), core.t_end)
+            core.set_limits(0, float(t_end) if t_end is not None else math.inf)
         bar = make_progress(progress, t_start=core.time, t_end=core.t_end,
-                            steps=steps if steps is not None else (core.steps_limit - core.step_index
-                                                                   if core.steps_limit else None))
+                            steps=steps if steps is not None else
+                            (core.steps_limit - core.step_index if core.steps_limit else None))
         taken = []
         try:
             while not core.finished and (steps is None or len(taken) < steps):
@@ -182,7 +184,8 @@ class Flow:
     # -- state --------------------------------------------------------------------------------
     @property
     def finished(self):
-        """The step limit or end time is reached, or (stop_at_topology_change) the topology changed."""
+        """The limits in effect are reached (the constructor's, or the last advance's), or
+        (stop_at_topology_change) the topology changed."""
         return self._core.finished
 
     @property
@@ -202,7 +205,7 @@ class Flow:
 
     @property
     def t_end(self):
-        """The flow's end time (inf: none); advance(t_end) moves it."""
+        """The end time in effect (inf: none): the constructor's, or the last advance's."""
         return self._core.t_end
 
     @property
