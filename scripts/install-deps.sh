@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs every Debian bookworm package sdflow needs to build, test and benchmark. Idempotent:
 # apt-get skips what is already installed. Run as root or with sudo available.
-#   scripts/install-deps.sh            toolbox, CLI, tests
+#   scripts/install-deps.sh            toolbox, CLI, tests, the Python module (pybind11, numpy, scipy,
+#                                      pytest, matplotlib for its example)
 #   scripts/install-deps.sh --bench    also the benchmark peers (CGAL, Surface Evolver, hyperfine)
 #   scripts/install-deps.sh --paraview also ParaView and pvpython (large) for scripts/check-paraview.sh
 #   scripts/install-deps.sh --meshlab  also what the MeshLab plugin needs: Debian's MeshLab, Qt 5,
@@ -21,6 +22,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libgmp-dev
   libnanoflann-dev libcli11-dev libtomlplusplus-dev libspdlog-dev libfmt-dev libmuparser-dev libtbb-dev
   gnuplot-nox
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-scipy python3-pytest python3-matplotlib
 )
 if [[ " $* " == *" --bench "* ]]; then
   packages+=(libcgal-dev evolver-nox hyperfine)

@@ -25,6 +25,16 @@ while read -r header; do
   [[ -f $prefix/include/$header ]] || fail "an installed header includes $header, which is not installed"
 done < <(grep -rhoE '#include "sdflow/[^"]+"' "$prefix/include" | sed 's/.*"\(.*\)"/\1/' | sort -u)
 
+# The Python module, when the build has it, lands in the interpreter's site directory under the prefix.
+site=$(sed -n 's/^SDFLOW_PYTHON_INSTALL_DIR:STRING=//p' "$dir/CMakeCache.txt")
+if [[ -n $site ]]; then
+  python=$(sed -n 's/^_Python3_EXECUTABLE:INTERNAL=//p' "$dir/CMakeCache.txt")
+  [[ -f $prefix/$site/sdflow/__init__.py ]] || fail "the Python package was not installed into $prefix/$site"
+  (cd "$tmp" && PYTHONPATH=$prefix/$site "${python:-python3}" -c \
+     "import sdflow, sys; V, F = sdflow.shape('sphere', vertices=200); sys.exit(sdflow.__file__.startswith('$prefix') is False)") \
+    || fail "the installed Python package does not import from $prefix/$site"
+fi
+
 step "configure tests/package against $prefix" \
   cmake -S tests/package -B "$tmp/installed" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix"
 step "build tests/package against $prefix" cmake --build "$tmp/installed"
@@ -33,4 +43,4 @@ step "build tests/package against $prefix" cmake --build "$tmp/installed"
 # Configuring is enough to see the build type; building would compile the toolbox once more.
 step "configure tests/package with sdflow as a subproject" \
   cmake -S tests/package -B "$tmp/subproject" -G Ninja -DSDFLOW_SOURCE_DIR="$PWD"
-echo "test-package.sh: PASS (installed: tests/package built and run; subproject: build type kept)"
+echo "test-package.sh: PASS (installed: tests/package built and run${site:+, the Python module imported}; subproject: build type kept)"
