@@ -43,7 +43,7 @@ def main():
     fig, (ax_area, ax_dev) = plt.subplots(1, 2, figsize=(10, 3.6), constrained_layout=True)
     ax_area.plot(t, area, color="tab:blue")
     ax_area.set(xlabel="t", ylabel="area", title="area")
-    ax_dev.semilogy(t, deviation, color="tab:red")
+    ax_dev.plot(t, deviation, color="tab:red")
     ax_dev.set(xlabel="t", ylabel="H deviation (% of |H̃|)", title="mean-curvature deviation")
     for ax in (ax_area, ax_dev):
         if sealed is not None:
