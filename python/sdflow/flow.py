@@ -15,7 +15,7 @@ from ._progress import make_progress
 class Event:
     """Something that happened in a step besides the step itself (metrics.csv's `event` column).
 
-    `kind` is one of "rejected", "remeshed", "surgery", "split", "merged"; `detail` is the
+    `kind` is one of "rejected", "remeshed", "surgery", "split", "merged", "fallback"; `detail` is the
     re-triangulation's line of events.log for the last four.
     """
     kind: str
@@ -44,7 +44,12 @@ class Merged(Event):
     """Components were joined."""
 
 
-_EVENT_TYPES = {"rejected": Rejected, "remeshed": Remeshed, "surgery": Surgery, "split": Split, "merged": Merged}
+class Fallback(Event):
+    """A τ table's step failed even after its halvings: adaptive steps covered its τ of time."""
+
+
+_EVENT_TYPES = {"rejected": Rejected, "remeshed": Remeshed, "surgery": Surgery, "split": Split, "merged": Merged,
+                "fallback": Fallback}
 
 
 @dataclass(frozen=True)
@@ -312,7 +317,7 @@ def _result(d, out):
 
 
 def run(V=None, F=None, *, scenario=None, progress=False, callback=None, force=False, **parameters):
-    """Run the flow into a run directory, exactly as `sdflow run` does (metrics.csv, snapshots,
+    """Run the flow into a run directory, exactly as `sdflow run` does (metrics.csv, timings.csv, snapshots,
     series.pvd, run.toml, events.log, checkpoint.bin); returns a `RunResult`.
 
     The surface: V, F arrays, or ``input=MESH`` (or `input` in the scenario). ``out=DIR`` (or `out`
