@@ -43,4 +43,4 @@ step "build tests/package against $prefix" cmake --build "$tmp/installed"
 # Configuring is enough to see the build type; building would compile the toolbox once more.
 step "configure tests/package with sdflow as a subproject" \
   cmake -S tests/package -B "$tmp/subproject" -G Ninja -DSDFLOW_SOURCE_DIR="$PWD"
-echo "test-package.sh: PASS (installed: tests/package built and run${site:+, the Python module imported}; subproject: build type kept)"
+echo "test-package.sh: PASS (installed: tests/package and README's C++ snippets built, consume run${site:+, the Python module imported}; subproject: build type kept)"
