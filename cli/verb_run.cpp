@@ -1,12 +1,9 @@
 //! `sdflow run`: evolve a surface by surface diffusion flow into a run directory (flow/simulation.h).
-//!   sdflow run --input MESH --out DIR [--steps N] [--t-end T]
-//!              [--tau T | --schedule FILE [--schedule-retries N] | --adaptive]
-//!              [--preset paper|default] [--beta B] [--curvature NAME] [--mass NAME] [--extrapolate]
-//!              [--tolerance E] [--solver cholmod|qr] [--edges-per-radius N]
-//!              [--snapshot-every K] [--checkpoint-every K] [--conserve-volume] [--fixed-boundary]
-//!              [--retriangulate [--edge-length L]] [--quiet]
+//!   sdflow run --input MESH --out DIR [--steps N] [--end-time T] [a flag for every scenario key]
 //!   sdflow run SCENARIO.toml [flags]     (flags override the file's keys)
-//!   sdflow run --resume DIR [--steps N] [--t-end T]
+//!   sdflow run --resume DIR [--steps N] [--end-time T] [the other flags the schema marks resumable]
+//!   sdflow run --help-scenario           (the table of keys and flags, markdown, as in README)
+//! The flags, their checks and the resume rules come from the schema (flow/parameter_schema.h).
 //! SIGINT / SIGTERM stop the run after the current step with a checkpoint (exit 130 / 143).
 
 #include "exit_status.h"

@@ -12,14 +12,17 @@
 //! (`sdflow run --help-scenario`, checked by the test `ParameterSchema.readme_table_is_the_schemas`).
 //! A new run option is one field of RunParameters and one entry here.
 //!
-//! **Names.** One name per concept: the scenario key is the name (`[section]` + `name`), the flag
-//! is `--` and the name with dashes (the section dropped), the MeshLab parameter the name in
-//! CamelCase; defaults are those of a default-constructed RunParameters, never typed twice. Where a
-//! struct field of the library has a longer name (`RetriangulationOptions::target_edge_length` for
-//! `retriangulation.edge_length`), the entry's accessor is the one place that maps them. Older
-//! names stay accepted as aliases (`t_end` and `--t-end` for `end_time`); run.toml is written with
-//! the canonical names. A few flags predate the rule and are kept as the canonical flag
-//! (`--retriangulate` for `retriangulation.enabled`, `--tolerance` for `adaptive.tolerance`).
+//! **Names.** One name per concept. The scenario key is `name` (or `section.name` inside a table);
+//! the flag is `--name` with dashes, or `--section-name` where the name alone would not say what it
+//! is (`--retriangulate-every`, `--reference-radius`, `--tau-growth`); the MeshLab parameter is the
+//! flag in CamelCase (`--edge-length`, `EdgeLength`). Defaults are those of a default-constructed
+//! RunParameters, never typed twice. Where a library struct's field has another name
+//! (`RetriangulationOptions::target_edge_length` for `retriangulation.edge_length`,
+//! `min_angle_deg` for `retriangulation.min_angle`), the entry's accessor is the one place that
+//! maps them. Renamed keys and flags stay accepted as aliases (`t_end` and `--t-end` for
+//! `end_time`); run.toml is written under the canonical names. Kept as they were, because
+//! scripts and .mlx files use them: `--retriangulate` (`retriangulation.enabled`), `--tolerance`
+//! (`adaptive.tolerance`), `--adaptive` (time_step = "adaptive") and MeshLab's `AutomaticTau`.
 
 #include "sdflow/flow/parameters.h"
 
