@@ -87,7 +87,7 @@ void run(const RetriangulateArguments& args)
 {
   format_from_extension(args.output); // refuse an unknown format before the work
   const SizeLimits limits{.force = args.force};
-  check_count(args.options.remesh_iterations, limits.max_iterations, "--iterations", limits);
+  check_count(args.options.remesh_iterations, limits.max_iterations, "--remesh-iterations", limits);
   const BuiltMesh input = read_mesh(args.input);
   check_remeshed_size(input.mesh, args.options.target_edge_length,
                       fmt::format("retriangulate --edge-length {}", args.options.target_edge_length), limits);
@@ -112,7 +112,8 @@ void add_retriangulate_verb(CLI::App& app)
   verb->add_option("-o,--output", args->output, "Output mesh")->required();
   verb->add_option("--edge-length", o.target_edge_length, "Target edge length (default: the input's mean)")
       ->check(CLI::PositiveNumber);
-  verb->add_option("--iterations", o.remesh_iterations, "Remeshing iterations (0: no remeshing)")
+  verb->add_option("--remesh-iterations,--iterations", o.remesh_iterations,
+                   "Remeshing iterations (0: no remeshing; --iterations is its older name)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   verb->add_option("--edges-per-radius", o.edges_per_radius,

@@ -1,44 +1,83 @@
 //! `sdflow run`: evolve a surface by surface diffusion flow into a run directory (flow/simulation.h).
-//!   sdflow run --input MESH --out DIR [--steps N] [--t-end T]
-//!              [--tau T | --schedule FILE [--schedule-retries N] | --adaptive]
-//!              [--preset paper|default] [--beta B] [--curvature NAME] [--mass NAME] [--extrapolate]
-//!              [--tolerance E] [--solver cholmod|qr] [--edges-per-radius N]
-//!              [--snapshot-every K] [--checkpoint-every K] [--conserve-volume] [--fixed-boundary]
-//!              [--retriangulate [--edge-length L]] [--quiet]
+//!   sdflow run --input MESH --out DIR [--steps N] [--end-time T] [a flag for every scenario key]
 //!   sdflow run SCENARIO.toml [flags]     (flags override the file's keys)
-//!   sdflow run --resume DIR [--steps N] [--t-end T]
+//!   sdflow run --resume DIR [--steps N] [--end-time T] [the other flags the schema marks resumable]
+//!   sdflow run --help-scenario           (the table of keys and flags, markdown, as in README)
+//! The flags, their checks and the resume rules come from the schema (flow/parameter_schema.h).
 //! SIGINT / SIGTERM stop the run after the current step with a checkpoint (exit 130 / 143).
 
 #include "exit_status.h"
 #include "verbs.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/flow/parameter_schema.h"
 #include "sdflow/flow/simulation.h"
 #include "sdflow/io.h"
 #include "sdflow/limits.h"
 #include "sdflow/log.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
+#include <deque>
 #include <iostream>
 #include <unistd.h>
 
 namespace sdflow::cli {
 namespace {
 
+//! The flag of one schema entry (flow/parameter_schema.h): its option, where CLI11 puts the value,
+//! and the options of its shorthands (`--adaptive`).
+struct SchemaFlag {
+  const ParameterEntry* entry = nullptr;
+  CLI::Option* option = nullptr;
+  long integer = 0;
+  double real = 0;
+  bool boolean = false;
+  std::string text;
+  std::vector<double> point;
+  std::vector<std::pair<CLI::Option*, const ParameterEntry::Shorthand*>> shorthands;
+
+  bool given() const { return option->count() > 0; }
+
+  //! The value given, as the entry's type.
+  ParameterValue value() const
+  {
+    switch (entry->type) {
+    case ParameterType::integer: return integer;
+    case ParameterType::real: return real;
+    case ParameterType::boolean: return boolean;
+    case ParameterType::choice: return text;
+    case ParameterType::path: return std::filesystem::path(text);
+    case ParameterType::point: return Eigen::Vector3d(point.at(0), point.at(1), point.at(2));
+    case ParameterType::schedule: break;
+    }
+    return ScheduleSetting{std::filesystem::absolute(text), read_schedule(text).entries()};
+  }
+
+  //! The flags given on the command line for this entry, for messages.
+  std::vector<std::string> given_names() const
+  {
+    std::vector<std::string> names;
+    if (given())
+      names.push_back(entry->flag);
+    for (const auto& [shorthand, _] : shorthands)
+      if (shorthand->count() > 0)
+        names.push_back(shorthand->get_name());
+    return names;
+  }
+};
+
 struct RunArguments {
-  std::string scenario, input, out, resume, schedule, solver, curvature, mass, preset;
-  long steps = 0, snapshot_every = 0, checkpoint_every = 0;
-  int schedule_retries = 0;
-  double end_time = 0, tau = 0, beta = 0, edge_length = 0, tolerance = 0, edges_per_radius = 0;
-  bool adaptive = false, extrapolate = false, stop_at_topology_change = false, conserve_volume = false, fixed_boundary = false,
-       retriangulate = false, quiet = false, force = false;
-  std::map<std::string, CLI::Option*> given;
-  bool has(const std::string& name) const { return given.at(name)->count() > 0; }
+  std::string scenario, resume;
+  bool quiet = false, force = false, help_scenario = false;
+  CLI::Option* resume_option = nullptr;
+  std::deque<SchemaFlag> flags; // one per schema entry, in the schema's order (a deque: stable addresses)
 };
 
 //! Progress on stderr: a bar rewritten in place on a terminal, a plain line every 10 s otherwise.
@@ -113,41 +152,29 @@ private:
   Clock::time_point start_, last_;
 };
 
+//! Set an implied parameter (`--tau` implies time_step = "constant").
+void apply_implication(const ParameterEntry::Implication& implication, RunParameters& p)
+{
+  find_parameter(implication.key)->set(p, implication.value);
+}
+
+//! The flags given, over the parameters: the preset first, the time-step mode last, as a scenario's keys.
 void apply_flags(const RunArguments& a, RunParameters& p)
 {
-  if (a.has("--preset")) apply_preset(a.preset, p);
-  if (a.has("--input")) p.input = a.input;
-  if (a.has("--out")) p.output_dir = a.out;
-  if (a.has("--steps")) p.steps = a.steps;
-  if (a.has("--t-end")) p.end_time = a.end_time;
-  if (a.has("--stop-at-topology-change")) p.stop_at_topology_change = true;
-  if (a.has("--beta")) p.scheme.beta = a.beta;
-  if (a.has("--curvature")) p.scheme.curvature = curvature_options(a.curvature);
-  if (a.has("--mass")) p.scheme.mass = vertex_mass(a.mass);
-  if (a.has("--extrapolate")) p.scheme.extrapolate = true;
-  if (a.has("--tolerance")) {
-    p.time_step.adaptive.tolerance = a.tolerance;
-    p.scheme.extrapolate = true;
-  }
-  if (a.has("--edges-per-radius")) p.retriangulation.pipeline.edges_per_radius = a.edges_per_radius;
-  if (a.has("--snapshot-every")) p.snapshot_every = a.snapshot_every;
-  if (a.has("--checkpoint-every")) p.checkpoint_every = a.checkpoint_every;
-  if (a.has("--conserve-volume")) p.conserve_volume = true;
-  if (a.has("--fixed-boundary")) p.scheme.boundary = BoundaryMotion::fixed;
-  if (a.has("--retriangulate")) p.retriangulation.enabled = true;
-  if (a.has("--edge-length")) p.retriangulation.pipeline.target_edge_length = a.edge_length;
-  if (a.has("--solver")) p.solver.kind = a.solver == "qr" ? SolverKind::qr : SolverKind::cholmod;
-  if (a.has("--schedule-retries")) p.time_step.schedule_retries = a.schedule_retries;
-  if (a.has("--tau")) {
-    p.time_step.mode = TimeStepMode::constant;
-    p.time_step.tau = a.tau;
-  } else if (a.has("--schedule")) {
-    p.time_step.mode = TimeStepMode::schedule;
-    p.time_step.schedule_file = std::filesystem::absolute(a.schedule);
-    p.time_step.schedule = read_schedule(a.schedule);
-  } else if (a.has("--adaptive")) {
-    p.time_step.mode = TimeStepMode::adaptive;
-  }
+  for (const auto order : {ParameterEntry::Order::first, ParameterEntry::Order::normal, ParameterEntry::Order::last})
+    for (const SchemaFlag& flag : a.flags) {
+      const ParameterEntry& e = *flag.entry;
+      if (e.order != order)
+        continue;
+      if (flag.given()) {
+        e.set(p, flag.value());
+        for (const auto& implication : e.implies)
+          apply_implication(implication, p);
+      }
+      for (const auto& [option, shorthand] : flag.shorthands)
+        if (option->count() > 0)
+          e.set(p, shorthand->value);
+    }
 }
 
 //! The signal that asked the run to stop (0: none). Set by the handler, read between steps.
@@ -171,14 +198,23 @@ void install_stop_handlers()
 void run(const RunArguments& a)
 {
   RunParameters p;
-  const bool resuming = a.has("--resume");
+  const bool resuming = a.resume_option->count() > 0;
   if (resuming) {
-    if (a.has("--input") || a.has("--tau") || a.has("--schedule") || a.has("--adaptive") || a.has("--beta") ||
-        a.has("--schedule-retries") || a.has("--curvature") || a.has("--mass") || a.has("--extrapolate") ||
-        a.has("--preset") || a.has("--tolerance") || a.has("--edges-per-radius") ||
-        a.has("--solver") || a.has("--retriangulate") || a.has("--edge-length") || !a.scenario.empty())
-      throw InvalidParameter("--resume continues a run with its own parameters (run.toml): only --steps, --t-end, "
-                             "--snapshot-every and --checkpoint-every may be changed");
+    std::vector<std::string> refused, allowed;
+    for (const SchemaFlag& flag : a.flags) {
+      if (flag.entry->resumable) {
+        allowed.push_back(flag.entry->flag);
+        continue;
+      }
+      const std::vector<std::string> given = flag.given_names();
+      refused.insert(refused.end(), given.begin(), given.end());
+    }
+    if (!a.scenario.empty())
+      refused.push_back("a scenario file");
+    if (!refused.empty())
+      throw InvalidParameter(fmt::format("--resume continues a run with its own parameters (run.toml): only {} may be "
+                                         "changed, not {}",
+                                         fmt::join(allowed, ", "), fmt::join(refused, ", ")));
     if (!std::filesystem::exists(std::filesystem::path(a.resume) / "run.toml"))
       throw InvalidParameter(fmt::format("{} holds no run to resume (no run.toml: it was stopped before writing "
                                          "anything, or is not a run directory); start the run again with --out",
@@ -236,77 +272,110 @@ void run(const RunArguments& a)
 
 } // namespace
 
+namespace {
+
+//! The entry's range as a check of the flag's text (the text is a plain number: numbers.h).
+CLI::Validator range_check(const ParameterEntry& e)
+{
+  return CLI::Validator(
+      [&e](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || e.range.contains(value))
+          return "";
+        return fmt::format("{} must be {}, got {}", e.key, e.range.text(), text);
+      },
+      "", "");
+}
+
+std::string flag_help(const ParameterEntry& e)
+{
+  std::vector<std::string> notes;
+  if (const std::string d = e.default_text(); d != "none")
+    notes.push_back("default " + d);
+  if (const std::string range = e.range.text(); !range.empty())
+    notes.push_back(range);
+  notes.push_back("scenario key " + e.key);
+  return fmt::format("{} [{}]", e.help, fmt::join(notes, "; "));
+}
+
+//! One option per schema entry (and per shorthand), in the entry's section's group of the help.
+void add_schema_flags(CLI::App& verb, RunArguments& args)
+{
+  for (const ParameterEntry& e : parameter_schema()) {
+    SchemaFlag& flag = args.flags.emplace_back();
+    flag.entry = &e;
+    std::string names = e.flag;
+    for (const std::string& alias : e.flag_aliases)
+      names += "," + alias;
+    const std::string help = flag_help(e);
+    switch (e.type) {
+    case ParameterType::integer:
+      flag.option = verb.add_option(names, flag.integer, help)->check(range_check(e));
+      break;
+    case ParameterType::real:
+      flag.option = verb.add_option(names, flag.real, help)->check(range_check(e));
+      break;
+    case ParameterType::boolean:
+      flag.option = verb.add_flag(names + ",!--no-" + e.flag.substr(2), flag.boolean, help);
+      break;
+    case ParameterType::choice:
+      flag.option = verb.add_option(names, flag.text, help)->check(CLI::IsMember(e.choices));
+      break;
+    case ParameterType::path:
+    case ParameterType::schedule:
+      flag.option = verb.add_option(names, flag.text, help);
+      if (e.existing_file)
+        flag.option->check(CLI::ExistingFile);
+      break;
+    case ParameterType::point:
+      flag.option = verb.add_option(names, flag.point, help)->expected(3)->delimiter(',')->type_name("X,Y,Z");
+      break;
+    }
+    const std::string group = e.section().empty() ? "Run parameters" : "[" + e.section() + "] parameters";
+    flag.option->group(group);
+    for (const auto& shorthand : e.shorthands) {
+      CLI::Option* option = verb.add_flag(shorthand.flag, shorthand.help)->group(group);
+      flag.shorthands.emplace_back(option, &shorthand);
+    }
+  }
+  // Flags that imply different values of one parameter exclude each other: --tau, --schedule, --adaptive.
+  std::vector<std::tuple<CLI::Option*, std::string, std::string>> implying; // option, key, value
+  for (const SchemaFlag& flag : args.flags) {
+    for (const auto& implication : flag.entry->implies)
+      implying.emplace_back(flag.option, implication.key, toml_text(implication.value));
+    for (const auto& [option, shorthand] : flag.shorthands)
+      implying.emplace_back(option, flag.entry->key, toml_text(ParameterValue(shorthand->value)));
+  }
+  for (std::size_t i = 0; i < implying.size(); ++i)
+    for (std::size_t j = i + 1; j < implying.size(); ++j)
+      if (std::get<1>(implying[i]) == std::get<1>(implying[j]) && std::get<2>(implying[i]) != std::get<2>(implying[j]))
+        std::get<0>(implying[i])->excludes(std::get<0>(implying[j]));
+}
+
+} // namespace
+
 void add_run_verb(CLI::App& app)
 {
   auto args = std::make_shared<RunArguments>();
   CLI::App* verb = app.add_subcommand("run", "Evolve a surface by surface diffusion flow into a run directory");
-  auto& g = args->given;
-  verb->add_option("scenario", args->scenario, "Scenario TOML file (keys documented in flow/parameters.h)")
+  verb->add_option("scenario", args->scenario,
+                   "Scenario TOML file: the keys of `sdflow run --help-scenario`; flags override them")
       ->check(CLI::ExistingFile);
-  g["--input"] = verb->add_option("--input", args->input, "Initial mesh (OFF, OBJ, PLY, STL)")->check(CLI::ExistingFile);
-  g["--out"] = verb->add_option("--out", args->out, "Run directory (must not hold a run yet)");
-  g["--steps"] = verb->add_option("--steps", args->steps, "Stop after N steps")->check(CLI::PositiveNumber);
-  g["--t-end"] = verb->add_option("--t-end", args->end_time, "Stop at time T")->check(CLI::PositiveNumber);
-  g["--stop-at-topology-change"] =
-      verb->add_flag("--stop-at-topology-change", args->stop_at_topology_change,
-                     "Also stop after the first step that changes the component count or the genus (with "
-                     "--retriangulate): event times of pinch-offs, seals and fusions");
-  g["--tau"] = verb->add_option("--tau", args->tau, "Constant time step τ")->check(CLI::PositiveNumber);
-  g["--schedule"] = verb->add_option("--schedule", args->schedule, "τ schedule (CSV first,last,tau or TOML)")
-                        ->check(CLI::ExistingFile);
-  g["--schedule-retries"] = verb->add_option("--schedule-retries", args->schedule_retries,
-                                             "Halve a schedule's τ up to N times when a step turns triangles over "
-                                             "(default 0: stop)")
-                                 ->check(CLI::Range(0, 60));
-  g["--adaptive"] = verb->add_flag("--adaptive", args->adaptive, "Adaptive τ (the default)");
-  g["--tau"]->excludes(g["--schedule"])->excludes(g["--adaptive"]);
-  g["--schedule"]->excludes(g["--adaptive"]);
-  g["--beta"] = verb->add_option("--beta", args->beta, "Implicitness β (default 0.5; 0 = explicit)")
-                    ->check(CLI::NonNegativeNumber);
-  g["--preset"] = verb->add_option("--preset", args->preset,
-                                   "paper: the paper's scheme exactly (eq. 9 H, Voronoi areas, plain steps, uniform "
-                                   "re-triangulation, no volume restoration); default: sdflow's. Other flags override it")
-                      ->check(CLI::IsMember({"paper", "default"}));
-  g["--curvature"] =
-      verb->add_option("--curvature", args->curvature,
-                       "Mean curvature: cotangent (H = ½ N·ΔX, default), normal_integral (eq. 9, the paper's) or "
-                       "normal_integral_angle_sum")
-          ->check(CLI::IsMember({"cotangent", "normal_integral", "normal_integral_angle_sum"}));
-  g["--mass"] = verb->add_option("--mass", args->mass,
-                                 "Vertex areas of the Laplacian: voronoi (eq. 10, default) or volume_gradient")
-                     ->check(CLI::IsMember({"voronoi", "volume_gradient"}));
-  g["--extrapolate"] = verb->add_flag("--extrapolate", args->extrapolate,
-                                      "Richardson-extrapolate each step: second order in τ, three solves a step");
-  g["--tolerance"] = verb->add_option("--tolerance", args->tolerance,
-                                      "Adaptive τ with a bound on the extrapolated step's local error estimate, "
-                                      "relative to the local edge length (implies --extrapolate)")
-                         ->check(CLI::PositiveNumber);
-  g["--edges-per-radius"] =
-      verb->add_option("--edges-per-radius", args->edges_per_radius,
-                       "Re-triangulation: edges per radius of curvature where finer than ℓ (default 4; 0: uniform ℓ)")
-          ->check(CLI::NonNegativeNumber);
-  g["--solver"] = verb->add_option("--solver", args->solver, "Linear solver: cholmod (default) or qr (paper's, slow)")
-                      ->check(CLI::IsMember({"cholmod", "qr"}));
-  g["--snapshot-every"] = verb->add_option("--snapshot-every", args->snapshot_every,
-                                           "Snapshot every K steps (0: first and last only; default 10)")
-                              ->check(CLI::NonNegativeNumber);
-  g["--checkpoint-every"] = verb->add_option("--checkpoint-every", args->checkpoint_every,
-                                             "Checkpoint every K steps (default 10)")
-                                ->check(CLI::PositiveNumber);
-  g["--conserve-volume"] = verb->add_flag("--conserve-volume", args->conserve_volume,
-                                          "Restore each closed component's volume after every step");
-  g["--fixed-boundary"] = verb->add_flag("--fixed-boundary", args->fixed_boundary, "Hold boundary vertices in place");
-  g["--retriangulate"] = verb->add_flag(
-      "--retriangulate", args->retriangulate,
-      "Re-triangulate between steps when the surface intersects itself or its triangles degrade (paper §3.2.1)");
-  g["--edge-length"] = verb->add_option("--edge-length", args->edge_length,
-                                        "Target edge length of the re-triangulation (default: the initial mean)")
-                           ->check(CLI::PositiveNumber);
-  g["--resume"] = verb->add_option("--resume", args->resume, "Continue the run in DIR from its checkpoint")
-                      ->check(CLI::ExistingDirectory);
+  args->resume_option = verb->add_option("--resume", args->resume, "Continue the run in DIR from its checkpoint")
+                            ->check(CLI::ExistingDirectory);
   verb->add_flag("--quiet", args->quiet, "No progress output");
   verb->add_flag("--force", args->force, "Skip the plausibility limits (steps, size of the re-triangulated surface)");
-  verb->callback([args] { run(*args); });
+  verb->add_flag("--help-scenario", args->help_scenario,
+                 "Print the table of scenario keys and their flags (markdown, as in README) and exit");
+  add_schema_flags(*verb, *args);
+  verb->callback([args] {
+    if (args->help_scenario) {
+      std::cout << parameter_table_markdown();
+      return;
+    }
+    run(*args);
+  });
 }
 
 } // namespace sdflow::cli

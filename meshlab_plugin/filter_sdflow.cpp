@@ -36,43 +36,46 @@ QStringList choices(const std::vector<std::string>& names)
   return list;
 }
 
-//! The indices of `names` with each name, for messages: "0 (a), 1 (b) or 2 (c)".
-std::string numbered(const std::vector<std::string>& names)
+//! The parameters of "Surface diffusion N steps" (toolbox_bridge.h derives them from sdflow's
+//! schema of run parameters), as MeshLab's.
+void add_diffusion_parameters(RichParameterList& parameters, double mean_edge_length)
 {
-  std::string list;
-  for (std::size_t i = 0; i < names.size(); ++i)
-    list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + std::to_string(i) + " (" + names[i] + ")";
-  return list;
-}
-
-//! The name the enum parameter `parameter` selects among `names`; throws InvalidParameter on another
-//! index (meshlabserver passes a script's index unchecked).
-std::string chosen_name(const RichParameterList& parameters, const QString& parameter,
-                        const std::vector<std::string>& names)
-{
-  const int index = parameters.getEnum(parameter);
-  if (index < 0 || index >= static_cast<int>(names.size()))
-    throw sdflow::InvalidParameter(parameter.toStdString() + " must be " + numbered(names) + ", got " +
-                                   std::to_string(index));
-  return names[index];
+  using Kind = sdflow::meshlab::DialogParameter::Kind;
+  for (const sdflow::meshlab::DialogParameter& d : sdflow::meshlab::diffusion_parameters(mean_edge_length)) {
+    const QString name = QString::fromStdString(d.name), label = QString::fromStdString(d.label),
+                  help = QString::fromStdString(d.help);
+    switch (d.kind) {
+    case Kind::integer:
+      parameters.addParam(RichInt(name, static_cast<int>(d.number), label, help));
+      break;
+    case Kind::real:
+      parameters.addParam(RichFloat(name, static_cast<float>(d.number), label, help));
+      break;
+    case Kind::boolean:
+      parameters.addParam(RichBool(name, d.flag, label, help));
+      break;
+    case Kind::choice:
+      parameters.addParam(RichEnum(name, d.choice, choices(d.choices), label, help));
+      break;
+    }
+  }
 }
 
 sdflow::meshlab::DiffusionSettings diffusion_settings(const RichParameterList& parameters)
 {
-  using sdflow::meshlab::intended_double;
-  sdflow::meshlab::DiffusionSettings s;
-  s.steps = parameters.getInt("Steps");
-  s.automatic_tau = parameters.getBool("AutomaticTau");
-  s.tau = intended_double(parameters.getFloat("Tau"));
-  s.beta = intended_double(parameters.getFloat("Beta"));
-  s.conserve_volume = parameters.getBool("ConserveVolume");
-  s.fixed_boundary = parameters.getBool("FixedBoundary");
-  s.retriangulate = parameters.getBool("Retriangulate");
-  s.edge_length = intended_double(parameters.getFloat("EdgeLength"));
-  s.curvature = chosen_name(parameters, "Curvature", sdflow::meshlab::curvature_names());
-  s.mass = chosen_name(parameters, "Mass", sdflow::meshlab::mass_names());
-  s.extrapolate = parameters.getBool("Extrapolate");
-  return s;
+  using Kind = sdflow::meshlab::DialogParameter::Kind;
+  sdflow::meshlab::DiffusionSettings settings;
+  for (const sdflow::meshlab::DialogParameter& d : sdflow::meshlab::diffusion_parameters(0)) {
+    const QString name = QString::fromStdString(d.name);
+    sdflow::meshlab::DialogValue& value = settings[d.name];
+    switch (d.kind) {
+    case Kind::integer: value.number = parameters.getInt(name); break;
+    case Kind::real: value.number = sdflow::meshlab::intended_double(parameters.getFloat(name)); break;
+    case Kind::boolean: value.flag = parameters.getBool(name); break;
+    case Kind::choice: value.choice = parameters.getEnum(name); break;
+    }
+  }
+  return settings;
 }
 
 sdflow::meshlab::RetriangulationSettings retriangulation_settings(const RichParameterList& parameters)
@@ -180,56 +183,9 @@ void FilterSdflowPlugin::initParameterSet(QAction* action, MeshModel& model, Ric
 {
   const double mean_edge_length = sdflow::meshlab::mean_edge_length(sdflow::meshlab::to_surface(model.cm));
   switch (ID(action)) {
-  case FP_SURFACE_DIFFUSION: {
-    const double natural_tau = sdflow::meshlab::natural_time_step(mean_edge_length);
-    parameters.addParam(RichInt("Steps", 10, "Steps",
-                                "Number of time steps to take. Each accepted step advances the time by its "
-                                "time step τ."));
-    parameters.addParam(RichBool("AutomaticTau", true, "Automatic time step",
-                                 "On: τ is chosen for each step, as sdflow's adaptive time step does. It starts "
-                                 "from a safe estimate, grows while the surface evolves calmly, and a step is "
-                                 "retried with a smaller τ if a vertex would move too far for its edges, a "
-                                 "triangle would flip, or a volume would drift.<br>Off: every step uses the time "
-                                 "step τ below."));
-    parameters.addParam(RichFloat("Tau", static_cast<float>(natural_tau), "Time step τ",
-                                  "The constant time step, used only when the automatic time step is off (> 0). "
-                                  "Surface diffusion is a fourth-order flow: stable steps scale like h⁴ for edge "
-                                  "length h. The default is h⁴ for this mesh's mean edge length."));
-    parameters.addParam(RichFloat("Beta", 0.5f, "Implicitness β",
-                                  "Weight of the implicit part of the scheme (I + τβΔ²) w = ΔH: 0.5 is the "
-                                  "paper's stable choice, 0 the explicit scheme (which needs much smaller τ)."));
-    parameters.addParam(RichBool("ConserveVolume", false, "Conserve volume exactly",
-                                 "After each step, move every closed component along its normals by one uniform "
-                                 "distance that restores its enclosed volume. The flow conserves volume in theory; "
-                                 "this removes the small drift of the discrete scheme."));
-    parameters.addParam(RichBool("FixedBoundary", false, "Fixed boundary",
-                                 "Hold the boundary vertices of open surfaces in place. Off: boundary vertices move "
-                                 "like interior ones, with zero mean curvature there."));
-    parameters.addParam(RichBool("Retriangulate", false, "Re-triangulate",
-                                 "Re-triangulate between steps when the surface intersects itself (a pinch-off, a "
-                                 "hole closing, bodies touching) or its triangles degrade (an angle below 15°, an "
-                                 "edge outside [ℓ/2, 2ℓ]), by the pipeline of <i>Surface diffusion: "
-                                 "re-triangulate</i>. The number of vertices then changes."));
-    parameters.addParam(RichFloat("EdgeLength", static_cast<float>(mean_edge_length),
-                                  "Re-triangulation edge length ℓ",
-                                  "Target edge length of the re-triangulation, used only when it is on (≥ 0; 0: "
-                                  "the mesh's mean edge length at the start). The default is this mesh's mean "
-                                  "edge length."));
-    parameters.addParam(RichEnum("Curvature", 0, choices(sdflow::meshlab::curvature_names()), "Mean curvature H",
-                                 "How H is computed: cotangent takes H = ½ N·ΔX (default: it converges to the exact "
-                                 "flow on any smooth surface); normal_integral is the paper's eq. (9), the integral "
-                                 "of normal curvatures divided by 2π, which does not converge off spheres; "
-                                 "normal_integral_angle_sum divides by the vertex's angle sum instead. The result's "
-                                 "quality holds this H."));
-    parameters.addParam(RichEnum("Mass", 0, choices(sdflow::meshlab::mass_names()), "Vertex areas",
-                                 "The vertex areas M of the Laplacian Δ = M⁻¹L: voronoi is eq. (10)'s mixed Voronoi "
-                                 "areas (the paper's, default); volume_gradient is the volume a vertex sweeps per "
-                                 "unit normal motion, which conserves volume to first order in τ."));
-    parameters.addParam(RichBool("Extrapolate", false, "Extrapolated steps",
-                                 "Richardson-extrapolate each step from one full and two half steps: second order in "
-                                 "τ instead of first, at three solves a step. Off: the paper's scheme."));
+  case FP_SURFACE_DIFFUSION:
+    add_diffusion_parameters(parameters, mean_edge_length);
     break;
-  }
   case FP_RETRIANGULATE:
     parameters.addParam(RichFloat("EdgeLength", static_cast<float>(mean_edge_length), "Target edge length ℓ",
                                   "Edge length the surface is remeshed to (≥ 0; 0: the mesh's mean edge length). "

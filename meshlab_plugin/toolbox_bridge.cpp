@@ -1,6 +1,7 @@
 #include "toolbox_bridge.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/flow/parameter_schema.h"
 #include "sdflow/flow/parameters.h"
 #include "sdflow/flow/scheme.h"
 #include "sdflow/flow/surface_diffusion.h"
@@ -14,7 +15,9 @@
 #include <spdlog/sinks/base_sink.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <mutex>
 
 namespace sdflow::meshlab {
@@ -121,45 +124,123 @@ double mean_edge_length(const Surface& input)
 
 double natural_time_step(const double mean_edge_length) { return std::pow(mean_edge_length, 4); }
 
-std::vector<std::string> curvature_names()
+std::vector<DialogParameter> diffusion_parameters(const double mean_edge_length)
 {
-  return {curvature_name({.method = CurvatureMethod::cotangent}), curvature_name({}),
-          curvature_name({.normalisation = AngleNormalisation::angle_sum})};
+  using Kind = DialogParameter::Kind;
+  using Default = MeshlabParameter::Default;
+  std::vector<DialogParameter> list;
+  for (const ParameterEntry& e : parameter_schema()) {
+    const MeshlabParameter& m = e.meshlab;
+    if (m.name.empty())
+      continue;
+    DialogParameter d{.name = m.name, .label = m.label, .help = m.help.empty() ? e.help : m.help};
+    const ParameterValue value = m.value ? *m.value : e.get(RunParameters{});
+    if (m.boolean_choices) {
+      d.kind = Kind::boolean;
+      d.flag = std::get<std::string>(value) == m.boolean_choices->second;
+    } else if (e.type == ParameterType::integer) {
+      d.kind = Kind::integer;
+      d.number = static_cast<double>(std::get<long>(value));
+    } else if (e.type == ParameterType::real) {
+      d.kind = Kind::real;
+      d.number = m.source == Default::mean_edge_length    ? mean_edge_length
+                 : m.source == Default::natural_time_step ? natural_time_step(mean_edge_length)
+                                                           : std::get<double>(value);
+    } else if (e.type == ParameterType::boolean) {
+      d.kind = Kind::boolean;
+      d.flag = std::get<bool>(value);
+    } else if (e.type == ParameterType::choice) {
+      d.kind = Kind::choice;
+      d.choices = e.choices;
+      d.choice = static_cast<int>(std::find(e.choices.begin(), e.choices.end(), std::get<std::string>(value)) -
+                                  e.choices.begin());
+    } else {
+      throw std::logic_error("the dialog has no parameter of type " + type_name(e.type) + " (" + e.key + ")");
+    }
+    list.push_back(std::move(d));
+  }
+  return list;
 }
 
-std::vector<std::string> mass_names()
+namespace {
+
+//! "0 (a), 1 (b) or 2 (c)", for messages about an index.
+std::string numbered(const std::vector<std::string>& names)
 {
-  return {mass_name(VertexMass::voronoi), mass_name(VertexMass::volume_gradient)};
+  std::string list;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + std::to_string(i) + " (" + names[i] + ")";
+  return list;
 }
+
+//! The value of `e` the dialog's `value` stands for.
+ParameterValue dialog_value(const ParameterEntry& e, const DialogValue& value)
+{
+  const MeshlabParameter& m = e.meshlab;
+  if (m.boolean_choices)
+    return value.flag ? m.boolean_choices->second : m.boolean_choices->first;
+  switch (e.type) {
+  case ParameterType::integer: return static_cast<long>(std::llround(value.number));
+  case ParameterType::real: return value.number;
+  case ParameterType::boolean: return value.flag;
+  case ParameterType::choice:
+    if (value.choice < 0 || value.choice >= static_cast<int>(e.choices.size()))
+      throw InvalidParameter(fmt::format("{} must be {}, got {}", m.name, numbered(e.choices), value.choice));
+    return e.choices[value.choice];
+  default: break;
+  }
+  throw std::logic_error("the dialog has no parameter of type " + type_name(e.type));
+}
+
+//! The run the dialog's settings describe: sdflow's defaults, then each setting as its scenario key.
+RunParameters run_parameters(const DiffusionSettings& settings)
+{
+  std::vector<const ParameterEntry*> given;
+  for (const auto& [name, _] : settings) {
+    const ParameterEntry* e = find_meshlab_parameter(name);
+    if (!e)
+      throw InvalidParameter(fmt::format("surface diffusion has no parameter {}", name));
+    given.push_back(e);
+  }
+  RunParameters p;
+  for (const auto order : {ParameterEntry::Order::first, ParameterEntry::Order::normal, ParameterEntry::Order::last})
+    for (const ParameterEntry* e : given)
+      if (e->order == order) {
+        e->set(p, dialog_value(*e, settings.at(e->meshlab.name)));
+        for (const auto& implication : e->implies)
+          if (!implication.flag_only)
+            find_parameter(implication.key)->set(p, implication.value);
+      }
+  for (const ParameterEntry* e : given) {
+    if (e->in_use && !e->in_use(p))
+      continue;
+    const ParameterRange& range = e->meshlab.range.text().empty() ? e->range : e->meshlab.range;
+    const ParameterValue value = e->get(p);
+    const double number = std::holds_alternative<long>(value) ? static_cast<double>(std::get<long>(value))
+                          : std::holds_alternative<double>(value) ? std::get<double>(value)
+                                                                  : 0.0;
+    if ((std::holds_alternative<long>(value) || std::holds_alternative<double>(value)) && !range.contains(number))
+      throw InvalidParameter(fmt::format("{} ({}) must be {}, got {}", e->meshlab.label, e->meshlab.name, range.text(),
+                                         toml_text(value)));
+  }
+  return p;
+}
+
+} // namespace
 
 ShadedSurface surface_diffusion(const Surface& input, const std::string& name, const DiffusionSettings& settings,
                                 const Reporter& reporter)
 {
   const LoggerScope scope(reporter);
-  if (settings.steps < 1)
-    throw InvalidParameter("steps must be at least 1, got " + std::to_string(settings.steps));
-  const Mesh initial = checked_mesh(input, name);
-
   // The same flow as `sdflow run` with the same options, in memory.
-  RunParameters p;
-  p.steps = settings.steps;
-  p.time_step.mode = settings.automatic_tau ? TimeStepMode::adaptive : TimeStepMode::constant;
-  p.time_step.tau = settings.automatic_tau ? 0.0 : settings.tau;
-  p.scheme.beta = settings.beta;
-  p.scheme.boundary = settings.fixed_boundary ? BoundaryMotion::fixed : BoundaryMotion::paper;
-  p.scheme.curvature = curvature_options(settings.curvature);
-  p.scheme.mass = vertex_mass(settings.mass);
-  p.scheme.extrapolate = settings.extrapolate;
-  p.conserve_volume = settings.conserve_volume;
-  p.retriangulation.enabled = settings.retriangulate;
-  p.retriangulation.pipeline.target_edge_length = settings.edge_length;
+  const RunParameters p = run_parameters(settings);
+  const Mesh initial = checked_mesh(input, name);
   SurfaceDiffusion flow(initial, p);
   while (!flow.finished()) {
     const StepRecord record = flow.step();
     if (reporter.progress)
-      reporter.progress(static_cast<int>(100 * record.step / settings.steps),
-                        fmt::format("surface diffusion: step {} of {}, τ = {:.3g}", record.step, settings.steps,
-                                    record.tau));
+      reporter.progress(static_cast<int>(100 * record.step / p.steps),
+                        fmt::format("surface diffusion: step {} of {}, τ = {:.3g}", record.step, p.steps, record.tau));
   }
   logger().info("surface diffusion: {} steps to t = {:.6g} ({} rejected trial steps)", flow.steps(), flow.time(),
                 flow.rejected_trials());

@@ -11,6 +11,7 @@
 #include "surface.h"
 
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -24,26 +25,35 @@ struct Reporter {
   std::function<void(int percent, const std::string&)> progress;
 };
 
-//! Settings of "Surface diffusion N steps"; each maps to one option of `sdflow run`.
-struct DiffusionSettings {
-  long steps = 10;                //!< accepted time steps to take (≥ 1)
-  bool automatic_tau = true;      //!< adaptive τ (time_step = "adaptive"), else constant `tau`
-  double tau = 0;                 //!< the constant τ when `automatic_tau` is off (> 0)
-  double beta = 0.5;              //!< implicitness β of eq. (6); 1/2 is the paper's choice
-  bool conserve_volume = false;   //!< restore each closed component's volume after every step
-  bool fixed_boundary = false;    //!< hold boundary vertices in place
-  bool retriangulate = false;     //!< re-triangulate between steps when needed (`--retriangulate`)
-  double edge_length = 0;         //!< ℓ of the re-triangulation; 0: the initial mean edge length
-  std::string curvature = "cotangent"; //!< H, one of curvature_names(); the flow's default, not eq. (9)
-  std::string mass = "voronoi";   //!< vertex areas of Δ = M⁻¹L, one of mass_names(); eq. (10) by default
-  bool extrapolate = false;       //!< Richardson-extrapolated steps: second order in τ, three solves a step
+//! One parameter of "Surface diffusion N steps", as the dialog and .mlx scripts show it. The list
+//! is derived from the run parameters' schema (sdflow/flow/parameter_schema.h): each is one key of
+//! a scenario and one flag of `sdflow run`.
+struct DialogParameter {
+  enum class Kind { integer, real, boolean, choice };
+  Kind kind = Kind::real;
+  std::string name;                 //!< the .mlx name: "EdgeLength"
+  std::string label;                //!< "Re-triangulation edge length ℓ"
+  std::string help;                 //!< the tooltip
+  double number = 0;                //!< default of an integer or real
+  bool flag = false;                //!< default of a boolean
+  int choice = 0;                   //!< default of a choice: an index into `choices`
+  std::vector<std::string> choices; //!< the names of a choice (`sdflow run --curvature` takes them)
 };
 
-//! The names `DiffusionSettings::curvature` takes (`sdflow run --curvature`), the default first.
-std::vector<std::string> curvature_names();
+//! The parameters of "Surface diffusion N steps", with defaults for a mesh of this mean edge length
+//! (the re-triangulation's ℓ, and h⁴ for the constant τ).
+std::vector<DialogParameter> diffusion_parameters(double mean_edge_length);
 
-//! The names `DiffusionSettings::mass` takes (`sdflow run --mass`), the default first.
-std::vector<std::string> mass_names();
+//! A value the dialog gives a parameter, by its kind: `number` (integer, real), `flag` (boolean) or
+//! `choice` (an index; meshlabserver passes a script's index unchecked).
+struct DialogValue {
+  double number = 0;
+  bool flag = false;
+  int choice = 0;
+};
+
+//! Settings of "Surface diffusion N steps": its parameters' values by name (diffusion_parameters).
+using DiffusionSettings = std::map<std::string, DialogValue>;
 
 //! Settings of "Surface diffusion: re-triangulate"; each maps to one option of `sdflow retriangulate`.
 struct RetriangulationSettings {
@@ -64,7 +74,8 @@ double natural_time_step(double mean_edge_length);
 
 //! Validate and orient `input` exactly as `sdflow` validates a mesh file (`name`, the mesh's file
 //! or label, names it in messages and in the run's recorded parameters), run the surface diffusion
-//! flow for `settings.steps` steps, and return the final surface with its normals and mean
+//! flow for `Steps` steps with the other settings (throws InvalidParameter naming the dialog's
+//! parameter on a value out of its range or an unknown name), and return the final surface with its normals and mean
 //! curvature (the H the run steps with). All connected components evolve together, each stepped on
 //! its own (Appendix A of the paper); with `settings.retriangulate` the run re-triangulates as
 //! `sdflow run --retriangulate` does.

@@ -2,6 +2,7 @@
 //! does to a MeshLab document (failures leave the mesh alone and say why in the log).
 
 #include "filter_sdflow.h"
+#include "toolbox_bridge.h"
 
 #include <vcg/complex/algorithms/clean.h>
 #include <vcg/complex/algorithms/create/platonic.h>
@@ -206,6 +207,42 @@ TEST_F(FilterTest, scheme_options_offer_the_command_line_names_and_default_to_th
   EXPECT_EQ(list.getEnum("Curvature"), 0);
   EXPECT_EQ(list.getEnum("Mass"), 0);
   EXPECT_FALSE(list.getBool("Extrapolate"));
+}
+
+TEST_F(FilterTest, diffusion_parameters_are_the_run_schemas_and_each_is_taken)
+{
+  using Kind = sdflow::meshlab::DialogParameter::Kind;
+  add_sphere();
+  const RichParameterList list = parameters(2);
+  const std::vector<sdflow::meshlab::DialogParameter> expected = sdflow::meshlab::diffusion_parameters(1.0);
+  ASSERT_EQ(list.size(), expected.size());
+  // The .mlx names are an interface (users' filter scripts name every parameter).
+  std::vector<std::string> names;
+  for (const sdflow::meshlab::DialogParameter& d : expected)
+    names.push_back(d.name);
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"AutomaticTau", "Beta", "ConserveVolume", "Curvature", "EdgeLength",
+                                             "Extrapolate", "FixedBoundary", "Mass", "Retriangulate", "Steps",
+                                             "Tau"}));
+  for (const sdflow::meshlab::DialogParameter& d : expected) {
+    SCOPED_TRACE(d.name);
+    const QString name = QString::fromStdString(d.name);
+    ASSERT_TRUE(list.hasParameter(name));
+    const RichParameter& p = list.getParameterByName(name);
+    EXPECT_EQ(p.fieldDescription().toStdString(), d.label);
+    EXPECT_FALSE(p.toolTip().isEmpty());
+    // Another value than the default runs: the bridge maps every parameter onto the run.
+    RichParameterList changed = parameters(2);
+    switch (d.kind) {
+    case Kind::integer: changed.setValue(name, IntValue(static_cast<int>(d.number) + 1)); break;
+    case Kind::real: changed.setValue(name, FloatValue(changed.getFloat(name) * 0.5f)); break;
+    case Kind::boolean: changed.setValue(name, BoolValue(!d.flag)); break;
+    case Kind::choice: changed.setValue(name, EnumValue(static_cast<int>(d.choices.size()) - 1)); break;
+    }
+    if (d.name == "Tau") // used only with a constant τ
+      changed.setValue("AutomaticTau", BoolValue(false));
+    EXPECT_TRUE(plugin.applyFilter(action(), document, changed, nullptr)) << log_text().toStdString();
+  }
 }
 
 TEST_F(FilterTest, each_scheme_option_changes_the_flow)

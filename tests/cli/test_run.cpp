@@ -1,6 +1,7 @@
 //! `sdflow run` and `sdflow plot` end to end: a run and its figures, exit codes, and a run killed
 //! with SIGKILL that leaves complete files and resumes to the uninterrupted result bit for bit.
 #include "sdflow/flow/checkpoint.h"
+#include "sdflow/flow/parameter_schema.h"
 #include "sdflow/flow/simulation.h"
 #include "sdflow/io.h"
 #include "io/temp_dir.h"
@@ -151,6 +152,67 @@ TEST(RunCommand, killed_run_leaves_complete_files_and_resumes_bit_for_bit)
   const auto resumed = analytic::run_sdflow("run --resume " + (dir / "killed").string() + " --quiet");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
   EXPECT_EQ(test::read_file(dir / "killed/metrics.csv"), test::read_file(dir / "whole/metrics.csv"));
+}
+
+TEST(RunCommand, help_lists_every_flag_of_the_schema_and_help_scenario_prints_its_table)
+{
+  const auto help = analytic::run_sdflow("run --help");
+  ASSERT_EQ(help.exit_code, 0) << help.output;
+  for (const ParameterEntry& e : parameter_schema()) {
+    SCOPED_TRACE(e.key);
+    std::vector<std::string> flags = {e.flag};
+    flags.insert(flags.end(), e.flag_aliases.begin(), e.flag_aliases.end());
+    for (const auto& shorthand : e.shorthands)
+      flags.push_back(shorthand.flag);
+    if (e.type == ParameterType::boolean)
+      flags.push_back("--no-" + e.flag.substr(2));
+    for (const std::string& flag : flags)
+      EXPECT_NE(help.output.find(flag), std::string::npos) << flag;
+    EXPECT_NE(help.output.find("scenario key " + e.key + "]"), std::string::npos);
+  }
+  const auto table = analytic::run_sdflow("run --help-scenario");
+  ASSERT_EQ(table.exit_code, 0) << table.output;
+  EXPECT_EQ(table.output, parameter_table_markdown());
+}
+
+TEST(RunCommand, flags_set_their_keys_older_flags_still_work_and_resume_changes_only_its_own)
+{
+  test::TempDir dir;
+  write_mesh(analytic::ellipsoid(2, 5, 4, 3), dir / "e.ply", {.encoding = Encoding::binary});
+  const std::string input = " --input " + (dir / "e.ply").string() + " --quiet";
+  const auto r = analytic::run_sdflow("run --out " + (dir / "a").string() + input +
+                                      " --t-end 100 --steps 3 --tau-growth 1.5 --min-angle 12 --no-restore-volume"
+                                      " --reference-centre 1,2,3 --retriangulate-every 2 --checkpoint-every 2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  RunParameters p;
+  read_run_parameters(dir / "a/run.toml", p);
+  EXPECT_EQ(p.end_time, 100);
+  EXPECT_EQ(p.time_step.adaptive.growth, 1.5);
+  EXPECT_EQ(p.retriangulation.min_angle_deg, 12);
+  EXPECT_FALSE(p.retriangulation.restore_volume);
+  EXPECT_EQ(p.reference_centre, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(p.retriangulation.every, 2);
+
+  const auto out_of_range = analytic::run_sdflow("run --out " + (dir / "b").string() + input + " --steps 3 --min-angle 75");
+  EXPECT_EQ(out_of_range.exit_code, 2) << out_of_range.output;
+  EXPECT_NE(out_of_range.output.find("retriangulation.min_angle must be in [0, 60)"), std::string::npos)
+      << out_of_range.output;
+
+  const auto changed = analytic::run_sdflow("run --resume " + (dir / "a").string() + " --quiet --tau 0.1 --extrapolate");
+  EXPECT_EQ(changed.exit_code, 2) << changed.output;
+  EXPECT_NE(changed.output.find("not --tau, --extrapolate"), std::string::npos) << changed.output;
+  EXPECT_NE(changed.output.find("--steps"), std::string::npos) << changed.output;
+
+  // A run.toml of an earlier version (t_end, an infinite limit written as 1e300) resumes.
+  std::string toml = test::read_file(dir / "a/run.toml");
+  toml.replace(toml.find("end_time ="), 8, "t_end");
+  toml.replace(toml.find("max_tau = inf"), 13, "max_tau = 1e+300");
+  test::write_file(dir / "a/run.toml", toml);
+  const auto resumed = analytic::run_sdflow("run --resume " + (dir / "a").string() + " --quiet --steps 5");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_EQ(count_lines(dir / "a/metrics.csv"), 7) << "header + rows 0..5";
+  EXPECT_NE(test::read_file(dir / "a/run.toml").find("\nend_time = 100\n"), std::string::npos)
+      << "rewritten under the new name";
 }
 
 } // namespace

@@ -1,0 +1,168 @@
+#pragma once
+//! \file parameter_schema.h
+//! \brief The one table of a run's parameters: for each, its scenario key, its `sdflow run` flag,
+//! its MeshLab parameter, type, range, help, whether `--resume` may change it, and how to reach its
+//! field of RunParameters.
+//!
+//! Everything that names or checks a run parameter is derived from this table: the scenario and
+//! run.toml reader and the run.toml writer (parameters.cpp), the range checks of
+//! validate_flow_parameters, the flags of `sdflow run` and its `--resume` rules (cli/verb_run.cpp),
+//! the parameters of the MeshLab filter "Surface diffusion N steps" and their mapping onto a run
+//! (meshlab_plugin/toolbox_bridge.cpp), and README's table of scenario keys
+//! (`sdflow run --help-scenario`, checked by the test `ParameterSchema.readme_table_is_the_schemas`).
+//! A new run option is one field of RunParameters and one entry here.
+//!
+//! **Names.** One name per concept. The scenario key is `name` (or `section.name` inside a table);
+//! the flag is `--name` with dashes, or `--section-name` where the name alone would not say what it
+//! is (`--retriangulate-every`, `--reference-radius`, `--tau-growth`); the MeshLab parameter is the
+//! flag in CamelCase (`--edge-length`, `EdgeLength`). Defaults are those of a default-constructed
+//! RunParameters, never typed twice. Where a library struct's field has another name
+//! (`RetriangulationOptions::target_edge_length` for `retriangulation.edge_length`,
+//! `min_angle_deg` for `retriangulation.min_angle`), the entry's accessor is the one place that
+//! maps them. Renamed keys and flags stay accepted as aliases (`t_end` and `--t-end` for
+//! `end_time`); run.toml is written under the canonical names. Kept as they were, because
+//! scripts and .mlx files use them: `--retriangulate` (`retriangulation.enabled`), `--tolerance`
+//! (`adaptive.tolerance`), `--adaptive` (time_step = "adaptive") and MeshLab's `AutomaticTau`.
+
+#include "sdflow/flow/parameters.h"
+
+#include <Eigen/Core>
+
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace sdflow {
+
+//! What a parameter holds.
+enum class ParameterType {
+  integer,  //!< a whole number (long)
+  real,     //!< a double
+  boolean,  //!< true / false; a flag `--name` (and `--no-name`)
+  choice,   //!< one of a few names
+  path,     //!< a file or folder; relative paths in a scenario are relative to the scenario's folder
+  point,    //!< three reals, [x, y, z] (flag: x,y,z)
+  schedule, //!< a τ table: a file (CSV or TOML) or, in a scenario, an inline [[first, last, τ], ...]
+};
+
+//! "integer", "real", "boolean", "choice", "path", "point", "schedule".
+std::string type_name(ParameterType type);
+
+//! The allowed values of a number: min and max, each end open or closed; infinite values only
+//! where `infinite_allowed` (a limit that may be "none").
+struct ParameterRange {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_open = false;
+  bool max_open = false;
+  bool infinite_allowed = false;
+
+  bool contains(double value) const;
+  //! "≥ 0", "> 0", "in [0, 60]", "in (0, 1]"; "" when any number is allowed.
+  std::string text() const;
+};
+
+//! A τ table and the file it was read from (empty: given inline).
+struct ScheduleSetting {
+  std::filesystem::path file;
+  std::vector<ScheduleEntry> entries;
+  bool operator==(const ScheduleSetting& other) const;
+};
+
+//! One parameter's value: the alternative follows the type (integer: long, real: double, boolean:
+//! bool, choice: std::string, path: std::filesystem::path, point: Eigen::Vector3d, schedule:
+//! ScheduleSetting).
+using ParameterValue =
+    std::variant<long, double, bool, std::string, std::filesystem::path, Eigen::Vector3d, ScheduleSetting>;
+
+//! How the MeshLab filter "Surface diffusion N steps" offers a parameter.
+struct MeshlabParameter {
+  //! Where the dialog's default comes from.
+  enum class Default {
+    schema,            //!< the parameter's default (or `value` when set)
+    mean_edge_length,  //!< the mesh's mean edge length h
+    natural_time_step, //!< h⁴, the natural time scale of a fourth-order flow
+  };
+  std::string name;  //!< the .mlx name (stable: users' filter scripts use it); empty: not offered
+  std::string label; //!< the dialog's label
+  std::string help;  //!< the dialog's tooltip; empty: the entry's help
+  Default source = Default::schema;
+  std::optional<ParameterValue> value; //!< the dialog's own default, where it differs from a run's
+  //! A boolean in the dialog for a choice: the names it selects when off and on (AutomaticTau:
+  //! time_step = "constant" / "adaptive").
+  std::optional<std::pair<std::string, std::string>> boolean_choices;
+  ParameterRange range; //!< the dialog's own range, where narrower (Steps ≥ 1)
+};
+
+struct ParameterEntry {
+  std::string key;                        //!< scenario key, "section.name" inside a table
+  std::vector<std::string> key_aliases;   //!< older keys, still read
+  std::string flag;                       //!< `sdflow run` flag, "--name"
+  std::vector<std::string> flag_aliases;  //!< older flags, still accepted
+  ParameterType type = ParameterType::real;
+  std::vector<std::string> choices;       //!< the names of a choice
+  ParameterRange range;                   //!< of an integer or real
+  bool existing_file = false;             //!< a path or schedule file that must exist (checked by the flag)
+  std::string help;                       //!< one or two sentences: meaning, unit, what 0 means
+  bool resumable = false;                 //!< `sdflow run --resume` may change it
+  //! Applied before the other keys (the preset) or after them (the time-step mode, which a `tau`
+  //! or `schedule` key implies unless it is given).
+  enum class Order { first, normal, last } order = Order::normal;
+  std::function<ParameterValue(const RunParameters&)> get;
+  //! Sets the field; throws InvalidParameter on a choice that is not one.
+  std::function<void(RunParameters&, const ParameterValue&)> set;
+  //! Whether the parameter is in use, so its range is checked (the adaptive rule's only with
+  //! adaptive time steps); null: always.
+  std::function<bool(const RunParameters&)> in_use;
+  //! Whether run.toml records it; null: always.
+  std::function<bool(const RunParameters&)> written;
+  //! What giving the parameter sets besides: a `tau` the constant mode, a `schedule` the schedule
+  //! mode (a `time_step` given too wins); `flag_only`: only its flag (`--tolerance` turns on
+  //! extrapolated steps, a scenario's `adaptive.tolerance` does not).
+  struct Implication {
+    std::string key;
+    ParameterValue value;
+    bool flag_only = false;
+  };
+  std::vector<Implication> implies;
+  MeshlabParameter meshlab;
+  //! A flag that sets this parameter to one value: `--adaptive` for time_step = "adaptive".
+  struct Shorthand {
+    std::string flag, value, help;
+  };
+  std::vector<Shorthand> shorthands;
+
+  //! "retriangulation" for "retriangulation.edge_length", "" at the top level.
+  std::string section() const;
+  //! "edge_length" for "retriangulation.edge_length".
+  std::string name() const;
+  //! The default of a default-constructed RunParameters, as text ("0.5", "\"cotangent\"", "none").
+  std::string default_text() const;
+};
+
+//! The table, in the order of run.toml and of `sdflow run --help`.
+const std::vector<ParameterEntry>& parameter_schema();
+
+//! The entry whose key, or one of whose older keys, is `key`; null if none.
+const ParameterEntry* find_parameter(const std::string& key);
+
+//! The entry whose MeshLab name is `name`; null if none.
+const ParameterEntry* find_meshlab_parameter(const std::string& name);
+
+//! The known key closest to an unknown one, for "did you mean"; "" if none is close.
+std::string closest_parameter_key(const std::string& key);
+
+//! `value` as its type's text in TOML: 0.5, true, "cotangent", [1, 2, 3], [[1, 50, 0.01]].
+std::string toml_text(const ParameterValue& value);
+
+//! `value` in the entry's range, else InvalidParameter "KEY must be RANGE, got VALUE".
+void check_range(const ParameterEntry& entry, const ParameterValue& value);
+
+//! README's table of scenario keys (markdown): key, flag, type, default, range, `--resume`, meaning.
+std::string parameter_table_markdown();
+
+} // namespace sdflow
