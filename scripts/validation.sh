@@ -49,17 +49,17 @@ want() { [[ -z $only || $only == "$1" ]]; }
 if want torus; then
   for n in "${torus_vertices[@]}"; do
     for scheme in default paper; do
-      plan+=("torus_${n}_$scheme|shape torus --major 3 --minor 1.5 --vertices $n|--t-end 8 --stop-at-topology-change --preset $scheme")
+      plan+=("torus_${n}_$scheme|shape torus --major 3 --minor 1.5 --vertices $n|--end-time 8 --stop-at-topology-change --preset $scheme")
     done
   done
 fi
 if want torus; then # the whole run: R = 6, r = 3 to the end of the paper's Table 1, t = 559, is t = 34.9 here
-  plan+=("torus_15000_full|shape torus --major 3 --minor 1.5 --vertices 15000|--t-end 34.9375 --preset default")
+  plan+=("torus_15000_full|shape torus --major 3 --minor 1.5 --vertices 15000|--end-time 34.9375 --preset default")
 fi
 if want dumbbell; then
   for n in "${dumbbell_vertices[@]}"; do
     for scheme in default paper; do
-      plan+=("dumbbell_${n}_$scheme|shape dumbbell --vertices $n --edges-per-radius 4|--t-end 0.6 --stop-at-topology-change --preset $scheme")
+      plan+=("dumbbell_${n}_$scheme|shape dumbbell --vertices $n --edges-per-radius 4|--end-time 0.6 --stop-at-topology-change --preset $scheme")
     done
   done
 fi
@@ -69,9 +69,9 @@ if want capsules; then
     box=$(awk -v x="$ratio" 'BEGIN { printf "%g,-1.5,-1.5,%g,1.5,1.5", -x - 0.5, x + 0.5 }')
     expr="sqrt(max(abs(x)-$half,0)^2+y^2+z^2)-1"
     for h in "${capsule_edges[@]}"; do
-      plan+=("capsule_${ratio}_${h}_default|shape --expr $expr --box $box --edge-length $h|--t-end 50 --preset default")
+      plan+=("capsule_${ratio}_${h}_default|shape --expr $expr --box $box --edge-length $h|--end-time 50 --preset default")
     done
-    plan+=("capsule_${ratio}_${paper_capsule_edge}_paper|shape --expr $expr --box $box --edge-length $paper_capsule_edge|--t-end 50 --preset paper")
+    plan+=("capsule_${ratio}_${paper_capsule_edge}_paper|shape --expr $expr --box $box --edge-length $paper_capsule_edge|--end-time 50 --preset paper")
   done
 fi
 
