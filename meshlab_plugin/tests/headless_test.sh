@@ -19,6 +19,9 @@
 #       "Surface diffusion: re-triangulate" on MESH with a minimum component size no component
 #       reaches: meshlabserver must exit non-zero, its log must give the reason, and no output file
 #       may be written.
+#   headless_test.sh example PREFIX WORKDIR MESH
+#       meshlab_plugin/examples/run_headless.sh with the shipped surface_diffusion.mlx on MESH: the
+#       output must be written, differ from the input, and carry per-vertex normals and quality (H).
 #   headless_test.sh bad-choice PREFIX WORKDIR MESH
 #       "Surface diffusion N steps" on MESH with a mean curvature index past the last choice:
 #       meshlabserver must exit non-zero, its log must name the choices, and no output file may be
@@ -188,6 +191,19 @@ nothing-left)
   [[ ! -e "$work/out.ply" ]] || fail "an output file was written"
   echo "headless_test nothing-left: exit code $status, reason logged, no output written"
   ;;
+example)
+  mesh=$4
+  run_meshlabserver -i "$mesh" -o "$work/input.ply"
+  [[ $status -eq 0 && -s "$work/input.ply" ]] || fail "meshlabserver could not convert $mesh"
+  example=$(dirname "${BASH_SOURCE[0]}")/../examples
+  MESHLABSERVER="$prefix/bin/meshlabserver" timeout 240 "$example/run_headless.sh" "$work/input.ply" \
+    "$work/out.ply" > "$work/console.txt" 2>&1 || fail "run_headless.sh failed: $(cat "$work/console.txt")"
+  ! cmp -s "$work/input.ply" "$work/out.ply" || fail "the output is the input: the filter did not run"
+  for property in "property float nx" "property float quality"; do
+    grep -a -q -m 1 "^$property" "$work/out.ply" || fail "the output has no '$property' (-m vn vq)"
+  done
+  echo "headless_test example: the shipped script ran; normals and quality kept"
+  ;;
 bad-choice)
   mesh=$4
   write_diffusion_script "$work/diffusion.mlx" 3 true 0.001 0.5 false false false 0.1 3 0 false
@@ -199,6 +215,6 @@ bad-choice)
   echo "headless_test bad-choice: exit code $status, choices logged, no output written"
   ;;
 *)
-  fail "unknown case (nonmanifold, same-as-cli, retriangulate-same-as-cli, nothing-left, bad-choice)"
+  fail "unknown case (nonmanifold, same-as-cli, retriangulate-same-as-cli, nothing-left, example, bad-choice)"
   ;;
 esac
