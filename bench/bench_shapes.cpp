@@ -2,7 +2,7 @@
 //! its two stages (marching tetrahedra, remeshing), and the paper-resolution union shapes.
 //! Run: build/bench/bench_shapes --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 
-#include "sdflow/retri/remesh.h"
+#include "sdflow/remesh/remesh.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/marching_tetrahedra.h"
 #include "sdflow/shapes/mesher.h"

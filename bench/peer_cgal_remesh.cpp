@@ -12,8 +12,8 @@
 #include "cube_sphere.h"
 #include "support/analytic_meshes.h"
 
-#include "sdflow/retri/bvh.h"
-#include "sdflow/retri/remesh.h"
+#include "sdflow/spatial/bvh.h"
+#include "sdflow/remesh/remesh.h"
 #include "sdflow/shapes/mesher.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

@@ -9,7 +9,7 @@
 #include "sdflow/axisymmetric/evolution.h"
 #include "sdflow/axisymmetric/initial_curves.h"
 #include "sdflow/errors.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>

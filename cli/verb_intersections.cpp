@@ -5,8 +5,8 @@
 #include "verbs.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/io.h"
-#include "sdflow/retri/intersect.h"
+#include "sdflow/io/io.h"
+#include "sdflow/spatial/intersect.h"
 #include "sdflow/retri/remove_intersections.h"
 
 #include <fmt/format.h>

@@ -5,7 +5,7 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/geometry/topology.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 #include "sdflow/limits.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/expression.h"

@@ -3,5 +3,5 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
-  return sdflow::fuzz::read_and_validate(data, size, sdflow::io_detail::read_obj, sdflow::MeshFormat::obj, "fuzz.obj");
+  return sdflow::fuzz::read_and_validate(data, size, sdflow::detail::read_obj, sdflow::MeshFormat::obj, "fuzz.obj");
 }

@@ -3,5 +3,5 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
-  return sdflow::fuzz::read_and_validate(data, size, sdflow::io_detail::read_off, sdflow::MeshFormat::off, "fuzz.off");
+  return sdflow::fuzz::read_and_validate(data, size, sdflow::detail::read_off, sdflow::MeshFormat::off, "fuzz.off");
 }

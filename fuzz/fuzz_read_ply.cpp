@@ -3,5 +3,5 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
-  return sdflow::fuzz::read_and_validate(data, size, sdflow::io_detail::read_ply, sdflow::MeshFormat::ply, "fuzz.ply");
+  return sdflow::fuzz::read_and_validate(data, size, sdflow::detail::read_ply, sdflow::MeshFormat::ply, "fuzz.ply");
 }

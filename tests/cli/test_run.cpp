@@ -2,7 +2,7 @@
 //! with SIGKILL that leaves complete files and resumes to the uninterrupted result bit for bit.
 #include "sdflow/flow/checkpoint.h"
 #include "sdflow/flow/simulation.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 #include "io/temp_dir.h"
 #include "support/analytic_meshes.h"
 #include "support/run_command.h"

@@ -3,7 +3,7 @@
 //! stopped by SIGINT / SIGTERM, disk full, finished. Issue 13, defects 7, 10 and 11.
 #include "sdflow/flow/checkpoint.h"
 #include "sdflow/flow/simulation.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 #include "io/temp_dir.h"
 #include "support/analytic_meshes.h"
 #include "support/run_command.h"

@@ -3,7 +3,7 @@
 #include "sdflow/flow/checkpoint.h"
 #include "sdflow/flow/simulation.h"
 #include "sdflow/geometry/measures.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 #include "io/temp_dir.h"
 #include "support/analytic_meshes.h"
 

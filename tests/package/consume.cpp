@@ -6,7 +6,7 @@
 #include <sdflow/check/tetgen_volume.h>
 #include <sdflow/flow/scheme.h>
 #include <sdflow/geometry/measures.h>
-#include <sdflow/io.h>
+#include <sdflow/io/io.h>
 #include <sdflow/shapes/expression.h>
 #include <sdflow/shapes/mesher.h>
 

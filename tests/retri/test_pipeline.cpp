@@ -5,8 +5,8 @@
 #include "sdflow/retri/pipeline.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/mesher.h"
-#include "retri/mesh_checks.h"
-#include "retri/test_meshes.h"
+#include "support/mesh_checks.h"
+#include "support/test_meshes.h"
 #include "support/analytic_meshes.h"
 
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 #include "sdflow/check/tetgen_volume.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
-#include "sdflow/retri/intersect.h"
+#include "sdflow/spatial/intersect.h"
 #include "sdflow/retri/surface_union.h"
 #include "support/analytic_meshes.h"
 

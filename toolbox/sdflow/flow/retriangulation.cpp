@@ -3,8 +3,8 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/volume.h"
 #include "sdflow/geometry/measures.h"
-#include "sdflow/retri/intersect.h"
-#include "sdflow/retri/remesh.h"
+#include "sdflow/spatial/intersect.h"
+#include "sdflow/remesh/remesh.h"
 
 #include <fmt/format.h>
 

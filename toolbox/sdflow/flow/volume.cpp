@@ -3,7 +3,7 @@
 #include "sdflow/errors.h"
 #include "sdflow/geometry/normals.h"
 #include "sdflow/geometry/topology.h"
-#include "sdflow/retri/closest_point_grid.h"
+#include "sdflow/spatial/closest_point_grid.h"
 
 #include <fmt/format.h>
 

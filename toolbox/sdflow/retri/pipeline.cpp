@@ -5,11 +5,11 @@
 #include "sdflow/geometry/topology.h"
 #include "sdflow/log.h"
 #include "sdflow/retri/components.h"
-#include "sdflow/retri/intersect.h"
+#include "sdflow/spatial/intersect.h"
 #include "sdflow/retri/remove_intersections.h"
 #include "sdflow/retri/surface_union.h"
-#include "sdflow/soup.h"
-#include "sdflow/validate.h"
+#include "sdflow/io/soup.h"
+#include "sdflow/io/validate.h"
 
 #include <fmt/format.h>
 

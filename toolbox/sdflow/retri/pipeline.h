@@ -13,10 +13,10 @@
 //! on a surface without singularities they would only re-triangulate the same points.
 
 #include "sdflow/mesh.h"
-#include "sdflow/retri/holes.h"
-#include "sdflow/retri/point_normals.h"
-#include "sdflow/retri/reconstruct.h"
-#include "sdflow/retri/remesh.h"
+#include "sdflow/reconstruct/holes.h"
+#include "sdflow/reconstruct/point_normals.h"
+#include "sdflow/reconstruct/advancing_front.h"
+#include "sdflow/remesh/remesh.h"
 
 namespace sdflow {
 

@@ -2,8 +2,8 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/log.h"
-#include "sdflow/retri/bvh.h"
-#include "sdflow/retri/intersect.h"
+#include "sdflow/spatial/bvh.h"
+#include "sdflow/spatial/intersect.h"
 
 #include <fmt/format.h>
 

@@ -9,7 +9,7 @@
 //! the per-triangle minimum angle stays above 30°.
 
 #include "sdflow/mesh.h"
-#include "sdflow/retri/remesh.h"
+#include "sdflow/remesh/remesh.h"
 #include "sdflow/shapes/implicit.h"
 
 #include <array>
