@@ -44,7 +44,7 @@ TEST(SurfaceDiffusion, a_dumbbell_pinches_off_in_memory_exactly_as_its_recorded_
 {
   // The paper's dumbbell at half size (1000 vertices), to its pinch-off.
   const Mesh start =
-      mesh_implicit_surface(shapes::dumbbell({.radius = 3, .separation = 9}), {.edge_length = 0.5}).mesh;
+      mesh_implicit_surface(dumbbell_shape({.radius = 3, .separation = 9}), {.edge_length = 0.5}).mesh;
   RunParameters p;
   p.end_time = 1.0;
   p.stop_at_topology_change = true;
