@@ -3,8 +3,8 @@
 
 #include "verbs.h"
 
-#include "sdflow/log.h"
 #include "sdflow/io/point_cloud.h"
+#include "sdflow/log.h"
 #include "sdflow/reconstruct/point_normals.h"
 
 #include <cmath>

@@ -5,10 +5,10 @@
 
 #include "sdflow/geometry/topology.h"
 #include "sdflow/io/io.h"
-#include "sdflow/log.h"
 #include "sdflow/io/point_cloud.h"
-#include "sdflow/reconstruct/point_normals.h"
+#include "sdflow/log.h"
 #include "sdflow/reconstruct/advancing_front.h"
+#include "sdflow/reconstruct/point_normals.h"
 
 #include <cmath>
 #include <memory>

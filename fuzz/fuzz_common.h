@@ -5,8 +5,8 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/io/detail/formats.h"
-#include "sdflow/log.h"
 #include "sdflow/io/validate.h"
+#include "sdflow/log.h"
 
 #include <spdlog/sinks/null_sink.h>
 #include <spdlog/spdlog.h>

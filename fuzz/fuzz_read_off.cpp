@@ -1,4 +1,4 @@
-//! libFuzzer harness: the OFF reader (io_off.cpp), then validation (validate.h).
+//! libFuzzer harness: the OFF reader (io/off.cpp), then validation (io/validate.h).
 #include "fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)

@@ -1,4 +1,4 @@
-//! libFuzzer harness: the PLY reader (io_ply.cpp), then validation (validate.h).
+//! libFuzzer harness: the PLY reader (io/ply.cpp), then validation (io/validate.h).
 #include "fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)

@@ -3,13 +3,13 @@
 //! tolerances from the convergence study of docs/validation.md (there the torus R = 3, r = 1.5
 //! seals within about 2% of the exact time from 5k vertices on, and capsules break up within about
 //! 2% on edges of 0.2; these meshes are coarser, so 5%).
+#include "io/temp_dir.h"
 #include "sdflow/axisymmetric/evolution.h"
 #include "sdflow/axisymmetric/initial_curves.h"
 #include "sdflow/flow/simulation.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/expression.h"
 #include "sdflow/shapes/mesher.h"
-#include "io/temp_dir.h"
 
 #include <gtest/gtest.h>
 

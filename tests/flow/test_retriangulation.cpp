@@ -1,5 +1,6 @@
 //! Runs that change topology through the re-triangulation hook (retriangulation.h): smoke versions
 //! of the paper's dumbbell pinch-off (§3.2.2) and torus hole sealing (§4.1), and their resumption.
+#include "io/temp_dir.h"
 #include "sdflow/errors.h"
 #include "sdflow/flow/retriangulation.h"
 #include "sdflow/flow/simulation.h"
@@ -7,7 +8,6 @@
 #include "sdflow/geometry/topology.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/mesher.h"
-#include "io/temp_dir.h"
 #include "support/analytic_meshes.h"
 
 #include <fmt/format.h>

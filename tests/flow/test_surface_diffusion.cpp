@@ -1,5 +1,6 @@
 //! The flow in memory (surface_diffusion.h): no files, the same states a run directory records,
 //! its state restored bit for bit, its notes.
+#include "io/temp_dir.h"
 #include "sdflow/errors.h"
 #include "sdflow/flow/simulation.h"
 #include "sdflow/flow/surface_diffusion.h"
@@ -7,7 +8,6 @@
 #include "sdflow/io/io.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/mesher.h"
-#include "io/temp_dir.h"
 #include "support/analytic_meshes.h"
 
 #include <fmt/format.h>

@@ -1,7 +1,7 @@
 #include "io/temp_dir.h"
-#include "support/point_samples.h"
 #include "sdflow/errors.h"
 #include "sdflow/io/point_cloud.h"
+#include "support/point_samples.h"
 
 #include <gtest/gtest.h>
 

@@ -7,8 +7,8 @@
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/io/io.h"
-#include "sdflow/log.h"
 #include "sdflow/io/validate.h"
+#include "sdflow/log.h"
 
 #include <gtest/gtest.h>
 #include <spdlog/sinks/ostream_sink.h>

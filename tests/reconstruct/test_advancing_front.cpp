@@ -1,10 +1,10 @@
-#include "support/mesh_checks.h"
-#include "support/point_samples.h"
 #include "sdflow/errors.h"
 #include "sdflow/geometry/topology.h"
-#include "sdflow/reconstruct/point_normals.h"
 #include "sdflow/reconstruct/advancing_front.h"
+#include "sdflow/reconstruct/point_normals.h"
 #include "support/analytic_meshes.h"
+#include "support/mesh_checks.h"
+#include "support/point_samples.h"
 
 #include <gtest/gtest.h>
 

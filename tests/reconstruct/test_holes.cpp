@@ -1,9 +1,9 @@
-#include "support/mesh_checks.h"
 #include "sdflow/errors.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/reconstruct/holes.h"
 #include "support/analytic_meshes.h"
+#include "support/mesh_checks.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-#include "support/point_samples.h"
 #include "sdflow/errors.h"
 #include "sdflow/reconstruct/point_normals.h"
+#include "support/point_samples.h"
 
 #include <gtest/gtest.h>
 

@@ -5,9 +5,9 @@
 #include "sdflow/retri/pipeline.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/mesher.h"
+#include "support/analytic_meshes.h"
 #include "support/mesh_checks.h"
 #include "support/test_meshes.h"
-#include "support/analytic_meshes.h"
 
 #include <gtest/gtest.h>
 

@@ -6,9 +6,9 @@
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/expression.h"
 #include "sdflow/shapes/mesher.h"
+#include "shapes/meshed_shapes.h"
 #include "support/convergence.h"
 #include "support/exact_intersections.h"
-#include "shapes/meshed_shapes.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 //! The BVH against brute force: overlapping pairs, closest points, ray hits, box queries, refit.
 #include "sdflow/errors.h"
 #include "sdflow/spatial/bvh.h"
-#include "support/test_meshes.h"
 #include "support/analytic_meshes.h"
+#include "support/test_meshes.h"
 
 #include <gtest/gtest.h>
 

@@ -3,8 +3,8 @@
 #include "sdflow/errors.h"
 #include "sdflow/spatial/bvh.h"
 #include "sdflow/spatial/closest_point_grid.h"
-#include "support/test_meshes.h"
 #include "support/analytic_meshes.h"
+#include "support/test_meshes.h"
 
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>

@@ -1,10 +1,10 @@
 //! Exact triangle–triangle intersection and self-intersections, against an independent exact
-//! rational reference (retri/exact_reference.h) on random and adversarial configurations.
+//! rational reference (support/exact_reference.h) on random and adversarial configurations.
 #include "sdflow/errors.h"
 #include "sdflow/spatial/intersect.h"
+#include "support/analytic_meshes.h"
 #include "support/exact_reference.h"
 #include "support/test_meshes.h"
-#include "support/analytic_meshes.h"
 
 #include <gtest/gtest.h>
 

@@ -2,8 +2,8 @@
 //! gone, boundaries kept, and neighbours near each other in the new order.
 #include "sdflow/geometry/topology.h"
 #include "sdflow/spatial/spatial_order.h"
-#include "support/test_meshes.h"
 #include "support/analytic_meshes.h"
+#include "support/test_meshes.h"
 
 #include <gtest/gtest.h>
 

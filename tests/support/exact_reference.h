@@ -1,6 +1,6 @@
 #pragma once
 //! \file exact_reference.h
-//! \brief An independent, slow, exact reference for the intersection rule of retri/intersect.h:
+//! \brief An independent, slow, exact reference for the intersection rule of spatial/intersect.h:
 //! rational arithmetic (GMP) on the exact values of the double coordinates, and a different
 //! method. For each edge of either triangle it computes the exact parameter interval of the edge
 //! inside the other triangle; the faces intersect iff some interval end lies outside the element

@@ -39,7 +39,7 @@ struct MeshStatistics {
 struct StatisticsOptions {
   //! Cross-check each closed component's volume with TetGen (costs a tetrahedralisation).
   bool tetgen_check = true;
-  //! Count the intersecting triangle pairs (retri/intersect.h).
+  //! Count the intersecting triangle pairs (spatial/intersect.h).
   bool intersection_check = true;
 };
 

@@ -1,6 +1,7 @@
 #include "sdflow/geometry/cotangent_cache.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/geometry/detail/mixed_voronoi.h"
 
 #include <fmt/format.h>
 
@@ -96,19 +97,7 @@ void CotangentCache::assemble(const Mesh& mesh, SparseMatrix& laplacian, Eigen::
       values[s[4 * c + 2]] += -half_cot;
       values[s[4 * c + 3]] += -half_cot;
     }
-    // Mixed Voronoi areas, as mixed_voronoi_areas computes them.
-    const double area = 0.5 * twice_area;
-    const int obtuse = dots[0] < 0 ? 0 : dots[1] < 0 ? 1 : dots[2] < 0 ? 2 : -1;
-    if (obtuse >= 0) {
-      for (int c = 0; c < 3; ++c)
-        areas[t[c]] += c == obtuse ? area / 2 : area / 4;
-      continue;
-    }
-    for (int c = 0; c < 3; ++c) {
-      const int n1 = (c + 1) % 3, n2 = (c + 2) % 3;
-      const double cot1 = dots[n1] / twice_area, cot2 = dots[n2] / twice_area;
-      areas[t[c]] += ((p[n1] - p[c]).squaredNorm() * cot2 + (p[n2] - p[c]).squaredNorm() * cot1) / 8.0;
-    }
+    detail::add_mixed_voronoi_areas(p, t, dots, twice_area, areas);
   }
 }
 

@@ -6,9 +6,9 @@
 //! skip bad faces with a console message). Every writer is atomic: it writes a temporary file
 //! beside the target and renames it, so an interrupted run never leaves a half-written file.
 
-#include "sdflow/mesh.h"
 #include "sdflow/io/soup.h"
 #include "sdflow/io/validate.h"
+#include "sdflow/mesh.h"
 
 #include <filesystem>
 #include <functional>

@@ -1,8 +1,9 @@
 #include "sdflow/io/validate.h"
 
+#include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
-#include "sdflow/log.h"
 #include "sdflow/io/triangulate_polygon.h"
+#include "sdflow/log.h"
 
 #include <fmt/format.h>
 
@@ -306,40 +307,56 @@ private:
   std::vector<int> parent_;
 };
 
-//! Edge manifoldness and orientation consistency (through the directed edges), then vertex
-//! manifoldness: the faces around a vertex must form a single fan (a disk or a half-disk).
-//! Returns the components, meaningful when nothing was reported.
-Components check_connectivity(std::size_t point_count, const std::vector<Triangle>& triangles, Report& report)
+//! One side of an edge of a triangle: the edge as low << 32 | high (its endpoints, low < high),
+//! the triangle and the direction in which the triangle runs along it.
+struct EdgeUse {
+  std::uint64_t edge;
+  int triangle;
+  bool forward; // traversed low -> high
+  int low() const { return static_cast<int>(edge >> 32); }
+  int high() const { return static_cast<int>(edge & 0xffffffffu); }
+};
+
+//! Triangles with two corners at one vertex (merged STL points) are reported as zero-area faces;
+//! counting their collapsed edges too would only add confusing findings.
+bool collapsed(const Triangle& t)
 {
-  struct Use {
-    std::uint64_t edge; // low << 32 | high, the endpoints with low < high
-    int triangle;
-    bool forward;       // traversed low -> high
-    int low() const { return static_cast<int>(edge >> 32); }
-    int high() const { return static_cast<int>(edge & 0xffffffffu); }
-  };
-  std::vector<Use> uses;
+  const auto& [a, b, c] = t.v;
+  return a == b || b == c || c == a;
+}
+
+//! The edge uses of the triangles that are not collapsed, sorted by edge, then triangle.
+std::vector<EdgeUse> edge_uses(const std::vector<Triangle>& triangles)
+{
+  std::vector<EdgeUse> uses;
   uses.reserve(3 * triangles.size());
-  // Triangles with two corners at one vertex (merged STL points) are reported as zero-area faces;
-  // counting their collapsed edges here would only add confusing findings.
-  auto collapsed = [&](std::size_t t) {
-    const auto& [a, b, c] = triangles[t].v;
-    return a == b || b == c || c == a;
-  };
   for (std::size_t t = 0; t < triangles.size(); ++t)
-    if (!collapsed(t))
+    if (!collapsed(triangles[t]))
       for (int k = 0; k < 3; ++k) {
         const int a = triangles[t].v[k], b = triangles[t].v[(k + 1) % 3];
         const auto low = static_cast<std::uint64_t>(std::min(a, b)), high = static_cast<std::uint64_t>(std::max(a, b));
         uses.push_back({low << 32 | high, static_cast<int>(t), a < b});
       }
-  std::sort(uses.begin(), uses.end(),
-            [](const Use& x, const Use& y) { return x.edge < y.edge || (x.edge == y.edge && x.triangle < y.triangle); });
+  std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
+    return x.edge < y.edge || (x.edge == y.edge && x.triangle < y.triangle);
+  });
+  return uses;
+}
 
-  DisjointSets sets(triangles.size());
-  std::vector<bool> on_boundary(triangles.size(), false);
-  // Vertices on a non-manifold edge are already reported; their fans are not counted again.
-  std::vector<bool> on_bad_edge(point_count, false);
+//! What the edges tell: the triangles joined through edges shared by exactly two, the triangles
+//! with a boundary edge, and the vertices of non-manifold edges.
+struct EdgeFindings {
+  DisjointSets sets;
+  std::vector<bool> on_boundary;
+  std::vector<bool> on_bad_edge;
+};
+
+//! Edge manifoldness and orientation consistency, through the directed edges.
+EdgeFindings check_edges(std::size_t point_count, const std::vector<Triangle>& triangles, Report& report)
+{
+  const std::vector<EdgeUse> uses = edge_uses(triangles);
+  EdgeFindings found{DisjointSets(triangles.size()), std::vector<bool>(triangles.size(), false),
+                     std::vector<bool>(point_count, false)};
   auto polygon_of = [&](int t) { return triangles[t].polygon; };
   for (std::size_t i = 0; i < uses.size();) {
     std::size_t j = i;
@@ -347,9 +364,9 @@ Components check_connectivity(std::size_t point_count, const std::vector<Triangl
       ++j;
     const std::size_t count = j - i;
     if (count == 1)
-      on_boundary[uses[i].triangle] = true;
+      found.on_boundary[uses[i].triangle] = true;
     else if (count == 2)
-      sets.join(uses[i].triangle, uses[i + 1].triangle);
+      found.sets.join(uses[i].triangle, uses[i + 1].triangle);
     if (count > 2) {
       std::string faces;
       for (std::size_t k = i; k < j; ++k)
@@ -358,7 +375,7 @@ Components check_connectivity(std::size_t point_count, const std::vector<Triangl
                  fmt::format("{}: the edge between vertices {} and {} is shared by {} faces ({}), but an edge "
                              "can border at most 2", report.at_polygon(polygon_of(uses[i].triangle)), uses[i].low(),
                              uses[i].high(), count, faces));
-      on_bad_edge[uses[i].low()] = on_bad_edge[uses[i].high()] = true;
+      found.on_bad_edge[uses[i].low()] = found.on_bad_edge[uses[i].high()] = true;
     } else if (count == 2 && uses[i].forward == uses[i + 1].forward) {
       const int from = uses[i].forward ? uses[i].low() : uses[i].high();
       const int to = uses[i].forward ? uses[i].high() : uses[i].low();
@@ -372,19 +389,26 @@ Components check_connectivity(std::size_t point_count, const std::vector<Triangl
     }
     i = j;
   }
+  return found;
+}
 
+//! Vertex manifoldness: the faces around a vertex must form a single fan (a disk or a half-disk).
+//! Vertices on a non-manifold edge are already reported; their fans are not counted again.
+void check_vertex_fans(std::size_t point_count, const std::vector<Triangle>& triangles,
+                       const std::vector<bool>& on_bad_edge, Report& report)
+{
   // Around each vertex, join the triangles sharing one of its edges; more than one group = several fans.
   // The triangles at vertex v are around[first[v] .. first[v + 1]).
   std::vector<std::size_t> first(point_count + 1, 0);
   for (std::size_t t = 0; t < triangles.size(); ++t)
-    if (!collapsed(t))
+    if (!collapsed(triangles[t]))
       for (const int v : triangles[t].v)
         ++first[v + 1];
   std::partial_sum(first.begin(), first.end(), first.begin());
   std::vector<int> around(first.back());
   std::vector<std::size_t> fill(first.begin(), first.end() - 1);
   for (std::size_t t = 0; t < triangles.size(); ++t)
-    if (!collapsed(t))
+    if (!collapsed(triangles[t]))
       for (const int v : triangles[t].v)
         around[fill[v]++] = static_cast<int>(t);
   std::vector<std::pair<int, int>> spokes; // (other end of an edge at v, triangle)
@@ -406,28 +430,41 @@ Components check_connectivity(std::size_t point_count, const std::vector<Triangl
     if (fans > 1) {
       std::string faces;
       for (std::size_t k = 0; k < std::min(ts.size(), max_listed_elements); ++k)
-        faces += fmt::format("{}{}", k ? ", " : "", polygon_of(ts[k]));
+        faces += fmt::format("{}{}", k ? ", " : "", triangles[ts[k]].polygon);
       report.add(Severity::error, "non-manifold-vertex",
                  fmt::format("{}: vertex {} joins {} separate fans of faces (faces {}{}); the surface must be a "
                              "single disk or half-disk around each vertex", report.at_point(v), v, fans, faces,
                              ts.size() > max_listed_elements ? ", ..." : ""));
     }
   }
+}
 
+//! The components of the edge findings' sets, numbered in order of their first triangle.
+Components label_components(EdgeFindings& found, std::size_t triangle_count)
+{
   Components components;
-  components.of_triangle.assign(triangles.size(), -1);
-  std::vector<int> label(triangles.size(), -1);
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    int& l = label[sets.root(static_cast<int>(t))];
+  components.of_triangle.assign(triangle_count, -1);
+  std::vector<int> label(triangle_count, -1);
+  for (std::size_t t = 0; t < triangle_count; ++t) {
+    int& l = label[found.sets.root(static_cast<int>(t))];
     if (l < 0) {
       l = components.count++;
       components.open.push_back(false);
     }
     components.of_triangle[t] = l;
-    if (on_boundary[t])
+    if (found.on_boundary[t])
       components.open[l] = true;
   }
   return components;
+}
+
+//! Edge manifoldness and orientation consistency, then vertex manifoldness. Returns the
+//! components, meaningful when nothing was reported.
+Components check_connectivity(std::size_t point_count, const std::vector<Triangle>& triangles, Report& report)
+{
+  EdgeFindings found = check_edges(point_count, triangles, report);
+  check_vertex_fans(point_count, triangles, found.on_bad_edge, report);
+  return label_components(found, triangles.size());
 }
 
 //! Signed volume enclosed by each component (divergence theorem), with the cones drawn from a
@@ -444,7 +481,7 @@ std::vector<double> signed_volumes(const std::vector<Eigen::Vector3d>& points, c
       apex[c] = triangles[t].v[0];
     const Eigen::Vector3d& o = points[apex[c]];
     const auto& [a, b, d] = triangles[t].v;
-    volume[c] += (points[a] - o).dot((points[b] - o).cross(points[d] - o)) / 6.0;
+    volume[c] += cone_volume(points[a] - o, points[b] - o, points[d] - o);
   }
   return volume;
 }
@@ -535,18 +572,9 @@ Mesh assemble(const PolygonSoup& soup, const std::vector<Triangle>& triangles, c
   return mesh;
 }
 
-} // namespace
-
-BuiltMesh build_mesh(const PolygonSoup& soup, std::string_view source, const BuildOptions& options)
+//! Every coordinate finite, and small enough that areas and normals cannot overflow.
+void check_points(const PolygonSoup& soup, Report& report)
 {
-  Report report(soup, source);
-  if (soup.points.empty() || soup.polygons.empty()) {
-    report.add(Severity::error, "empty-mesh",
-               fmt::format("{}: the mesh is empty ({} vertices, {} faces); a surface needs at least one face",
-                           source, soup.points.size(), soup.polygons.size()));
-    report.throw_errors();
-  }
-
   for (std::size_t i = 0; i < soup.points.size(); ++i)
     if (!is_finite(soup.points[i])) {
       const Eigen::Vector3d& p = soup.points[i];
@@ -563,23 +591,13 @@ BuiltMesh build_mesh(const PolygonSoup& soup, std::string_view source, const Bui
                              "(products of up to four coordinates) would overflow double precision; scale the "
                              "mesh down", report.at_point(i), i, max_coordinate, p.x(), p.y(), p.z()));
     }
+}
 
-  const std::vector<bool> usable = check_polygons(soup, report);
-  std::vector<bool> used(soup.points.size(), false);
-  for (std::size_t f = 0; f < soup.polygons.size(); ++f)
-    if (usable[f])
-      for (const long long i : soup.polygons[f])
-        used[i] = true;
-  const std::vector<int> representative = find_duplicates(soup, used, options.merge_duplicate_vertices, report);
-  const std::vector<Triangle> triangles = triangulate(soup, usable, representative, report);
-  check_areas(soup, triangles, options.zero_area_tolerance, report);
-  const Components components = check_connectivity(soup.points.size(), triangles, report);
-  if (!report.has_errors())
-    check_volumes(soup.points, triangles, components, report);
-  if (report.has_errors())
-    report.throw_errors();
-
-  // Points no triangle uses (not merged-away duplicates) are dropped; the rest keep file order.
+//! The mesh's number of each point the triangles use, in file order (-1: dropped). Points no
+//! triangle uses, other than merged-away duplicates, are dropped with a warning.
+std::vector<int> number_used_points(const PolygonSoup& soup, const std::vector<Triangle>& triangles,
+                                    const std::vector<int>& representative, Report& report)
+{
   std::vector<int> number(soup.points.size(), -1);
   for (const Triangle& t : triangles)
     for (const int v : t.v)
@@ -600,49 +618,97 @@ BuiltMesh build_mesh(const PolygonSoup& soup, std::string_view source, const Bui
                fmt::format("{}: {} vertices belong to no face and were removed: {}{}", report.at_point(isolated.front()),
                            isolated.size(), listed, isolated.size() > max_listed_elements ? ", ..." : ""));
   }
+  return number;
+}
 
-  // Closed components are oriented outward (docs/design.md §1): out of the material they bound. That
-  // is a positive signed volume for a body, and a negative one for a cavity (a component enclosed
-  // by an odd number of others, e.g. the void left inside a sintered cluster). Flip the others.
+//! Which components to flip. Closed components are oriented outward (docs/design.md §1): out of
+//! the material they bound. That is a positive signed volume for a body, and a negative one for a
+//! cavity (a component enclosed by an odd number of others, e.g. the void left inside a sintered
+//! cluster). The others are flipped, and reported.
+std::vector<bool> inside_out_components(const PolygonSoup& soup, const std::vector<Triangle>& triangles,
+                                        const Components& components, std::string_view source, Report& report)
+{
   std::vector<bool> flip(components.count, false);
-  if (options.orient_outward) {
-    const std::vector<double> volume = signed_volumes(soup.points, triangles, components);
-    const std::vector<int> depth = nesting_depths(soup.points, triangles, components);
-    std::vector<int> faces(components.count, 0);
-    for (const int c : components.of_triangle)
-      ++faces[c];
-    for (int c = 0; c < components.count; ++c) {
-      const bool cavity = depth[c] % 2 == 1;
-      if (!components.open[c] && (cavity ? volume[c] > 0 : volume[c] < 0)) {
-        flip[c] = true;
-        report.add(Severity::info, "orientation-flipped",
-                   fmt::format("{}: component {} ({} faces) is closed but inside out (signed volume {:.6g}{}); "
-                               "its faces were flipped so that its normals point out of the material",
-                               source, c, faces[c], volume[c], cavity ? ", a cavity inside another component" : ""));
-      }
+  const std::vector<double> volume = signed_volumes(soup.points, triangles, components);
+  const std::vector<int> depth = nesting_depths(soup.points, triangles, components);
+  std::vector<int> faces(components.count, 0);
+  for (const int c : components.of_triangle)
+    ++faces[c];
+  for (int c = 0; c < components.count; ++c) {
+    const bool cavity = depth[c] % 2 == 1;
+    if (!components.open[c] && (cavity ? volume[c] > 0 : volume[c] < 0)) {
+      flip[c] = true;
+      report.add(Severity::info, "orientation-flipped",
+                 fmt::format("{}: component {} ({} faces) is closed but inside out (signed volume {:.6g}{}); "
+                             "its faces were flipped so that its normals point out of the material",
+                             source, c, faces[c], volume[c], cavity ? ", a cavity inside another component" : ""));
     }
   }
-  Mesh mesh = assemble(soup, triangles, number, flip, components.of_triangle, source);
+  return flip;
+}
 
-  if (std::find(components.open.begin(), components.open.end(), true) != components.open.end()) {
-    int loops = 0, open_components = 0;
-    for (const ComponentTopology& t : component_topology(mesh)) {
-      loops += t.boundary_loops;
-      open_components += t.closed() ? 0 : 1;
-    }
-    report.add(Severity::info, "has-boundary",
-               fmt::format("{}: the surface has boundary: {} boundary loop(s) in {} of its {} component(s)", source,
-                           loops, open_components, components.count));
+//! An informational finding when the surface has boundary: its loops and open components.
+void report_boundary(const Mesh& mesh, const Components& components, std::string_view source, Report& report)
+{
+  if (std::find(components.open.begin(), components.open.end(), true) == components.open.end())
+    return;
+  int loops = 0, open_components = 0;
+  for (const ComponentTopology& t : component_topology(mesh)) {
+    loops += t.boundary_loops;
+    open_components += t.closed() ? 0 : 1;
   }
+  report.add(Severity::info, "has-boundary",
+             fmt::format("{}: the surface has boundary: {} boundary loop(s) in {} of its {} component(s)", source,
+                         loops, open_components, components.count));
+}
 
-  std::vector<Finding> findings = report.take();
-  // Flipping is logged as docs/design.md §1 asks; the other repairs only at debug level, since callers
-  // (the CLI, the plugin) present the findings themselves.
+//! Flipping is logged as docs/design.md §1 asks; the other repairs only at debug level, since
+//! callers (the CLI, the plugin) present the findings themselves.
+void log_findings(const std::vector<Finding>& findings)
+{
   for (const Finding& f : findings)
     if (f.code == "orientation-flipped")
       logger().info(f.message);
     else if (f.code != "has-boundary")
       logger().debug(f.message);
+}
+
+} // namespace
+
+BuiltMesh build_mesh(const PolygonSoup& soup, std::string_view source, const BuildOptions& options)
+{
+  Report report(soup, source);
+  if (soup.points.empty() || soup.polygons.empty()) {
+    report.add(Severity::error, "empty-mesh",
+               fmt::format("{}: the mesh is empty ({} vertices, {} faces); a surface needs at least one face",
+                           source, soup.points.size(), soup.polygons.size()));
+    report.throw_errors();
+  }
+
+  check_points(soup, report);
+  const std::vector<bool> usable = check_polygons(soup, report);
+  std::vector<bool> used(soup.points.size(), false);
+  for (std::size_t f = 0; f < soup.polygons.size(); ++f)
+    if (usable[f])
+      for (const long long i : soup.polygons[f])
+        used[i] = true;
+  const std::vector<int> representative = find_duplicates(soup, used, options.merge_duplicate_vertices, report);
+  const std::vector<Triangle> triangles = triangulate(soup, usable, representative, report);
+  check_areas(soup, triangles, options.zero_area_tolerance, report);
+  const Components components = check_connectivity(soup.points.size(), triangles, report);
+  if (!report.has_errors())
+    check_volumes(soup.points, triangles, components, report);
+  if (report.has_errors())
+    report.throw_errors();
+
+  const std::vector<int> number = number_used_points(soup, triangles, representative, report);
+  const std::vector<bool> flip = options.orient_outward
+                                     ? inside_out_components(soup, triangles, components, source, report)
+                                     : std::vector<bool>(components.count, false);
+  Mesh mesh = assemble(soup, triangles, number, flip, components.of_triangle, source);
+  report_boundary(mesh, components, source, report);
+  std::vector<Finding> findings = report.take();
+  log_findings(findings);
   return {std::move(mesh), std::move(findings)};
 }
 

@@ -18,8 +18,8 @@
 //! `bad.off:14: face 3 uses vertex 12, but there are only 8 vertices`.
 
 #include "sdflow/errors.h"
-#include "sdflow/mesh.h"
 #include "sdflow/io/soup.h"
+#include "sdflow/mesh.h"
 
 #include <string>
 #include <string_view>

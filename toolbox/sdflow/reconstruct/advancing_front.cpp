@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <queue>
 #include <random>
 #include <unordered_map>
@@ -128,18 +129,11 @@ double smallest_empty_ball_radius(const VertexVectors& x, const std::array<int, 
   return std::sqrt(r2 + s * s);
 }
 
-DelaunayFacets delaunay_facets(const VertexVectors& x, double perturbation)
+//! The points to tetrahedralise, as input indices: exact duplicates would be pulled apart by the
+//! perturbation and both used, so only the first of each is kept.
+std::vector<int> distinct_points(const VertexVectors& x)
 {
   const auto n = static_cast<int>(x.rows());
-  const Eigen::Vector3d lo = x.colwise().minCoeff().transpose(), hi = x.colwise().maxCoeff().transpose();
-  // Shewchuk's predicates with static filters sized by the largest coordinate (a bound per axis
-  // that must be positive, even for points in a coordinate plane).
-  const double extent = std::max(lo.cwiseAbs().cwiseMax(hi.cwiseAbs()).maxCoeff(), std::numeric_limits<double>::min());
-  exactinit(0, 0, 0, extent, extent, extent);
-  std::array<int, 3> frame{};
-  const bool planar = all_coplanar(x, frame);
-  const double diagonal = (hi - lo).norm();
-  // Exact duplicates would be pulled apart by the perturbation and both used: keep the first.
   std::vector<int> order(n);
   for (int i = 0; i < n; ++i)
     order[i] = i;
@@ -150,44 +144,39 @@ DelaunayFacets delaunay_facets(const VertexVectors& x, double perturbation)
   std::vector<char> duplicate(n, 0);
   for (int k = 1; k < n; ++k)
     duplicate[order[k]] = x.row(order[k]) == x.row(order[k - 1]);
-  std::vector<int> kept; // TetGen's point index -> input index; the apex, if any, maps to n
+  std::vector<int> kept;
   for (int i = 0; i < n; ++i)
     if (!duplicate[i])
       kept.push_back(i);
-  const auto m = static_cast<int>(kept.size());
+  return kept;
+}
 
-  tetgenio in, out;
-  // A planar set has no tetrahedra: one extra apex above the plane makes every facet in the plane
-  // a facet of a tetrahedron; facets through the apex are never candidates.
-  in.numberofpoints = m + (planar ? 1 : 0);
+//! TetGen's input: the kept points, each coordinate moved by up to ±amplitude (a fixed
+//! pseudo-random sequence, so runs repeat), then the extra apex of a planar set, if any.
+void set_tetgen_points(const VertexVectors& x, const std::vector<int>& kept, double amplitude,
+                       const std::optional<Eigen::Vector3d>& apex, tetgenio& in)
+{
+  const auto m = static_cast<int>(kept.size());
+  in.numberofpoints = m + (apex ? 1 : 0);
   in.pointlist = new REAL[3 * static_cast<std::size_t>(in.numberofpoints)];
   std::mt19937 rng(20040701);
   std::uniform_real_distribution<double> jitter(-1.0, 1.0);
-  const double amplitude = planar ? 0.0 : perturbation * diagonal;
   for (int i = 0; i < m; ++i)
     for (int d = 0; d < 3; ++d)
       in.pointlist[3 * i + d] = x(kept[i], d) + (amplitude > 0 ? amplitude * jitter(rng) : 0.0);
-  if (planar) {
-    const Eigen::Vector3d a = x.row(frame[0]).transpose(), b = x.row(frame[1]).transpose(), c = x.row(frame[2]).transpose();
-    const Eigen::Vector3d apex = 0.5 * (lo + hi) + diagonal * (b - a).cross(c - a).normalized();
+  if (apex)
     for (int d = 0; d < 3; ++d)
-      in.pointlist[3 * m + d] = apex[d];
-    kept.push_back(n);
-  }
-  char switches[] = "zQn"; // zero-based indices, quiet, neighbours
-  try {
-    tetrahedralize(switches, &in, &out);
-  } catch (int code) {
-    throw SolverFailure(fmt::format("reconstruct_surface: TetGen failed (code {}) on {} points", code, n));
-  }
+      in.pointlist[3 * m + d] = (*apex)[d];
+}
+
+//! Every facet of TetGen's tetrahedralisation `out` once (input indices through `kept`), into
+//! dt.vertices, and the vertices opposite it in its one or two tetrahedra into `apex` (-1: none).
+void collect_facets(const tetgenio& out, const std::vector<int>& kept, DelaunayFacets& dt,
+                    std::vector<std::array<int, 2>>& apex)
+{
   const int tets = out.numberoftetrahedra;
-  if (tets == 0)
-    throw InvalidParameter(fmt::format("reconstruct_surface: the {} points span no volume or plane", n));
   const int* tet = out.tetrahedronlist;
   const int* neighbour = out.neighborlist;
-
-  DelaunayFacets dt;
-  std::vector<std::array<int, 2>> apex;
   dt.vertices.reserve(2 * static_cast<std::size_t>(tets) + 8);
   apex.reserve(dt.vertices.capacity());
   for (int t = 0; t < tets; ++t)
@@ -205,15 +194,14 @@ DelaunayFacets delaunay_facets(const VertexVectors& x, double perturbation)
       dt.vertices.push_back(f);
       apex.push_back(q);
     }
-  const auto facets = static_cast<int>(dt.vertices.size());
+}
 
-  // Radii on the unperturbed points; the added apex is not a point of the surface.
-  VertexVectors xa = x;
-  if (planar) {
-    xa.conservativeResize(n + 1, 3);
-    for (int d = 0; d < 3; ++d)
-      xa(n, d) = in.pointlist[3 * m + d];
-  }
+//! dt.radius: each facet's smallest empty-ball radius over the points `xa` (row n: a planar set's
+//! added apex, which is not a point of the surface: facets through it get an infinite radius).
+void set_empty_ball_radii(const VertexVectors& xa, int n, const std::vector<std::array<int, 2>>& apex,
+                          DelaunayFacets& dt)
+{
+  const auto facets = static_cast<int>(dt.vertices.size());
   dt.radius.resize(facets);
   tbb::parallel_for(tbb::blocked_range<int>(0, facets, 4096), [&](const tbb::blocked_range<int>& range) {
     for (int f = range.begin(); f != range.end(); ++f) {
@@ -221,7 +209,13 @@ DelaunayFacets delaunay_facets(const VertexVectors& x, double perturbation)
       dt.radius[f] = (v[0] >= n || v[1] >= n || v[2] >= n) ? infinity : smallest_empty_ball_radius(xa, v, apex[f]);
     }
   });
+}
 
+//! dt.star and dt.star_offsets: the facets around each edge, filed under its smaller endpoint
+//! (0..n, n being a planar set's apex).
+void index_edge_stars(int n, DelaunayFacets& dt)
+{
+  const auto facets = static_cast<int>(dt.vertices.size());
   dt.star_offsets.assign(n + 2, 0);
   for (const auto& v : dt.vertices)
     for (int e = 0; e < 3; ++e)
@@ -239,6 +233,54 @@ DelaunayFacets delaunay_facets(const VertexVectors& x, double perturbation)
   }
   for (int a = 0; a <= n; ++a)
     std::sort(dt.star.begin() + dt.star_offsets[a], dt.star.begin() + dt.star_offsets[a + 1]);
+}
+
+DelaunayFacets delaunay_facets(const VertexVectors& x, double perturbation)
+{
+  const auto n = static_cast<int>(x.rows());
+  const Eigen::Vector3d lo = x.colwise().minCoeff().transpose(), hi = x.colwise().maxCoeff().transpose();
+  // Shewchuk's predicates with static filters sized by the largest coordinate (a bound per axis
+  // that must be positive, even for points in a coordinate plane).
+  const double extent = std::max(lo.cwiseAbs().cwiseMax(hi.cwiseAbs()).maxCoeff(), std::numeric_limits<double>::min());
+  exactinit(0, 0, 0, extent, extent, extent);
+  std::array<int, 3> frame{};
+  const bool planar = all_coplanar(x, frame);
+  const double diagonal = (hi - lo).norm();
+  std::vector<int> kept = distinct_points(x); // TetGen's point index -> input index; the apex, if any, maps to n
+  const auto m = static_cast<int>(kept.size());
+
+  // A planar set has no tetrahedra: one extra apex above the plane makes every facet in the plane
+  // a facet of a tetrahedron; facets through the apex are never candidates.
+  std::optional<Eigen::Vector3d> planar_apex;
+  if (planar) {
+    const Eigen::Vector3d a = x.row(frame[0]).transpose(), b = x.row(frame[1]).transpose(), c = x.row(frame[2]).transpose();
+    planar_apex = 0.5 * (lo + hi) + diagonal * (b - a).cross(c - a).normalized();
+  }
+  tetgenio in, out;
+  set_tetgen_points(x, kept, planar ? 0.0 : perturbation * diagonal, planar_apex, in);
+  if (planar)
+    kept.push_back(n);
+  char switches[] = "zQn"; // zero-based indices, quiet, neighbours
+  try {
+    tetrahedralize(switches, &in, &out);
+  } catch (int code) {
+    throw SolverFailure(fmt::format("reconstruct_surface: TetGen failed (code {}) on {} points", code, n));
+  }
+  if (out.numberoftetrahedra == 0)
+    throw InvalidParameter(fmt::format("reconstruct_surface: the {} points span no volume or plane", n));
+
+  DelaunayFacets dt;
+  std::vector<std::array<int, 2>> apex;
+  collect_facets(out, kept, dt, apex);
+  // Radii on the unperturbed points.
+  VertexVectors xa = x;
+  if (planar) {
+    xa.conservativeResize(n + 1, 3);
+    for (int d = 0; d < 3; ++d)
+      xa(n, d) = in.pointlist[3 * m + d];
+  }
+  set_empty_ball_radii(xa, n, apex, dt);
+  index_edge_stars(n, dt);
   return dt;
 }
 

@@ -1,6 +1,7 @@
 #include "sdflow/reconstruct/holes.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/geometry/topology.h"
 #include "sdflow/log.h"
 
 #include <Eigen/SparseCholesky>
@@ -27,18 +28,14 @@ struct Loop {
   bool simple = true;
 };
 
-std::vector<Loop> boundary_loops(const Mesh& mesh)
+std::vector<Loop> input_loops(const Mesh& mesh)
 {
   std::vector<Loop> loops;
-  std::vector<char> seen(mesh.n_halfedges(), 0);
-  for (auto h : mesh.halfedges()) {
-    if (!h.is_boundary() || seen[h.idx()])
-      continue;
+  for (std::vector<Mesh::HalfedgeHandle>& halfedges : boundary_loops(mesh)) {
     Loop loop;
-    for (auto g = h; !seen[g.idx()]; g = g.next()) {
-      seen[g.idx()] = 1;
-      loop.halfedges.push_back(g);
-      loop.vertices.push_back(g.from());
+    loop.halfedges = std::move(halfedges);
+    for (const auto g : loop.halfedges) {
+      loop.vertices.push_back(mesh.from_vertex_handle(g));
       loop.length += mesh.calc_edge_length(g);
     }
     // A vertex met twice, or with a second gap in its fan (the other gap then belongs to another
@@ -353,7 +350,7 @@ FilledHoles fill_holes(const Mesh& input, const HoleFillingOptions& options)
         throw InvalidMesh("fill_holes: the mesh has deleted vertices (call garbage_collection() first)");
   FilledHoles result{input, {}};
   Mesh& mesh = result.mesh;
-  const std::vector<Loop> loops = boundary_loops(mesh);
+  const std::vector<Loop> loops = input_loops(mesh);
 
   // Target edge length at each loop vertex: the mean of its edges before any patch exists.
   std::vector<double> sigma(mesh.n_vertices(), 0);

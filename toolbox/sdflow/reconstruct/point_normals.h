@@ -25,7 +25,7 @@ NeighbourTable nearest_neighbours(const VertexVectors& points, int k);
 //! z = Σ_{i+j<=2} a_ij x^i y^j fitted by least squares to the neighbours of each point, in the
 //! frame of their principal axes centred at the point (Cazals & Pouget 2005). Needs k >= 6; a
 //! neighbourhood too degenerate for the fit (collinear points) keeps its principal-axis normal.
-//! Accuracy (k = 18, tests/retri/test_point_normals.cpp): without noise the mean angular error
+//! Accuracy (k = 18, tests/reconstruct/test_point_normals.cpp): without noise the mean angular error
 //! falls at least as h² with the spacing h; on unit-size spheres, tori and ellipsoids with noise
 //! of standard deviation h²/2 it stays below 0.3 h radians.
 VertexVectors jet_normals(const VertexVectors& points, const NeighbourTable& neighbours);

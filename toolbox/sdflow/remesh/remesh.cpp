@@ -7,9 +7,9 @@
 #include "sdflow/geometry/normals.h"
 #include "sdflow/geometry/principal_curvature.h"
 #include "sdflow/log.h"
+#include "sdflow/remesh/star_projection.h"
 #include "sdflow/spatial/closest_point_grid.h"
 #include "sdflow/spatial/spatial_order.h"
-#include "sdflow/remesh/star_projection.h"
 
 #include <fmt/format.h>
 #include <nanoflann.hpp>

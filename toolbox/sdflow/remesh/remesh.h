@@ -41,7 +41,7 @@ struct RemeshOptions {
   //! Tangential relaxation sweeps (each followed by projection) per iteration.
   int relaxation_steps = 3;
   //! Closest point on the surface. Empty: the input mesh itself (exact closest point, through
-  //! the grid of retri/closest_point_grid.h). A given function is called from one thread at a
+  //! the grid of spatial/closest_point_grid.h). A given function is called from one thread at a
   //! time; with both projections left empty the relaxation sweeps run on TBB threads (with the
   //! same results).
   PointProjection project;
@@ -50,7 +50,7 @@ struct RemeshOptions {
   //! does not shrink convex parts by the triangles' sagitta. Off: the flat triangles themselves.
   bool curved_projection = false;
   //! Closest point on the boundary curves (BoundaryMode::remesh). Empty: the input's boundary
-  //! polylines, through a nearest-vertex search (retri/star_projection.h).
+  //! polylines, through a nearest-vertex search (remesh/star_projection.h).
   PointProjection project_boundary;
   BoundaryMode boundary = BoundaryMode::remesh;
   //! Boundary vertices where the boundary turns by more than this angle (degrees) are corners:

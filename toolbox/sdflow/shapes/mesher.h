@@ -1,7 +1,7 @@
 #pragma once
 //! \file mesher.h
 //! \brief Implicit surface → quality triangulation: marching tetrahedra on a grid fine enough for
-//! the topology, then isotropic remeshing (retri/remesh.h) to the target edge length with every
+//! the topology, then isotropic remeshing (remesh/remesh.h) to the target edge length with every
 //! vertex projected onto f = 0 by Newton steps (and boundary vertices onto the curve f = g = 0).
 //!
 //! This replaces the paper's CGAL Delaunay-refinement surface mesher (§3.1, angle bound 30°):

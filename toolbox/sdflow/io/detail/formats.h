@@ -4,8 +4,8 @@
 //! parsing helpers they share (line splitting, strict number parsing, error messages).
 
 #include "sdflow/io/io.h"
-#include "sdflow/mesh.h"
 #include "sdflow/io/soup.h"
+#include "sdflow/mesh.h"
 
 #include <algorithm>
 #include <bit>
