@@ -1,6 +1,7 @@
 //! `sdflow plot DIR`: PNG figures of a run's metrics.csv with gnuplot, like the paper's Figs. 9, 16
 //! and 22: area and volume relative to the initial surface, and the curvature deviation, against
-//! time, with topology events (remeshed, surgery, split, merged) marked by vertical lines.
+//! time, with topology events (remeshed, surgery, split, merged) marked by vertical lines; τ; and
+//! the wall time by stage (timings.csv) summed over the steps.
 
 #include "gnuplot.h"
 #include "verbs.h"
@@ -97,6 +98,23 @@ void plot(const PlotArguments& a)
   script += fmt::format("set output {}\nset title 'Time step'\nset ylabel 'τ'\nset logscale y\n"
                         "plot {} using 2:3 skip 2 with steps linewidth 2 title 'τ'\n",
                         gnuplot_quoted((out / "time_step.png").string()), data);
+  const std::filesystem::path timings = dir / "timings.csv";
+  const bool with_timings = std::filesystem::exists(timings);
+  if (with_timings) {
+    // Cumulative wall time by stage against the step (timings.csv's columns, simulation.h).
+    script += "unset logscale y\nunset arrow\nunset label\nset xlabel 'step'\nset key top left\n";
+    script += fmt::format(
+        "set output {}\nset title 'Wall time by stage, cumulative'\nset ylabel 'seconds'\n"
+        "plot {} using 1:3 skip 1 smooth cumulative linewidth 2 title 'operators', "
+        "'' using 1:($4+$5) skip 1 smooth cumulative linewidth 2 title 'assembly + factorisation', "
+        "'' using 1:6 skip 1 smooth cumulative linewidth 2 title 'solve', "
+        "'' using 1:7 skip 1 smooth cumulative linewidth 2 title 'acceptance checks', "
+        "'' using 1:8 skip 1 smooth cumulative linewidth 2 title 'intersection and quality check', "
+        "'' using 1:($9+$10+$11+$12+$13+$14+$15+$16) skip 1 smooth cumulative linewidth 2 title 're-triangulation', "
+        "'' using 1:17 skip 1 smooth cumulative linewidth 2 title 'output', "
+        "'' using 1:2 skip 1 smooth cumulative linewidth 2 dashtype 2 linecolor rgb 'black' title 'total'\n",
+        gnuplot_quoted((out / "timings.png").string()), gnuplot_quoted(timings.string()));
+  }
   const std::filesystem::path script_file = out / "plots.gnuplot";
   write_atomically(script_file, [&](std::ostream& s) { s << script; });
   try {
@@ -104,8 +122,9 @@ void plot(const PlotArguments& a)
   } catch (const std::runtime_error& e) {
     throw IoError(fmt::format("{}: {}", script_file.string(), e.what()));
   }
-  std::cout << fmt::format("{} rows, {} events: {}, {}, {}\n", rows, events.size(), (out / "area_volume.png").string(),
-                           (out / "curvature_deviation.png").string(), (out / "time_step.png").string());
+  std::cout << fmt::format("{} rows, {} events: {}, {}, {}{}\n", rows, events.size(), (out / "area_volume.png").string(),
+                           (out / "curvature_deviation.png").string(), (out / "time_step.png").string(),
+                           with_timings ? ", " + (out / "timings.png").string() : "");
 }
 
 } // namespace
@@ -113,7 +132,7 @@ void plot(const PlotArguments& a)
 void add_plot_verb(CLI::App& app)
 {
   auto args = std::make_shared<PlotArguments>();
-  CLI::App* verb = app.add_subcommand("plot", "PNG figures (gnuplot) of a run's area, volume, curvature deviation and τ");
+  CLI::App* verb = app.add_subcommand("plot", "PNG figures (gnuplot) of a run's area, volume, curvature deviation, τ and wall time by stage");
   verb->add_option("dir", args->run_dir, "Run directory (holding metrics.csv)")->required()->check(CLI::ExistingDirectory);
   verb->add_option("--out", args->out, "Folder for the PNGs (default DIR/plots)");
   verb->callback([args] { plot(*args); });

@@ -25,14 +25,12 @@ samples/make_meshes.sh "$sdflow"
 
 names=("$@")
 [[ ${#names[@]} -gt 0 ]] || names=(sphere_accuracy ellipsoid_relax ellipsoid_quarter_beta ellipsoid_explicit torus
-                                   dumbbell sintering sintering_late spheres_on_plane spheres_on_plane_late)
+                                   dumbbell sintering spheres_on_plane)
 for name in "${names[@]}"; do
   out=runs/$name$suffix
   rm -rf "$out"
   status=0
-  input=() # a second stage starts from its first stage's run of the same scheme
-  [[ $name == *_late ]] && input=(--input "runs/${name%_late}$suffix/snapshots/step_000400.ply")
-  "$sdflow" run "samples/$name.toml" --out "$out" "${input[@]}" "${preset[@]}" --quiet || status=$?
+  "$sdflow" run "samples/$name.toml" --out "$out" "${preset[@]}" --quiet || status=$?
   [[ $status -eq 0 || $status -eq 3 ]] || exit "$status"   # 3: stopped as unstable (the explicit scheme)
   "$sdflow" plot "$out" > /dev/null
   awk -F, -v name="$name" -v status="$status" '

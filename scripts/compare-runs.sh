@@ -3,22 +3,23 @@
 # each run's exit code, metrics.csv, events.log and its snapshots (.ply). For refactorings that
 # must not change a single result ("bit-identical").
 #   scripts/compare-runs.sh OLD_SDFLOW NEW_SDFLOW [SAMPLE...]
-# SAMPLE is a scenario of samples/ (default: all but the *_late stages, which start from step 400
-# of their first stage). The two large ones stop early: sintering after 30 steps, spheres_on_plane
-# after 15 (override with STEPS_<name>=N, e.g. STEPS_torus=100; 0 = the scenario's own end).
+# SAMPLE is a scenario of samples/ (default: every one). The two large ones stop early: sintering
+# after 30 steps, spheres_on_plane after 15 (override with STEPS_<name>=N, e.g. STEPS_torus=100;
+# 0 = the scenario's own end). Runs also write timings.csv (wall time), which is not compared.
 # Meshes come from samples/make_meshes.sh, run with OLD_SDFLOW when missing. Exit 0 when every
 # sample matches, 1 otherwise.
 set -euo pipefail
 if [[ $# -lt 2 || "${1:-}" == "-h" || "${1:-}" == "--help" ]]; then
   sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'
-  [[ $# -ge 2 ]] && exit 0 || exit 2
+  [[ "${1:-}" == "-h" || "${1:-}" == "--help" ]] && exit 0 || exit 2
 fi
 old=$(realpath "$1") new=$(realpath "$2")
 shift 2
 cd "$(dirname "$0")/.."
 names=("$@")
-[[ ${#names[@]} -gt 0 ]] || names=(sphere_accuracy ellipsoid_relax ellipsoid_quarter_beta ellipsoid_explicit torus
-                                   dumbbell sintering spheres_on_plane)
+if [[ ${#names[@]} -eq 0 ]]; then
+  for file in samples/*.toml; do names+=("$(basename "$file" .toml)"); done
+fi
 declare -A default_steps=([sintering]=30 [spheres_on_plane]=15)
 samples/make_meshes.sh "$old"
 work=$(mktemp -d)

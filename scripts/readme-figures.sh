@@ -6,7 +6,7 @@
 #   docs/images/NAME_after_event.png   the first snapshot after it (if any)
 #   docs/images/NAME_end.png           the last snapshot
 # and docs/images/NAME_area_volume.png, NAME_curvature_deviation.png.
-#   scripts/readme-figures.sh torus dumbbell sintering sintering_late
+#   scripts/readme-figures.sh torus dumbbell sintering spheres_on_plane
 set -euo pipefail
 cd "$(dirname "$0")/.."
 sdflow=${SDFLOW:-$PWD/build/release/cli/sdflow}

@@ -44,6 +44,33 @@ TEST(RunControl, stop_request_writes_a_checkpoint_of_the_last_step_and_resumes_b
   EXPECT_EQ(test::read_file(dir / "stopped/metrics.csv"), test::read_file(dir / "whole/metrics.csv"));
 }
 
+TEST(RunControl, a_run_stopped_while_adaptive_steps_cover_a_table_step_resumes_bit_for_bit)
+{
+  // The explicit scheme fails the table's τ = 0.3 (time_step.h): adaptive steps cover it, and the
+  // run is stopped among them. The checkpoint keeps where the table stands.
+  test::TempDir dir;
+  const Mesh start = analytic::ellipsoid(3, 5, 4, 3);
+  const auto table_run = [&](const fs::path& out) {
+    RunParameters p = parameters(out);
+    p.scheme.beta = 0;
+    p.time_step.mode = TimeStepMode::schedule;
+    p.time_step.schedule = TauSchedule({{1, 2, 0.3}, {3, 1000, 0.0005}});
+    p.steps = 30;
+    return p;
+  };
+  run_simulation(start, {.parameters = table_run(dir / "whole")});
+  long steps_seen = 0;
+  run_simulation(start, {.parameters = table_run(dir / "stopped"),
+                         .progress = [&](const StepRecord& r) { steps_seen = r.step; },
+                         .stop_requested = [&] { return steps_seen >= 9; }});
+  const Checkpoint checkpoint = read_checkpoint(dir / "stopped/checkpoint.bin");
+  ASSERT_EQ(checkpoint.step, 9);
+  EXPECT_GT(checkpoint.time_step.table_lag, 0) << "not stopped among the adaptive steps";
+  EXPECT_GT(checkpoint.time_step.fallback_left, 0);
+  resume_simulation({.parameters = table_run(dir / "stopped")});
+  EXPECT_EQ(test::read_file(dir / "stopped/metrics.csv"), test::read_file(dir / "whole/metrics.csv"));
+}
+
 TEST(RunControl, resume_without_a_checkpoint_starts_again_at_step_0)
 {
   test::TempDir dir;

@@ -19,12 +19,14 @@ namespace {
 namespace fs = std::filesystem;
 
 //! metrics.csv as rows of fields (header excluded).
-std::vector<std::vector<std::string>> read_metrics(const fs::path& file)
+//! The rows of a CSV file with `header` (metrics.csv by default) and `columns` fields a row.
+std::vector<std::vector<std::string>> read_metrics(const fs::path& file, const char* header = metrics_header,
+                                                   std::size_t columns = 14)
 {
   std::ifstream in(file);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, metrics_header);
+  EXPECT_EQ(line, header);
   std::vector<std::vector<std::string>> rows;
   while (std::getline(in, line)) {
     std::vector<std::string> fields;
@@ -33,7 +35,7 @@ std::vector<std::vector<std::string>> read_metrics(const fs::path& file)
       fields.push_back(f);
     if (line.back() == ',')
       fields.emplace_back();
-    EXPECT_EQ(fields.size(), 14u) << line;
+    EXPECT_EQ(fields.size(), columns) << line;
     rows.push_back(fields);
   }
   return rows;
@@ -210,6 +212,42 @@ TEST(Simulation, corrupt_checkpoint_is_refused)
   bytes[bytes.size() / 2] ^= 0x40;
   test::write_file(dir / "run/checkpoint.bin", bytes);
   EXPECT_THROW(read_checkpoint(dir / "run/checkpoint.bin"), IoError);
+}
+
+TEST(Simulation, timings_csv_splits_each_steps_wall_time_by_stage)
+{
+  test::TempDir dir;
+  RunParameters p = constant_tau(dir / "run", 0.05, 6);
+  p.retriangulation.enabled = true;
+  p.retriangulation.always = true;
+  p.retriangulation.every = 3;
+  run_simulation(analytic::ellipsoid(3, 5, 4, 3), {.parameters = p});
+
+  const auto rows = read_metrics(dir / "run/timings.csv", timings_header, 18);
+  ASSERT_EQ(rows.size(), 6u) << "one row per step, none for step 0";
+  double solve = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    SCOPED_TRACE(i + 1);
+    ASSERT_EQ(rows[i].size(), 18u);
+    EXPECT_EQ(rows[i][0], std::to_string(i + 1));
+    double parts = 0;
+    for (std::size_t c = 2; c < 17; ++c) {
+      EXPECT_GE(column(rows[i], static_cast<int>(c)), 0.0) << "column " << c;
+      parts += column(rows[i], static_cast<int>(c));
+    }
+    const double total = column(rows[i], 1), other = column(rows[i], 17);
+    EXPECT_NEAR(parts + other, total, 1e-5) << "the stages and `other` make up the total";
+    EXPECT_GE(other, -1e-5) << "the stages are parts of the step: they cannot exceed it";
+    // The pipeline's remeshing ran after steps 3 and 6 only (every = 3).
+    const double remesh = column(rows[i], 9);
+    if ((i + 1) % 3 == 0)
+      EXPECT_GT(remesh, 0.0);
+    else
+      EXPECT_EQ(remesh, 0.0);
+    solve += column(rows[i], 4) + column(rows[i], 5);
+  }
+  EXPECT_GT(solve, 0.0);
+  EXPECT_NE(test::read_file(dir / "run/events.log").find("time by stage: "), std::string::npos);
 }
 
 TEST(Simulation, retriangulation_hook_events_reach_the_metrics_and_new_connectivity_is_used)

@@ -139,5 +139,36 @@ TEST(SurfaceDiffusion, rejected_trials_are_noted_and_the_notes_outlive_a_failed_
   EXPECT_EQ(vertex_positions(flow.mesh()).reshaped(), before) << "a failed step leaves the surface as it was";
 }
 
+TEST(SurfaceDiffusion, a_table_step_that_fails_is_covered_by_adaptive_steps_and_the_table_resumes)
+{
+  // The explicit scheme (β = 0) turns triangles over at τ = 0.3 within two steps. A run under a
+  // table that asks for it used to stop there (exit 3); its failed step is now covered by adaptive
+  // steps, which take exactly the table's time, and the table's small τ then takes over again.
+  RunParameters p;
+  p.scheme.beta = 0;
+  p.time_step.mode = TimeStepMode::schedule;
+  p.time_step.schedule = TauSchedule({{1, 2, 0.3}, {3, 1000, 0.0005}});
+  p.steps = 80;
+  SurfaceDiffusion flow(analytic::ellipsoid(3, 5, 4, 3), p);
+  std::vector<StepRecord> steps;
+  while (!flow.finished())
+    ASSERT_NO_THROW(steps.push_back(flow.step())) << "at step " << flow.steps() + 1;
+
+  const auto fell_back = std::find_if(steps.begin(), steps.end(),
+                                      [](const StepRecord& s) { return s.event.find("fallback") != std::string::npos; });
+  ASSERT_NE(fell_back, steps.end()) << "τ = 0.3 did not fail: the test no longer exercises the fallback";
+  const auto resumed = std::find_if(fell_back, steps.end(), [](const StepRecord& s) { return s.tau == 0.0005; });
+  ASSERT_NE(resumed, steps.end()) << "the table never resumed";
+  EXPECT_GT(resumed - fell_back, 3) << "the failed step should take several adaptive steps";
+  // Time follows the table: both 0.3 steps were taken in full, one of them by adaptive steps.
+  EXPECT_NEAR(resumed->time - resumed->tau, 0.6, 1e-12);
+  for (auto s = fell_back; s != resumed; ++s)
+    EXPECT_LT(s->tau, 0.3);
+  const auto notes = flow.take_notes();
+  EXPECT_TRUE(std::any_of(notes.begin(), notes.end(),
+                          [](const FlowNote& n) { return n.text.find("the table resumes") != std::string::npos; }));
+  EXPECT_TRUE(flow.operators().curvature.allFinite());
+}
+
 } // namespace
 } // namespace sdflow

@@ -150,6 +150,51 @@ TEST(TimeStepController, schedule_retries_apply_to_schedules_only_and_are_bounde
                InvalidParameter);
 }
 
+TEST(TimeStepController, a_failed_table_step_is_covered_by_adaptive_steps_then_the_table_resumes)
+{
+  const TauSchedule table({{1, 3, 0.2}, {4, 5, 0.4}, {6, 100, 0.05}});
+  TimeStepController controller({.mode = TimeStepMode::schedule, .schedule = table});
+  EXPECT_FALSE(controller.adaptive());
+  controller.fall_back_to_adaptive(2);
+  ASSERT_TRUE(controller.adaptive());
+  StepCheck calm;
+  calm.displacement_ratio = 1e-6; // τ grows by the growth bound, 1.25, per step
+  StepCheck far;
+  far.displacement_ratio = 1;
+  far.displacement_exceeded = true;
+
+  long step = 2;
+  double covered = 0;
+  int rejected = 0;
+  while (controller.adaptive()) {
+    const double tau = controller.propose(step, 0.01, 1e9);
+    if (step == 5 && rejected == 0) { // a rejection inside the stretch shrinks τ and keeps the count
+      const long lag = controller.state().table_lag;
+      EXPECT_FALSE(controller.judge(step, tau, far));
+      EXPECT_EQ(controller.state().table_lag, lag);
+      ++rejected;
+      continue;
+    }
+    ASSERT_TRUE(controller.judge(step, tau, calm));
+    covered += tau;
+    ++step;
+    ASSERT_LT(step, 200) << "the adaptive stretch never ended";
+  }
+  // The adaptive steps covered whole table steps, 2 to k − 1, and no more: the time follows the table.
+  const long k = controller.table_step(step);
+  ASSERT_GT(k, 2);
+  double table_time = 0;
+  for (long s = 2; s < k; ++s)
+    table_time += table.tau_for_step(s);
+  EXPECT_NEAR(covered, table_time, 1e-14);
+  EXPECT_EQ(controller.state().table_lag, step - k);
+  // The table resumes where the adaptive τ had caught up with it.
+  EXPECT_GE(controller.state().next_tau, table.tau_for_step(k));
+  EXPECT_EQ(controller.propose(step, 0.0, 1e9), table.tau_for_step(k));
+  EXPECT_THROW(TimeStepController({.mode = TimeStepMode::constant, .tau = 0.1}).fall_back_to_adaptive(1),
+               InvalidParameter);
+}
+
 TEST(TimeStepController, error_tolerance_rejects_and_predicts_the_next_tau)
 {
   // The step-doubling estimate is O(τ²): an estimate 4 ε calls for τ · safety · √(1/4).

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <cmath>
 #include <bit>
 #include <cstdint>
 #include <cstring>
@@ -19,7 +20,7 @@ namespace {
 static_assert(std::endian::native == std::endian::little, "checkpoints are written on little-endian machines");
 
 constexpr char magic[8] = {'S', 'D', 'F', 'L', 'O', 'W', 'C', 'K'};
-constexpr std::uint32_t version = 3;
+constexpr std::uint32_t version = 4;
 
 std::uint64_t fnv1a(const char* data, std::size_t size)
 {
@@ -164,6 +165,8 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file)
   }
   w.put<std::int64_t>(c.tolerated_degraded);
   put_solver(w, {c.half_solver, c.has_half_anchor, c.half_anchor_positions, c.half_anchor_tau_beta});
+  w.put<std::int64_t>(c.time_step.table_lag);
+  w.put(c.time_step.fallback_left);
   w.put(fnv1a(w.bytes().data(), w.bytes().size()));
   write_atomically(file, [&](std::ostream& out) { out.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size())); });
 }
@@ -221,6 +224,13 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
     c.has_half_anchor = half.has_anchor;
     c.half_anchor_positions = half.anchor_positions;
     c.half_anchor_tau_beta = half.anchor_tau_beta;
+  }
+  if (file_version >= 4) {
+    c.time_step.table_lag = r.get<std::int64_t>();
+    c.time_step.fallback_left = r.get<double>();
+    if (c.time_step.table_lag < 0 || c.time_step.table_lag > c.step || !(c.time_step.fallback_left >= 0) ||
+        !std::isfinite(c.time_step.fallback_left))
+      throw IoError(fmt::format("{}: checkpoint's τ table position is corrupt", file.string()));
   }
   return c;
 }

@@ -6,6 +6,7 @@
 #include "sdflow/geometry/quality.h"
 #include "sdflow/remesh/remesh.h"
 #include "sdflow/spatial/intersect.h"
+#include "sdflow/stopwatch.h"
 
 #include <fmt/format.h>
 
@@ -113,11 +114,15 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     RetriangulationReport report;
     if (!context.force && context.step % schedule.every != 0)
       return report;
+    Stopwatch stopwatch;
     const std::string reason = context.force ? "no step could be taken"
                                              : reason_to_retriangulate(mesh, schedule, context.tolerated_degraded, *watch);
+    report.check_seconds = stopwatch.restart();
     if (reason.empty())
       return report;
     RetriangulationResult r = retriangulate(mesh, schedule.pipeline);
+    report.pipeline_seconds = r.seconds;
+    stopwatch.restart();
     std::string volume_note;
     if (schedule.restore_volume) {
       const double before = enclosed_volume(r.mesh);
@@ -127,6 +132,7 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
       if (after != 0)
         volume_note = fmt::format("; volume restored by {:.3g} (relative)", (after - before) / after);
     }
+    report.volume_seconds = stopwatch.seconds();
     report.remeshed = schedule.pipeline.remesh_iterations > 0;
     report.surgery = r.rebuilt;
     report.split = r.components_after > r.components_before - r.merged_components;

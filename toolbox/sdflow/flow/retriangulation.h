@@ -56,6 +56,9 @@ struct RetriangulationReport {
   bool merged = false;   //!< components were joined
   std::string detail;    //!< one line for events.log
   long degraded_left = -1; //!< degraded elements left by the pipeline when it ran (-1: it did not)
+  double check_seconds = 0;  //!< wall time of the look at the surface (intersections, degraded elements)
+  RetriangulationResult::Seconds pipeline_seconds; //!< of the pipeline's stages, when it ran
+  double volume_seconds = 0; //!< of giving the components back their volume
   bool changed() const { return remeshed || surgery || split || merged; }
 };
 

@@ -2,6 +2,7 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/geometry/cotangent_curvature.h"
+#include "sdflow/stopwatch.h"
 
 #include <fmt/format.h>
 
@@ -83,6 +84,9 @@ StepResult extrapolated_step(const Mesh& mesh, const FlowOperators& op, double t
     result.solve.iterations += half.solve.iterations;
     result.solve.relative_residual = std::max(result.solve.relative_residual, half.solve.relative_residual);
     result.factorisations += half.factorisations;
+    result.solve.seconds.assembly += half.solve.seconds.assembly;
+    result.solve.seconds.factorisation += half.solve.seconds.factorisation;
+    result.solve.seconds.solve += half.solve.seconds.solve;
     if (half.solve.factorised) {
       result.half_factorised = true;
       result.half_factorised_positions = half.factorised_positions;
@@ -93,8 +97,11 @@ StepResult extrapolated_step(const Mesh& mesh, const FlowOperators& op, double t
   absorb(first_half);
   Mesh halfway = mesh;
   set_vertex_positions(halfway, first_half.positions);
+  const Stopwatch watch;
+  const FlowOperators halfway_operators = flow_operators(halfway, options, cache);
+  result.operators_seconds = watch.seconds();
   const StepResult second_half =
-      solve_step(halfway, flow_operators(halfway, options, cache), tau / 2, options.beta, half_solver, first_half.w);
+      solve_step(halfway, halfway_operators, tau / 2, options.beta, half_solver, first_half.w);
   absorb(second_half);
   result.error = second_half.positions - result.positions;
   result.positions = second_half.positions + result.error;

@@ -80,6 +80,7 @@ struct StepResult {
   double half_factorised_tau_beta = 0;
   //! X_{τ/2∘τ/2} − X_τ of an extrapolated step, its local error estimate (0 rows for a plain step).
   VertexVectors error;
+  double operators_seconds = 0; //!< wall time of an extrapolated step's operators at the half step
 };
 
 //! Solve the step for `tau` (> 0) with `solver`; `guess` (empty or #V) warm-starts iterative solves.

@@ -6,12 +6,14 @@
 #include "sdflow/io/io.h"
 #include "sdflow/io/vtk.h"
 #include "sdflow/log.h"
+#include "sdflow/stopwatch.h"
 
 #include <fmt/format.h>
 
 #include <cerrno>
 #include <chrono>
 #include <fstream>
+#include <iterator>
 #include <optional>
 #include <sstream>
 
@@ -43,6 +45,41 @@ std::string read_truncated(const std::filesystem::path& file, const std::string&
   }
   return text;
 }
+
+//! The stages' wall time summed over the steps of this process, for the line that ends a run.
+class TimingSummary {
+public:
+  void add(const StepTimes& t, double output)
+  {
+    const auto& p = t.pipeline;
+    const double re_triangulation = p.merge + p.remesh + p.intersections + p.normals + p.reconstruction + p.holes +
+                                    p.components + t.volume_restoration;
+    const double parts[] = {t.operators, t.assembly, t.factorisation, t.solve, t.acceptance,
+                            t.retriangulation_check, re_triangulation, output};
+    for (std::size_t i = 0; i < std::size(parts); ++i)
+      seconds_[i] += parts[i];
+    total_ += t.total + output;
+  }
+
+  //! "time by stage: 41.2 s; solve 18.3 s (44%), ..." in the order of timings.csv.
+  std::string line() const
+  {
+    static constexpr const char* names[] = {"operators", "assembly", "factorisation", "solve", "acceptance",
+                                            "intersection and quality check", "re-triangulation", "output"};
+    std::string text = fmt::format("time by stage: {:.3g} s in all", total_);
+    double accounted = 0;
+    for (std::size_t i = 0; i < std::size(names); ++i) {
+      text += fmt::format("; {} {:.3g} s ({:.0f}%)", names[i], seconds_[i], percent(seconds_[i]));
+      accounted += seconds_[i];
+    }
+    return text + fmt::format("; other {:.3g} s ({:.0f}%)", total_ - accounted, percent(total_ - accounted));
+  }
+
+private:
+  double percent(double s) const { return total_ > 0 ? 100 * s / total_ : 0; }
+  double seconds_[8] = {};
+  double total_ = 0;
+};
 
 //! The run directory of one flow: it observes the flow's steps and writes what simulation.h lists.
 class RunRecorder {
@@ -85,6 +122,7 @@ public:
   {
     snapshots_.clear();
     metrics_ = std::string(metrics_header) + '\n';
+    timings_ = std::string(timings_header) + '\n';
     write_atomically(dir_ / "run.toml", [&](std::ostream& out) { out << run_parameters_toml(flow.parameters()); });
     const FlowMetrics metrics = flow.metrics();
     log_event(flow, fmt::format("start: {} vertices, {} faces, {} components", metrics.vertices, metrics.faces,
@@ -99,6 +137,8 @@ public:
   {
     snapshots_ = checkpoint.snapshots;
     metrics_ = read_truncated(dir_ / "metrics.csv", "", flow.steps(), true);
+    timings_ = std::filesystem::exists(dir_ / "timings.csv") ? read_truncated(dir_ / "timings.csv", "", flow.steps(), true)
+                                                              : std::string(timings_header) + '\n';
     events_ = read_truncated(dir_ / "events.log", "step ", flow.steps(), false);
     write_atomically(dir_ / "run.toml", [&](std::ostream& out) { out << run_parameters_toml(flow.parameters()); });
     log_event(flow, fmt::format("resumed from the checkpoint at t = {}", flow.time()));
@@ -107,16 +147,23 @@ public:
   //! After each accepted step: its notes and metrics row; a snapshot and a checkpoint when due.
   void record(SurfaceDiffusion& flow, const StepRecord& step)
   {
+    Stopwatch watch;
     take_notes(flow);
     metrics_ += metrics_row(flow.steps(), flow.time(), step.tau, flow.metrics(), step.event);
     const RunParameters& p = flow.parameters();
     const bool last = flow.finished();
     if (last || (p.snapshot_every > 0 && flow.steps() % p.snapshot_every == 0))
       snapshot(flow);
+    // The row's output time: the files written since the last row (that row's flush and
+    // checkpoint, this step's metrics and snapshot), as a row is written before the files it is in.
+    const double output = pending_output_ + watch.restart();
+    timings_ += timings_row(flow.steps(), step.times, output);
+    summary_.add(step.times, output);
     if (last || flow.steps() % p.checkpoint_every == 0)
       save(flow);
     else if (Clock::now() - last_flush_ > flush_interval)
       flush();
+    pending_output_ = watch.seconds();
   }
 
   //! Stop between steps: a checkpoint of the last accepted step, as an uninterrupted run would
@@ -131,12 +178,14 @@ public:
   {
     take_notes(flow);
     log_event(flow, fmt::format("stopped: {}", reason));
+    log_event(flow, summary_.line());
     flush();
   }
 
   void finished(const SurfaceDiffusion& flow)
   {
     log_event(flow, fmt::format("finished at t = {}", flow.time()));
+    log_event(flow, summary_.line());
     flush();
   }
 
@@ -182,6 +231,7 @@ private:
   void flush()
   {
     write_atomically(dir_ / "metrics.csv", [&](std::ostream& out) { out << metrics_; });
+    write_atomically(dir_ / "timings.csv", [&](std::ostream& out) { out << timings_; });
     write_atomically(dir_ / "events.log", [&](std::ostream& out) { out << events_; });
     last_flush_ = Clock::now();
   }
@@ -206,8 +256,10 @@ private:
   std::filesystem::path dir_;
   std::optional<RunLock> lock_;
   std::vector<SeriesEntry> snapshots_;
-  std::string metrics_, events_;
+  std::string metrics_, events_, timings_;
   Clock::time_point last_flush_ = Clock::now();
+  double pending_output_ = 0;
+  TimingSummary summary_;
 };
 
 //! Step `flow` to its end (or until `options.stop_requested`), recording every step.
@@ -247,6 +299,20 @@ std::string metrics_row(long step, double time, double tau, const FlowMetrics& m
   return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", step, time, tau, m.vertices, m.faces,
                      m.components, m.genus, m.area, m.volume, m.mean_curvature, m.curvature_deviation_pct, m.d1, m.d2,
                      event);
+}
+
+std::string timings_row(long step, const StepTimes& t, double output)
+{
+  const auto& p = t.pipeline;
+  const double total = t.total + output;
+  const double other = total - (t.operators + t.assembly + t.factorisation + t.solve + t.acceptance +
+                                t.retriangulation_check + p.merge + p.remesh + p.intersections + p.normals +
+                                p.reconstruction + p.holes + p.components + t.volume_restoration + output);
+  return fmt::format("{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},"
+                     "{:.6f},{:.6f},{:.6f},{:.6f}\n",
+                     step, total, t.operators, t.assembly, t.factorisation, t.solve, t.acceptance,
+                     t.retriangulation_check, p.merge, p.remesh, p.intersections, p.normals, p.reconstruction, p.holes,
+                     p.components, t.volume_restoration, output, other);
 }
 
 SimulationResult run_simulation(const Mesh& initial, const SimulationOptions& options)

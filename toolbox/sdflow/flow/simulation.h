@@ -3,6 +3,7 @@
 //! \brief A run: the flow in memory (surface_diffusion.h) recorded in a run directory:
 //! ```
 //! DIR/metrics.csv        one row per accepted step (row 0 = the initial surface)
+//! DIR/timings.csv        one row per accepted step: its wall time by stage (timings_header)
 //! DIR/snapshots/step_NNNNNN.ply, .vtp   surfaces; the .vtp carry per-vertex H, N and w
 //! DIR/series.pvd         ParaView time series of the .vtp files
 //! DIR/run.toml           the fully resolved parameters
@@ -29,6 +30,15 @@ inline constexpr const char* metrics_header =
 
 //! One line of metrics.csv (with its newline): the step, time, τ and event, and the flow's metrics.
 std::string metrics_row(long step, double time, double tau, const FlowMetrics& metrics, const std::string& event);
+
+//! The columns of timings.csv (seconds of wall time per step): the stages of StepTimes, the
+//! run directory's files (`output`), and `other`, the rest of the step's total.
+inline constexpr const char* timings_header =
+    "step,total,operators,assembly,factorisation,solve,acceptance,retriangulation_check,merge,remesh,"
+    "intersections,normals,reconstruction,holes,components,volume_restoration,output,other";
+
+//! One line of timings.csv (with its newline); `output` is the time spent writing the run's files.
+std::string timings_row(long step, const StepTimes& times, double output);
 
 struct SimulationOptions {
   RunParameters parameters;

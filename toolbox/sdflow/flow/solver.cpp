@@ -1,6 +1,7 @@
 #include "sdflow/flow/solver.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/stopwatch.h"
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SPQRSupport>
@@ -97,7 +98,9 @@ struct FlowSolver::Impl {
   //! Symbolic analysis when L's pattern is new, then the numeric factorisation.
   void factorise(const FlowSystem& s, SolveReport& report)
   {
+    Stopwatch watch;
     const SparseMatrix a = flow_matrix(s);
+    report.seconds.assembly += watch.restart();
     if (!same_pattern(s.laplacian)) {
       cholesky.analyzePattern(a);
       if (cholesky.info() != Eigen::Success)
@@ -117,6 +120,7 @@ struct FlowSolver::Impl {
                                       "to working precision: degenerate triangles?)", a.rows(), a.cols()));
     factorised = true;
     report.factorised = true;
+    report.seconds.factorisation += watch.seconds();
     state = {};
   }
 
@@ -244,6 +248,7 @@ Eigen::VectorXd FlowSolver::solve(const FlowSystem& system, const Eigen::VectorX
                                   SolveReport* report)
 {
   check_system(system, rhs);
+  const Stopwatch watch;
   SolveReport local;
   Eigen::VectorXd w;
   if (impl_->options.kind == SolverKind::qr) {
@@ -252,6 +257,7 @@ Eigen::VectorXd FlowSolver::solve(const FlowSystem& system, const Eigen::VectorX
     w = impl_->solve_cholmod(system, rhs, guess, local);
   }
   check_finite(w, "the linear solve");
+  local.seconds.solve = std::max(0.0, watch.seconds() - local.seconds.assembly - local.seconds.factorisation);
   if (report)
     *report = local;
   return w;

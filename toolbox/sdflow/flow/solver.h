@@ -55,6 +55,11 @@ struct SolveReport {
   bool factorised = false; //!< a numeric factorisation was made
   int iterations = 0;      //!< preconditioned CG iterations (0 for a direct solve)
   double relative_residual = 0; //!< |b - A w|₂ / |b|₂ of the returned solution
+  //! Wall time: building M + τβ L M⁻¹ L, CHOLMOD's analysis and factorisation, and the rest
+  //! (triangular solves, CG, residual).
+  struct Seconds {
+    double assembly = 0, factorisation = 0, solve = 0;
+  } seconds;
 };
 
 //! The solver's between-step state, so that a resumed run makes the same decisions.

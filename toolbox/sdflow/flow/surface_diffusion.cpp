@@ -5,6 +5,7 @@
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/log.h"
+#include "sdflow/stopwatch.h"
 
 #include <fmt/format.h>
 
@@ -86,11 +87,13 @@ bool SurfaceDiffusion::finished() const
 
 StepRecord SurfaceDiffusion::step()
 {
+  const Stopwatch watch;
   const long next_step = step_ + 1;
   const TimeStepState controller_before = controller_.state();
   std::vector<std::string> events;
   const auto& schedule = p_.time_step.schedule.entries();
-  if (p_.time_step.mode == TimeStepMode::schedule && !schedule.empty() && next_step == schedule.back().last_step + 1)
+  const bool table = p_.time_step.mode == TimeStepMode::schedule;
+  if (table && !controller_.adaptive() && controller_.table_step(next_step) == schedule.back().last_step + 1)
     note(next_step, time_,
          fmt::format("the τ schedule ends at step {}: the steps after it repeat its last τ = {}", next_step - 1,
                      schedule.back().tau),
@@ -102,22 +105,40 @@ StepRecord SurfaceDiffusion::step()
   double tau = 0;
   std::vector<double> volumes;
   // A step that no τ makes acceptable (a triangle beside a closing neck that turns over
-  // whatever the step) is retried once after a re-triangulation of the surface it starts from.
+  // whatever the step) is retried once after a re-triangulation of the surface it starts from; a
+  // table's step that still fails is then covered by adaptive steps (time_step.h).
+  const auto restart_controller = [&] {
+    TimeStepState s = controller_before;
+    s.rejections = 0;
+    controller_ = TimeStepController(p_.time_step, s);
+  };
+  bool fell_back = false;
   for (bool forced = false;;) {
     try {
       tau = trial_step(next_step, trial, record, rejections, volumes);
       break;
     } catch (const SolverFailure& e) {
-      if (!retriangulate_ || forced)
+      if (retriangulate_ && !forced) {
+        forced = true;
+        note(next_step, time_, fmt::format("no acceptable step ({}): re-triangulating, then trying again", e.what()));
+        const RetriangulationReport report = call_retriangulation(true, record.times);
+        if (report.changed()) {
+          adopt_retriangulation(report, events);
+          renew_operators(record.times);
+          restart_controller();
+          continue;
+        }
+      }
+      if (!table || fell_back || controller_before.fallback_left > 0)
         throw;
-      forced = true;
-      note(next_step, time_, fmt::format("no acceptable step ({}): re-triangulating, then trying again", e.what()));
-      RetriangulationReport report = call_retriangulation(true);
-      if (!report.changed())
-        throw;
-      adopt_retriangulation(report, events);
-      op_ = flow_operators(mesh_, p_.scheme, &*cache_);
-      controller_ = TimeStepController(p_.time_step, {.next_tau = controller_before.next_tau});
+      fell_back = true;
+      restart_controller();
+      controller_.fall_back_to_adaptive(next_step);
+      events.emplace_back("fallback");
+      note(next_step, time_,
+           fmt::format("the table's step {} cannot be taken ({}): adaptive steps cover its τ = {}",
+                       controller_.table_step(next_step), e.what(), controller_.state().fallback_left),
+           true);
     }
   }
   if (rejections > 0)
@@ -128,21 +149,25 @@ StepRecord SurfaceDiffusion::step()
     set_vertex_positions(mesh_, restore_volumes(mesh_, volumes).positions);
   step_ = next_step;
   time_ += tau;
+  if ((fell_back || controller_before.fallback_left > 0) && !controller_.adaptive())
+    note(step_, time_, fmt::format("adaptive steps covered the table up to its step {}: the table resumes",
+                                   controller_.table_step(step_)));
   previous_w_ = trial.w;
   last_w_ = trial.w;
 
   if (retriangulate_) {
-    const RetriangulationReport report = call_retriangulation(false);
+    const RetriangulationReport report = call_retriangulation(false, record.times);
     if (report.changed())
       adopt_retriangulation(report, events);
   }
-  op_ = flow_operators(mesh_, p_.scheme, &*cache_);
+  renew_operators(record.times);
 
   record.step = step_;
   record.time = time_;
   record.tau = tau;
   record.rejections = rejections;
   record.event = join_events(events);
+  record.times.total = watch.seconds();
   return record;
 }
 
@@ -223,12 +248,23 @@ void SurfaceDiffusion::restore_solver(FlowSolver& solver, const VertexVectors& p
 }
 
 //! The hook's failure stops the flow like an unstable step: the surface stays the last accepted one.
-RetriangulationReport SurfaceDiffusion::call_retriangulation(bool force)
+RetriangulationReport SurfaceDiffusion::call_retriangulation(bool force, StepTimes& times)
 {
   try {
     RetriangulationReport report = retriangulate_(mesh_, {step_, time_, tolerated_degraded_, force});
     if (report.degraded_left >= 0)
       tolerated_degraded_ = report.degraded_left;
+    times.retriangulation_check += report.check_seconds;
+    times.volume_restoration += report.volume_seconds;
+    auto& p = times.pipeline;
+    const auto& q = report.pipeline_seconds;
+    p.merge += q.merge;
+    p.remesh += q.remesh;
+    p.intersections += q.intersections;
+    p.normals += q.normals;
+    p.reconstruction += q.reconstruction;
+    p.holes += q.holes;
+    p.components += q.components;
     return report;
   } catch (const SolverFailure&) {
     throw;
@@ -265,12 +301,15 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
 double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecord& record, int& rejections,
                                     std::vector<double>& volumes)
 {
+  StepTimes& times = record.times;
+  Stopwatch watch;
   const VertexVectors positions = vertex_positions(mesh_);
   const Eigen::VectorXd edge_lengths = vertex_mean_edge_lengths(mesh_);
   volumes = component_volumes(positions, triangles_, topology_.face_component, topology_.count);
+  times.acceptance += watch.seconds();
   const AdaptiveOptions& adaptive = p_.time_step.adaptive;
   const bool need_automatic_tau =
-      p_.time_step.mode == TimeStepMode::adaptive && controller_.state().next_tau == 0 && adaptive.initial_tau == 0;
+      controller_.adaptive() && controller_.state().next_tau == 0 && adaptive.initial_tau == 0;
   const double automatic =
       need_automatic_tau ? automatic_tau(op_.rhs.cwiseQuotient(op_.areas).cwiseAbs(), op_.held, edge_lengths, adaptive)
                          : 0.0;
@@ -282,6 +321,11 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
                 : solve_step(mesh_, op_, tau, p_.scheme.beta, solver_, previous_w_);
     record.cg_iterations += trial.solve.iterations;
     factorisations_ += trial.factorisations;
+    times.operators += trial.operators_seconds;
+    times.assembly += trial.solve.seconds.assembly;
+    times.factorisation += trial.solve.seconds.factorisation;
+    times.solve += trial.solve.seconds.solve;
+    watch.restart();
     if (trial.solve.factorised) {
       has_anchor_ = p_.solver.kind == SolverKind::cholmod;
       anchor_positions_ = trial.factorised_positions;
@@ -312,13 +356,21 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
                                          .triangles = triangles_,
                                          .edge_lengths = edge_lengths,
                                          .volume_change = volume_change},
-                                        p_.time_step);
+                                        controller_.adaptive() ? &adaptive : nullptr);
+    times.acceptance += watch.seconds();
     if (controller_.judge(next_step, tau, check))
       return tau;
     ++rejections;
     ++rejected_trials_;
     note(next_step, time_, fmt::format("rejected τ = {}: {}", tau, check.describe()));
   }
+}
+
+void SurfaceDiffusion::renew_operators(StepTimes& times)
+{
+  const Stopwatch watch;
+  op_ = flow_operators(mesh_, p_.scheme, &*cache_);
+  times.operators += watch.seconds();
 }
 
 void SurfaceDiffusion::note(long step, double time, std::string text, bool warning)

@@ -38,6 +38,19 @@ struct FlowNote {
   std::string line() const; //!< "step N t=T: text"
 };
 
+//! Wall time of one step by stage, in seconds, over all its trials (a run's timings.csv).
+struct StepTimes {
+  double operators = 0;      //!< N, H, L, M of each new surface (scheme.h, flow_operators)
+  double assembly = 0;       //!< M + τβ L M⁻¹ L (solver.h)
+  double factorisation = 0;  //!< CHOLMOD's analysis and numeric factorisation
+  double solve = 0;          //!< triangular solves, CG, residuals
+  double acceptance = 0;     //!< the time-step rule's checks (turned triangles, volumes)
+  double retriangulation_check = 0; //!< the hook's look for self-intersections and degraded elements
+  RetriangulationResult::Seconds pipeline; //!< the re-triangulation pipeline's stages, when it ran
+  double volume_restoration = 0; //!< components given back their volume after re-triangulating
+  double total = 0;          //!< the whole step
+};
+
 //! One accepted step.
 struct StepRecord {
   long step = 0;
@@ -46,8 +59,10 @@ struct StepRecord {
   int rejections = 0;      //!< trials rejected before the accepted one
   int cg_iterations = 0;
   bool factorised = false;
-  //! What happened besides the step, joined by '+': rejected, remeshed, surgery, split, merged.
+  //! What happened besides the step, joined by '+': rejected, fallback, remeshed, surgery, split,
+  //! merged.
   std::string event;
+  StepTimes times;
 };
 
 //! The measures of one row of metrics.csv (the step, time, τ and event aside).
@@ -113,8 +128,9 @@ private:
   void prepare_retriangulation(RetriangulationHook hook);
   void restore_solver(FlowSolver& solver, const VertexVectors& positions, const FaceIndices& triangles, double tau_beta,
                       const SolverState& state);
-  RetriangulationReport call_retriangulation(bool force);
+  RetriangulationReport call_retriangulation(bool force, StepTimes& times);
   void adopt_retriangulation(const RetriangulationReport& report, std::vector<std::string>& events);
+  void renew_operators(StepTimes& times);
   double trial_step(long next_step, StepResult& trial, StepRecord& record, int& rejections,
                     std::vector<double>& volumes);
   void note(long step, double time, std::string text, bool warning = false);

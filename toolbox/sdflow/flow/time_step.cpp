@@ -159,7 +159,7 @@ TimeStepController::TimeStepController(const TimeStepOptions& options, TimeStepS
       throw InvalidParameter("τ schedule mode without a schedule");
     if (options_.schedule_retries < 0 || options_.schedule_retries > 60)
       throw InvalidParameter(fmt::format("schedule_retries must be in [0, 60], got {}", options_.schedule_retries));
-    break;
+    [[fallthrough]]; // a table step that fails is covered by adaptive steps
   case TimeStepMode::adaptive:
     if (!(a.max_displacement > 0) || !(a.safety > 0 && a.safety <= 1) || !(a.growth >= 1) ||
         !(a.shrink > 0 && a.shrink < 1) || !(a.max_volume_change > 0) || !(a.min_tau > 0) ||
@@ -178,37 +178,51 @@ TimeStepController::TimeStepController(const TimeStepOptions& options, TimeStepS
 double TimeStepController::propose(long step, double automatic_tau, double time_left)
 {
   double tau = 0;
-  switch (options_.mode) {
-  case TimeStepMode::constant: tau = options_.tau; break;
-  case TimeStepMode::schedule: tau = std::ldexp(options_.schedule.tau_for_step(step), -state_.rejections); break;
-  case TimeStepMode::adaptive:
+  if (adaptive()) {
     if (state_.next_tau == 0)
       state_.next_tau = options_.adaptive.initial_tau > 0 ? options_.adaptive.initial_tau : automatic_tau;
     if (!(state_.next_tau > 0) || !std::isfinite(state_.next_tau))
       throw InvalidParameter(fmt::format("adaptive τ: no usable initial τ (got {})", state_.next_tau));
     tau = std::clamp(state_.next_tau, options_.adaptive.min_tau, options_.adaptive.max_tau);
-    break;
+    // Covering a table step: its end is never passed, and a sliver of it is not left for later
+    // (the whole rest is at most the growth bound 1.25 times the proposal).
+    const double left = state_.fallback_left;
+    if (left > 0 && (tau > left || left - tau < 0.25 * tau))
+      tau = left;
+  } else if (options_.mode == TimeStepMode::constant) {
+    tau = options_.tau;
+  } else {
+    tau = std::ldexp(options_.schedule.tau_for_step(table_step(step)), -state_.rejections);
   }
   return std::min(tau, time_left);
 }
 
 bool TimeStepController::judge(long step, double tau, const StepCheck& check)
 {
-  if (options_.mode != TimeStepMode::adaptive) {
-    if (!check.non_finite && check.inverted_triangles == 0) {
-      state_.rejections = 0;
-      return true;
-    }
-    const int retries = options_.mode == TimeStepMode::schedule ? options_.schedule_retries : 0;
-    if (state_.rejections < retries) {
-      ++state_.rejections;
-      return false;
-    }
-    throw SolverFailure(fmt::format("step {} with τ = {:g} is unstable: {}{}. Use a smaller τ, β ≥ 1/2, {}or "
-                                    "adaptive time steps", step, tau, check.describe(),
-                                    retries > 0 ? fmt::format(" after {} halvings of the table's τ", retries) : "",
-                                    options_.mode == TimeStepMode::schedule ? "schedule retries, " : ""));
+  if (adaptive()) {
+    const bool covering = state_.fallback_left > 0;
+    const bool accepted = judge_adaptive(step, tau, check);
+    if (accepted && covering)
+      cover_table_step(step, tau);
+    return accepted;
   }
+  if (!check.non_finite && check.inverted_triangles == 0) {
+    state_.rejections = 0;
+    return true;
+  }
+  const int retries = options_.mode == TimeStepMode::schedule ? options_.schedule_retries : 0;
+  if (state_.rejections < retries) {
+    ++state_.rejections;
+    return false;
+  }
+  throw SolverFailure(fmt::format("step {} with τ = {:g} is unstable: {}{}. Use a smaller τ, β ≥ 1/2, {}or "
+                                  "adaptive time steps", step, tau, check.describe(),
+                                  retries > 0 ? fmt::format(" after {} halvings of the table's τ", retries) : "",
+                                  options_.mode == TimeStepMode::schedule ? "schedule retries, " : ""));
+}
+
+bool TimeStepController::judge_adaptive(long step, double tau, const StepCheck& check)
+{
   const AdaptiveOptions& a = options_.adaptive;
   // The factors that would bring each bounded quantity to `safety` times its bound.
   const double displacement_factor =
@@ -234,7 +248,30 @@ bool TimeStepController::judge(long step, double tau, const StepCheck& check)
   return false;
 }
 
-StepCheck check_trial(const TrialMotion& trial, const TimeStepOptions& options)
+//! An accepted adaptive step of `tau` covered part of a table step: the table's count stays put
+//! until the table step is covered, then the next table step is covered too while its τ is beyond
+//! the adaptive rule's.
+void TimeStepController::cover_table_step(long step, double tau)
+{
+  state_.fallback_left -= tau;
+  if (state_.fallback_left > 0) {
+    ++state_.table_lag;
+    return;
+  }
+  const double next_table_tau = options_.schedule.tau_for_step(table_step(step + 1));
+  state_.fallback_left = state_.next_tau < next_table_tau ? next_table_tau : 0;
+}
+
+void TimeStepController::fall_back_to_adaptive(long step)
+{
+  if (options_.mode != TimeStepMode::schedule)
+    throw InvalidParameter("only a τ schedule falls back to adaptive steps");
+  state_.fallback_left = options_.schedule.tau_for_step(table_step(step));
+  state_.next_tau = 0;
+  state_.rejections = 0;
+}
+
+StepCheck check_trial(const TrialMotion& trial, const AdaptiveOptions* bounds)
 {
   StepCheck c;
   if (!trial.next.allFinite()) {
@@ -254,8 +291,8 @@ StepCheck check_trial(const TrialMotion& trial, const TimeStepOptions& options)
       ++c.inverted_triangles;
   }
   c.volume_change = trial.volume_change;
-  if (options.mode == TimeStepMode::adaptive) {
-    const AdaptiveOptions& a = options.adaptive;
+  if (bounds) {
+    const AdaptiveOptions& a = *bounds;
     c.displacement_exceeded = c.displacement_ratio > a.max_displacement;
     c.volume_exceeded = c.volume_change > a.max_volume_change;
     c.error_exceeded = a.tolerance > 0 && c.error_estimate > a.tolerance;

@@ -20,6 +20,10 @@
 //! position stops the run at once (SolverFailure), unless `schedule_retries` > 0: then a schedule's
 //! step is tried again with τ halved, up to that many times in a row, and the next step returns to
 //! the table's τ (the step count follows the table; the time falls behind it by what was halved).
+//! A table step that still fails (after a re-triangulation, surface_diffusion.h) is covered by
+//! adaptive steps instead (fall_back_to_adaptive): they advance the time by exactly the table's τ
+//! for that step, and the adaptive steps go on through the following table steps while the adaptive
+//! rule's τ stays below the table's; the table then resumes where its count stands.
 
 #include "sdflow/mesh.h"
 
@@ -113,9 +117,9 @@ struct TrialMotion {
   double volume_change = 0;           //!< largest relative volume change of a closed component
 };
 
-//! The checks of the rule above on one trial: finite positions, no triangle turned over, and in
-//! adaptive mode the displacement, volume and error bounds.
-StepCheck check_trial(const TrialMotion& trial, const TimeStepOptions& options);
+//! The checks of the rule above on one trial: finite positions, no triangle turned over, and with
+//! `bounds` (adaptive steps) the displacement, volume and error bounds.
+StepCheck check_trial(const TrialMotion& trial, const AdaptiveOptions* bounds);
 
 //! τ of the first adaptive step when no initial τ is given: the explicit speed |ΔH| bounds the
 //! semi-implicit one (the inverse of I + τβΔ² is a contraction), so safety · max_displacement ·
@@ -126,8 +130,13 @@ double automatic_tau(const Eigen::VectorXd& explicit_speed, const std::vector<bo
 
 //! The state of the time-step controller between steps (saved in checkpoints).
 struct TimeStepState {
-  double next_tau = 0;   //!< adaptive: τ to try next (0 before the first step)
+  double next_tau = 0;   //!< adaptive steps: τ to try next (0 before the first step)
   int rejections = 0;    //!< rejections in a row
+  //! Schedule: steps taken beyond the table's count (adaptive steps that covered a table step);
+  //! step n of the flow takes the table's step n − table_lag.
+  long table_lag = 0;
+  //! Schedule: while adaptive steps cover a table step, the time left of it (0: the table rules).
+  double fallback_left = 0;
 };
 
 //! Decides τ for each trial and whether to accept it.
@@ -144,10 +153,22 @@ public:
   //! (any failure in constant or schedule mode, too many rejections or τ < min_tau in adaptive mode).
   bool judge(long step, double tau, const StepCheck& check);
 
+  //! Schedule mode: cover the table's step for flow step `step`, which failed, with adaptive steps
+  //! (the rule at the top of this file). Starts from the automatic τ.
+  void fall_back_to_adaptive(long step);
+
+  //! The adaptive rule decides the next trial (adaptive mode, or a schedule fallen back to it).
+  bool adaptive() const { return options_.mode == TimeStepMode::adaptive || state_.fallback_left > 0; }
+  //! The table's step that flow step `step` takes (schedule mode).
+  long table_step(long step) const { return step - state_.table_lag; }
+
   const TimeStepState& state() const { return state_; }
   const TimeStepOptions& options() const { return options_; }
 
 private:
+  bool judge_adaptive(long step, double tau, const StepCheck& check);
+  void cover_table_step(long step, double tau);
+
   TimeStepOptions options_;
   TimeStepState state_;
 };
