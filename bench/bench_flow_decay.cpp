@@ -9,8 +9,8 @@
 //! (scripts/install-deps.sh --bench).
 //!   bench_flow_decay --benchmark_counters_tabular=true
 
-#include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/flow/scheme.h"
+#include "sdflow/flow/surface_diffusion.h"
 #include "support/analytic_meshes.h"
 
 #include <benchmark/benchmark.h>

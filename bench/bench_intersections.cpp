@@ -3,8 +3,8 @@
 //! CGAL side-by-side run (and the threaded variants) is peer_cgal_intersections.cpp.
 #include "cube_sphere.h"
 
-#include "sdflow/retri/bvh.h"
-#include "sdflow/retri/intersect.h"
+#include "sdflow/spatial/bvh.h"
+#include "sdflow/spatial/intersect.h"
 
 #include <benchmark/benchmark.h>
 

@@ -2,7 +2,7 @@
 //! OpenMesh's own readers on the same files, and the atomic writers.
 //! Run: build/bench/bench_io --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <benchmark/benchmark.h>

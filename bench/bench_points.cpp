@@ -5,8 +5,8 @@
 
 #include "point_inputs.h"
 
-#include "sdflow/retri/point_normals.h"
-#include "sdflow/retri/reconstruct.h"
+#include "sdflow/reconstruct/advancing_front.h"
+#include "sdflow/reconstruct/point_normals.h"
 
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>

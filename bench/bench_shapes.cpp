@@ -2,7 +2,7 @@
 //! its two stages (marching tetrahedra, remeshing), and the paper-resolution union shapes.
 //! Run: build/bench/bench_shapes --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 
-#include "sdflow/retri/remesh.h"
+#include "sdflow/remesh/remesh.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/marching_tetrahedra.h"
 #include "sdflow/shapes/mesher.h"
@@ -21,7 +21,7 @@ void report(benchmark::State& state, const sdflow::MesherResult& r)
 //! The figure: `sdflow shape torus --vertices 100000`.
 void torus_100k(benchmark::State& state)
 {
-  const auto torus = sdflow::shapes::torus();
+  const auto torus = sdflow::torus_shape();
   for (auto _ : state) {
     auto r = sdflow::mesh_implicit_surface(torus, {.vertices = 100000});
     report(state, r);
@@ -33,7 +33,7 @@ BENCHMARK(torus_100k)->Unit(benchmark::kSecond)->Iterations(1);
 //! The first stage alone, at the grid the 100k torus uses.
 void torus_marching(benchmark::State& state)
 {
-  const auto torus = sdflow::shapes::torus();
+  const auto torus = sdflow::torus_shape();
   for (auto _ : state) {
     auto mesh = sdflow::marching_tetrahedra(torus, {.cell_size = 0.175});
     state.counters["vertices"] = static_cast<double>(mesh.n_vertices());
@@ -46,7 +46,7 @@ BENCHMARK(torus_marching)->Unit(benchmark::kMillisecond)->Iterations(1);
 //! pipeline), projecting analytically.
 void torus_remesh_3_iterations(benchmark::State& state)
 {
-  const auto torus = sdflow::shapes::torus();
+  const auto torus = sdflow::torus_shape();
   const sdflow::Mesh input = sdflow::mesh_implicit_surface(torus, {.edge_length = 0.0875, .iterations = 2}).mesh;
   const auto project = [&](const Eigen::Vector3d& p) { return sdflow::project_to_level_set(torus, p); };
   for (auto _ : state) {
@@ -60,7 +60,7 @@ BENCHMARK(torus_remesh_3_iterations)->Unit(benchmark::kSecond)->Iterations(1);
 //! The sintering cluster at the paper's resolution (51311 vertices, §4.2).
 void sintering_paper(benchmark::State& state)
 {
-  const auto cluster = sdflow::shapes::sintering_cluster();
+  const auto cluster = sdflow::sintering_cluster_shape();
   for (auto _ : state) {
     auto r = sdflow::mesh_implicit_surface(cluster, {.vertices = 51311});
     report(state, r);
@@ -72,7 +72,7 @@ BENCHMARK(sintering_paper)->Unit(benchmark::kSecond)->Iterations(1);
 //! Three spheres on a plane at the paper's resolution (95657 vertices, §4.3).
 void spheres_on_plane_paper(benchmark::State& state)
 {
-  const auto scene = sdflow::shapes::spheres_on_plane();
+  const auto scene = sdflow::spheres_on_plane_shape();
   for (auto _ : state) {
     auto r = sdflow::mesh_implicit_surface(scene, {.vertices = 95657});
     report(state, r);

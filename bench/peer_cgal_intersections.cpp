@@ -4,7 +4,7 @@
 //! the program exits with status 1 if they differ.
 #include "cube_sphere.h"
 
-#include "sdflow/retri/intersect.h"
+#include "sdflow/spatial/intersect.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>

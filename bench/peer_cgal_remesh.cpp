@@ -12,9 +12,9 @@
 #include "cube_sphere.h"
 #include "support/analytic_meshes.h"
 
-#include "sdflow/retri/bvh.h"
-#include "sdflow/retri/remesh.h"
+#include "sdflow/remesh/remesh.h"
 #include "sdflow/shapes/mesher.h"
+#include "sdflow/spatial/bvh.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>

@@ -9,7 +9,7 @@
 #include "sdflow/axisymmetric/evolution.h"
 #include "sdflow/axisymmetric/initial_curves.h"
 #include "sdflow/errors.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -26,7 +26,7 @@ struct AxisymmetricArguments {
   std::string shape, profile, csv;
   double major = 6, minor = 3, length_ratio = 9, radius = 1, amplitude = 0.01;
   int degree = 2;
-  shapes::DumbbellParameters dumbbell;
+  DumbbellParameters dumbbell;
   double end_time = std::numeric_limits<double>::infinity();
   axisymmetric::EvolutionOptions options;
   bool first_event_only = false, json = false;

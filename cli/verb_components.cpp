@@ -4,7 +4,7 @@
 
 #include "verbs.h"
 
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 #include "sdflow/retri/components.h"
 
 #include <fmt/format.h>

@@ -3,9 +3,9 @@
 
 #include "verbs.h"
 
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 #include "sdflow/log.h"
-#include "sdflow/retri/holes.h"
+#include "sdflow/reconstruct/holes.h"
 
 #include <fmt/format.h>
 

@@ -1,13 +1,13 @@
 //! `sdflow intersections MESH [OTHER] [--json] [-o OUT]`: the intersecting face pairs of a surface
-//! (or between two surfaces), decided exactly (retri/intersect.h); with -o, the surface without
+//! (or between two surfaces), decided exactly (spatial/intersect.h); with -o, the surface without
 //! them (retri/remove_intersections.h). Exit code 0 whether or not pairs are found.
 
 #include "verbs.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/io.h"
-#include "sdflow/retri/intersect.h"
+#include "sdflow/io/io.h"
 #include "sdflow/retri/remove_intersections.h"
+#include "sdflow/spatial/intersect.h"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>

@@ -3,9 +3,9 @@
 
 #include "verbs.h"
 
+#include "sdflow/io/point_cloud.h"
 #include "sdflow/log.h"
-#include "sdflow/retri/point_cloud.h"
-#include "sdflow/retri/point_normals.h"
+#include "sdflow/reconstruct/point_normals.h"
 
 #include <cmath>
 #include <memory>

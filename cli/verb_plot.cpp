@@ -8,7 +8,7 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/flow/simulation.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 
 #include <fmt/format.h>
 

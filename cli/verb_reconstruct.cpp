@@ -4,11 +4,11 @@
 #include "verbs.h"
 
 #include "sdflow/geometry/topology.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
+#include "sdflow/io/point_cloud.h"
 #include "sdflow/log.h"
-#include "sdflow/retri/point_cloud.h"
-#include "sdflow/retri/point_normals.h"
-#include "sdflow/retri/reconstruct.h"
+#include "sdflow/reconstruct/advancing_front.h"
+#include "sdflow/reconstruct/point_normals.h"
 
 #include <cmath>
 #include <memory>

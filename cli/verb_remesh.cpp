@@ -4,9 +4,9 @@
 #include "verbs.h"
 
 #include "sdflow/geometry/topology.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 #include "sdflow/limits.h"
-#include "sdflow/retri/remesh.h"
+#include "sdflow/remesh/remesh.h"
 
 #include <fmt/format.h>
 

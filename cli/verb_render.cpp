@@ -8,7 +8,7 @@
 #include "sdflow/errors.h"
 #include "sdflow/geometry/curvature.h"
 #include "sdflow/geometry/normals.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 #include "sdflow/log.h"
 
 #include <fmt/format.h>

@@ -3,7 +3,7 @@
 
 #include "verbs.h"
 
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 #include "sdflow/limits.h"
 #include "sdflow/retri/pipeline.h"
 

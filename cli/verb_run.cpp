@@ -12,7 +12,7 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/parameter_schema.h"
 #include "sdflow/flow/simulation.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 #include "sdflow/limits.h"
 #include "sdflow/log.h"
 

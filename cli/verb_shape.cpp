@@ -5,7 +5,7 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/geometry/topology.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 #include "sdflow/limits.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/expression.h"
@@ -41,7 +41,7 @@ struct ShapeArguments {
 
 void print_catalogue()
 {
-  for (const auto& shape : shapes::shape_catalogue()) {
+  for (const auto& shape : shape_catalogue()) {
     std::cout << fmt::format("{}: {}\n", shape.name, shape.summary);
     for (const auto& p : shape.parameters)
       std::cout << fmt::format("  --{:<20} {:<12.10g} {}\n", p.name, p.default_value, p.description);
@@ -63,7 +63,7 @@ ImplicitSurface chosen_surface(const ShapeArguments& args)
       throw InvalidParameter(fmt::format("--{} is a catalogue shape's parameter; an --expr takes none", given[0]));
     if (args.box.size() != 6)
       throw InvalidParameter("--expr needs --box xmin,ymin,zmin,xmax,ymax,zmax");
-    return shapes::expression_surface({args.expression,
+    return expression_surface({args.expression,
                                        {Eigen::Vector3d(args.box[0], args.box[1], args.box[2]),
                                         Eigen::Vector3d(args.box[3], args.box[4], args.box[5])},
                                        args.feature_size});
@@ -75,7 +75,7 @@ ImplicitSurface chosen_surface(const ShapeArguments& args)
   std::map<std::string, double> parameters;
   for (const auto& name : given)
     parameters[name] = args.values.at(name);
-  return shapes::make_shape(args.name, parameters);
+  return make_shape(args.name, parameters);
 }
 
 void run(const ShapeArguments& args)
@@ -139,7 +139,7 @@ void add_shape_verb(CLI::App& app)
   verb->add_flag("--force", args->force, "Skip the plausibility limits (size of the result, iterations)");
   // Every catalogue parameter once; which ones the chosen shape accepts is checked after parsing.
   std::map<std::string, std::set<std::string>> users;
-  for (const auto& shape : shapes::shape_catalogue())
+  for (const auto& shape : shape_catalogue())
     for (const auto& p : shape.parameters)
       users[p.name].insert(shape.name);
   for (const auto& [name, shapes_using] : users) {

@@ -3,8 +3,8 @@
 
 #include "verbs.h"
 
-#include "sdflow/io.h"
-#include "sdflow/statistics.h"
+#include "sdflow/check/statistics.h"
+#include "sdflow/io/io.h"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>

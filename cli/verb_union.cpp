@@ -2,7 +2,7 @@
 
 #include "verbs.h"
 
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 #include "sdflow/log.h"
 #include "sdflow/retri/surface_union.h"
 

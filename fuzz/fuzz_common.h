@@ -4,9 +4,9 @@
 //! exceptions (the documented way to refuse an input) caught and everything else left to crash.
 
 #include "sdflow/errors.h"
-#include "sdflow/io_formats.h"
+#include "sdflow/io/detail/formats.h"
+#include "sdflow/io/validate.h"
 #include "sdflow/log.h"
-#include "sdflow/validate.h"
 
 #include <spdlog/sinks/null_sink.h>
 #include <spdlog/spdlog.h>
@@ -41,7 +41,7 @@ int read_and_validate(const std::uint8_t* data, std::size_t size, Reader reader,
   quiet();
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
   try {
-    const PolygonSoup soup = reader(io_detail::without_byte_order_mark(bytes, format), name);
+    const PolygonSoup soup = reader(detail::without_byte_order_mark(bytes, format), name);
     BuildOptions options;
     options.merge_duplicate_vertices = format == MeshFormat::stl;
     (void)build_mesh(soup, name, options);

@@ -1,7 +1,7 @@
-//! libFuzzer harness: the PLY reader (io_ply.cpp), then validation (validate.h).
+//! libFuzzer harness: the PLY reader (io/ply.cpp), then validation (io/validate.h).
 #include "fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
-  return sdflow::fuzz::read_and_validate(data, size, sdflow::io_detail::read_ply, sdflow::MeshFormat::ply, "fuzz.ply");
+  return sdflow::fuzz::read_and_validate(data, size, sdflow::detail::read_ply, sdflow::MeshFormat::ply, "fuzz.ply");
 }

@@ -1,7 +1,7 @@
-//! libFuzzer harness: the STL reader (io_stl.cpp), then validation (validate.h).
+//! libFuzzer harness: the STL reader (io/stl.cpp), then validation (io/validate.h).
 #include "fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
-  return sdflow::fuzz::read_and_validate(data, size, sdflow::io_detail::read_stl, sdflow::MeshFormat::stl, "fuzz.stl");
+  return sdflow::fuzz::read_and_validate(data, size, sdflow::detail::read_stl, sdflow::MeshFormat::stl, "fuzz.stl");
 }

@@ -1,4 +1,4 @@
-//! libFuzzer harness: the validator (validate.h) on soups no reader would produce. The bytes are
+//! libFuzzer harness: the validator (io/validate.h) on soups no reader would produce. The bytes are
 //! decoded as: one byte of point count, one of flags (merge duplicates, orient), then points as
 //! three small signed integers (a coarse grid makes coincident, collinear and coplanar corners
 //! common) or, when the flag asks, raw doubles, and the rest as polygons: a length byte and indices.

@@ -10,7 +10,7 @@
 #include "sdflow/geometry/quality.h"
 #include "sdflow/log.h"
 #include "sdflow/retri/pipeline.h"
-#include "sdflow/validate.h"
+#include "sdflow/io/validate.h"
 
 #include <spdlog/sinks/base_sink.h>
 #include <spdlog/spdlog.h>

@@ -5,7 +5,7 @@
 //! 2 on an unreadable file.
 
 #include "sdflow/errors.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 
 #include <algorithm>
 #include <cmath>

@@ -10,8 +10,8 @@
 
 #include "sdflow/geometry/laplacian.h"
 #include "sdflow/mesh.h"
-#include "sdflow/soup.h"
-#include "sdflow/validate.h"
+#include "sdflow/io/soup.h"
+#include "sdflow/io/validate.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>

@@ -6,7 +6,7 @@
 #include "bindings.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/validate.h"
+#include "sdflow/io/validate.h"
 
 #include <cerrno>
 #include <filesystem>

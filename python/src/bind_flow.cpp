@@ -8,7 +8,7 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/simulation.h"
 #include "sdflow/flow/surface_diffusion.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 #include "sdflow/limits.h"
 #include "sdflow/log.h"
 

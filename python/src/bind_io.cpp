@@ -4,9 +4,9 @@
 #include "bindings.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/io.h"
-#include "sdflow/io_vtk.h"
-#include "sdflow/statistics.h"
+#include "sdflow/io/io.h"
+#include "sdflow/io/vtk.h"
+#include "sdflow/check/statistics.h"
 
 #include <fmt/format.h>
 #include <pybind11/stl.h>

@@ -25,7 +25,7 @@ void bind_shapes(py::module_& m)
 
   m.def("shape_catalogue", [] {
     py::list shapes;
-    for (const auto& s : shapes::shape_catalogue()) {
+    for (const auto& s : sdflow::shape_catalogue()) {
       py::dict parameters;
       for (const auto& p : s.parameters)
         parameters[py::str(p.name)] = py::make_tuple(p.default_value, p.description);
@@ -52,7 +52,7 @@ void bind_shapes(py::module_& m)
                                                parameters.begin()->first));
           if (box.size() != 6)
             throw InvalidParameter("an expression needs box = (xmin, ymin, zmin, xmax, ymax, zmax)");
-          surface = shapes::expression_surface(
+          surface = sdflow::expression_surface(
               {expression, {Eigen::Vector3d(box[0], box[1], box[2]), Eigen::Vector3d(box[3], box[4], box[5])},
                feature_size});
         } else {
@@ -60,7 +60,7 @@ void bind_shapes(py::module_& m)
             throw InvalidParameter("give a shape name (see sdflow.shapes()) or an expression");
           if (!box.empty() || feature_size != 0)
             throw InvalidParameter("box and feature_size belong to an expression; catalogue shapes have their own");
-          surface = shapes::make_shape(name, parameters);
+          surface = sdflow::make_shape(name, parameters);
         }
         if (vertices > 0)
           check_surface_size(vertices, fmt::format("shape vertices={}", vertices), limits, false);

@@ -7,7 +7,7 @@
 #include "sdflow/geometry/laplacian.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/normals.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 
 #include <cstdio>
 #include <exception>

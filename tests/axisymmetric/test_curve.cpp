@@ -1,9 +1,9 @@
 //! The generating curve's measures, redistribution and initial shapes (axisymmetric/curve.h,
 //! initial_curves.h) against exact values.
+#include "io/temp_dir.h"
 #include "sdflow/axisymmetric/curve.h"
 #include "sdflow/axisymmetric/initial_curves.h"
 #include "sdflow/errors.h"
-#include "io/temp_dir.h"
 
 #include <gtest/gtest.h>
 

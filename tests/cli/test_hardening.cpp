@@ -1,7 +1,7 @@
 //! Hostile and careless inputs to the command line (issue 13): each never crashes, hangs, runs a
 //! command or misleads, and exits with the documented code and a reason.
-#include "sdflow/io.h"
 #include "io/temp_dir.h"
+#include "sdflow/io/io.h"
 #include "support/analytic_meshes.h"
 #include "support/run_command.h"
 

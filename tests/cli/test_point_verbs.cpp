@@ -1,8 +1,8 @@
 //! `sdflow normals`, `sdflow reconstruct` and `sdflow fill-holes` end to end: results, exit codes.
 #include "io/temp_dir.h"
 #include "sdflow/geometry/topology.h"
-#include "sdflow/io.h"
-#include "sdflow/retri/point_cloud.h"
+#include "sdflow/io/io.h"
+#include "sdflow/io/point_cloud.h"
 #include "support/analytic_meshes.h"
 #include "support/run_command.h"
 

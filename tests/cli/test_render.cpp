@@ -2,7 +2,7 @@
 //! boundary, and clear refusals (bad options, missing input, gnuplot missing or failing) that leave
 //! no file behind. Pixel colours are not asserted.
 #include "io/temp_dir.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 #include "support/analytic_meshes.h"
 #include "support/run_command.h"
 

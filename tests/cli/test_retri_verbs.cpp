@@ -1,9 +1,9 @@
 //! `sdflow intersections` and `sdflow components` end to end: results, files written, exit codes.
-#include "sdflow/io.h"
-#include "sdflow/retri/intersect.h"
-#include "retri/test_meshes.h"
+#include "sdflow/io/io.h"
+#include "sdflow/spatial/intersect.h"
 #include "support/analytic_meshes.h"
 #include "support/run_command.h"
+#include "support/test_meshes.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

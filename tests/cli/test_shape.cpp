@@ -1,7 +1,7 @@
 //! `sdflow shape` and `sdflow remesh` end to end: meshes written and readable with the right
 //! topology, the catalogue listing, and clear errors with exit code 2.
 #include "sdflow/geometry/topology.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 #include "support/analytic_meshes.h"
 #include "support/run_command.h"
 

@@ -1,5 +1,5 @@
 //! `sdflow stats` end to end: good meshes, bad meshes, exit codes and the JSON keys.
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 #include "support/analytic_meshes.h"
 #include "support/run_command.h"
 

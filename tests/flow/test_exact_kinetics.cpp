@@ -3,13 +3,13 @@
 //! tolerances from the convergence study of docs/validation.md (there the torus R = 3, r = 1.5
 //! seals within about 2% of the exact time from 5k vertices on, and capsules break up within about
 //! 2% on edges of 0.2; these meshes are coarser, so 5%).
+#include "io/temp_dir.h"
 #include "sdflow/axisymmetric/evolution.h"
 #include "sdflow/axisymmetric/initial_curves.h"
 #include "sdflow/flow/simulation.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/expression.h"
 #include "sdflow/shapes/mesher.h"
-#include "io/temp_dir.h"
 
 #include <gtest/gtest.h>
 
@@ -65,7 +65,7 @@ TEST(ExactKinetics, a_coarse_torus_seals_near_the_exact_time_and_the_papers_sche
   // 2 000 vertices: the defaults within 5% of the exact seal time; the paper's eq. (9) some 40–50%
   // late at every resolution of the validation, so the test tells them apart.
   test::TempDir dir;
-  const Mesh torus = mesh_implicit_surface(shapes::torus({.major = 3, .minor = 1.5}), {.vertices = 2000}).mesh;
+  const Mesh torus = mesh_implicit_surface(torus_shape({.major = 3, .minor = 1.5}), {.vertices = 2000}).mesh;
   const double exact = reference_time(axisymmetric::torus(3, 1.5), 10);
   run_simulation(torus, {.parameters = event_run(dir / "defaults", 10)});
   const Outcome defaults = last_row(dir / "defaults/metrics.csv");
@@ -85,9 +85,9 @@ TEST(ExactKinetics, capsules_either_side_of_the_break_up_threshold)
   const auto capsule = [](double ratio) {
     const double half = ratio - 1;
     const std::string expression = "sqrt(max(abs(x)-" + std::to_string(half) + ",0)^2+y^2+z^2)-1";
-    const shapes::ExpressionParameters shape{
+    const ExpressionParameters shape{
         expression, Eigen::AlignedBox3d(Eigen::Vector3d(-half - 1.5, -1.5, -1.5), Eigen::Vector3d(half + 1.5, 1.5, 1.5))};
-    return mesh_implicit_surface(shapes::expression_surface(shape), {.edge_length = 0.25}).mesh;
+    return mesh_implicit_surface(expression_surface(shape), {.edge_length = 0.25}).mesh;
   };
   const double exact = reference_time(axisymmetric::capsule(9), 20);
   run_simulation(capsule(9), {.parameters = event_run(dir / "nine", 20)});

@@ -1,5 +1,6 @@
 //! Runs that change topology through the re-triangulation hook (retriangulation.h): smoke versions
 //! of the paper's dumbbell pinch-off (§3.2.2) and torus hole sealing (§4.1), and their resumption.
+#include "io/temp_dir.h"
 #include "sdflow/errors.h"
 #include "sdflow/flow/retriangulation.h"
 #include "sdflow/flow/simulation.h"
@@ -7,7 +8,6 @@
 #include "sdflow/geometry/topology.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/mesher.h"
-#include "io/temp_dir.h"
 #include "support/analytic_meshes.h"
 
 #include <fmt/format.h>
@@ -65,7 +65,7 @@ RunParameters retriangulating_run(const fs::path& out, double end_time, long ste
 //! The paper's dumbbell at half size (end spheres of radius 3, neck width 1): 1000 vertices.
 Mesh dumbbell()
 {
-  return mesh_implicit_surface(shapes::dumbbell({.radius = 3, .separation = 9}), {.edge_length = 0.5}).mesh;
+  return mesh_implicit_surface(dumbbell_shape({.radius = 3, .separation = 9}), {.edge_length = 0.5}).mesh;
 }
 
 TEST(RetriangulatingRun, dumbbell_pinches_off_into_two_closed_bodies)
@@ -88,7 +88,7 @@ TEST(RetriangulatingRun, dumbbell_pinches_off_into_two_closed_bodies)
 TEST(RetriangulatingRun, torus_hole_seals_and_the_surface_becomes_genus_zero)
 {
   test::TempDir dir;
-  const Mesh torus = mesh_implicit_surface(shapes::torus(), {.edge_length = 0.8}).mesh;
+  const Mesh torus = mesh_implicit_surface(torus_shape(), {.edge_length = 0.8}).mesh;
   const double volume = enclosed_volume(torus);
   run_simulation(torus, {.parameters = retriangulating_run(dir / "run", 130)});
   const MetricsSummary m = summarise(dir / "run/metrics.csv");

@@ -1,11 +1,11 @@
 //! The run driver's control of its directory (issue 13): a stop request between steps leaves a
 //! checkpoint that resumes bit for bit, a run with no checkpoint yet resumes from step 0, and a
 //! locked directory is refused.
+#include "io/temp_dir.h"
 #include "sdflow/errors.h"
 #include "sdflow/flow/checkpoint.h"
 #include "sdflow/flow/run_lock.h"
 #include "sdflow/flow/simulation.h"
-#include "io/temp_dir.h"
 #include "support/analytic_meshes.h"
 
 #include <gtest/gtest.h>

@@ -1,13 +1,13 @@
 //! The flow in memory (surface_diffusion.h): no files, the same states a run directory records,
 //! its state restored bit for bit, its notes.
+#include "io/temp_dir.h"
 #include "sdflow/errors.h"
 #include "sdflow/flow/simulation.h"
 #include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/geometry/topology.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/mesher.h"
-#include "io/temp_dir.h"
 #include "support/analytic_meshes.h"
 
 #include <fmt/format.h>
@@ -44,7 +44,7 @@ TEST(SurfaceDiffusion, a_dumbbell_pinches_off_in_memory_exactly_as_its_recorded_
 {
   // The paper's dumbbell at half size (1000 vertices), to its pinch-off.
   const Mesh start =
-      mesh_implicit_surface(shapes::dumbbell({.radius = 3, .separation = 9}), {.edge_length = 0.5}).mesh;
+      mesh_implicit_surface(dumbbell_shape({.radius = 3, .separation = 9}), {.edge_length = 0.5}).mesh;
   RunParameters p;
   p.end_time = 1.0;
   p.stop_at_topology_change = true;

@@ -1,7 +1,7 @@
 //! Time-step control (time_step.h): schedules and the adaptive controller's rule.
+#include "io/temp_dir.h"
 #include "sdflow/errors.h"
 #include "sdflow/flow/time_step.h"
-#include "io/temp_dir.h"
 
 #include <gtest/gtest.h>
 

@@ -151,7 +151,7 @@ TEST(CotangentCurvature, its_error_averages_out_on_remeshed_tori_where_eq9_is_bi
   std::vector<double> paper, cotangent;
   for (const double edge : {0.2, 0.1, 0.05}) {
     const Mesh torus =
-        mesh_implicit_surface(shapes::torus({.major = major, .minor = minor}), {.edge_length = edge}).mesh;
+        mesh_implicit_surface(torus_shape({.major = major, .minor = minor}), {.edge_length = edge}).mesh;
     const VertexVectors normals = vertex_normals(torus);
     paper.push_back(band_bias(torus, mean_curvature(torus, normals), major, minor));
     cotangent.push_back(band_bias(torus, mean_curvature(torus, normals, kCotangent), major, minor));

@@ -3,8 +3,8 @@
 //! flat closed surfaces. Each is read right or refused with its code, never mis-read.
 #include "io/temp_dir.h"
 
-#include "sdflow/io.h"
-#include "sdflow/validate.h"
+#include "sdflow/io/io.h"
+#include "sdflow/io/validate.h"
 
 #include <gtest/gtest.h>
 

@@ -6,9 +6,9 @@
 
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
+#include "sdflow/io/validate.h"
 #include "sdflow/log.h"
-#include "sdflow/validate.h"
 
 #include <gtest/gtest.h>
 #include <spdlog/sinks/ostream_sink.h>

@@ -3,7 +3,7 @@
 #include "io/temp_dir.h"
 #include "support/analytic_meshes.h"
 
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 
 #include <gtest/gtest.h>
 

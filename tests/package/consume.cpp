@@ -6,7 +6,7 @@
 #include <sdflow/check/tetgen_volume.h>
 #include <sdflow/flow/scheme.h>
 #include <sdflow/geometry/measures.h>
-#include <sdflow/io.h>
+#include <sdflow/io/io.h>
 #include <sdflow/shapes/expression.h>
 #include <sdflow/shapes/mesher.h>
 
@@ -84,7 +84,7 @@ void run_checks(const std::filesystem::path& dir)
     expect_near("TetGen volume", tetgen[0].tetgen_volume, 4.0 / 3.0, 1e-12);
 
   // A formula (muparser) meshed (the remesher runs on oneTBB): the ellipsoid with semi-axes 2, 1, 1.
-  const auto ellipsoid = sdflow::shapes::expression_surface(
+  const auto ellipsoid = sdflow::expression_surface(
       {.expression = "x^2/4 + y^2 + z^2 - 1",
        .box = Eigen::AlignedBox3d(Eigen::Vector3d(-2.5, -1.5, -1.5), Eigen::Vector3d(2.5, 1.5, 1.5))});
   const sdflow::Mesh mesh = sdflow::mesh_implicit_surface(ellipsoid, {.vertices = 500}).mesh;

@@ -2,8 +2,8 @@
 #include "sdflow/errors.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/retri/components.h"
-#include "retri/test_meshes.h"
 #include "support/analytic_meshes.h"
+#include "support/test_meshes.h"
 
 #include <gtest/gtest.h>
 

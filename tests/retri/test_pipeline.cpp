@@ -5,9 +5,9 @@
 #include "sdflow/retri/pipeline.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/mesher.h"
-#include "retri/mesh_checks.h"
-#include "retri/test_meshes.h"
 #include "support/analytic_meshes.h"
+#include "support/mesh_checks.h"
+#include "support/test_meshes.h"
 
 #include <gtest/gtest.h>
 
@@ -192,7 +192,7 @@ TEST(Pipeline, a_thin_neck_gets_edges_by_its_radius_of_curvature)
   // while the end spheres (radius 3) keep ℓ.
   constexpr double ell = 0.5;
   const Mesh dumbbell =
-      mesh_implicit_surface(shapes::dumbbell({.radius = 3, .separation = 9}), {.edge_length = ell}).mesh;
+      mesh_implicit_surface(dumbbell_shape({.radius = 3, .separation = 9}), {.edge_length = ell}).mesh;
   const RetriangulationResult adapted = retriangulate(dumbbell, {.target_edge_length = ell});
   const RetriangulationResult uniform = retriangulate(dumbbell, {.target_edge_length = ell, .edges_per_radius = 0});
   EXPECT_LT(mean_edge_length_near_neck(adapted.mesh, 0.3), 0.45 * ell);

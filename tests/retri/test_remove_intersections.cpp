@@ -1,7 +1,7 @@
 //! Removal of intersecting faces and of the vertices they leave alone.
 #include "sdflow/retri/remove_intersections.h"
-#include "retri/test_meshes.h"
 #include "support/analytic_meshes.h"
+#include "support/test_meshes.h"
 
 #include <gtest/gtest.h>
 

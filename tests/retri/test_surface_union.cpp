@@ -2,8 +2,8 @@
 #include "sdflow/check/tetgen_volume.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
-#include "sdflow/retri/intersect.h"
 #include "sdflow/retri/surface_union.h"
+#include "sdflow/spatial/intersect.h"
 #include "support/analytic_meshes.h"
 
 #include <gtest/gtest.h>

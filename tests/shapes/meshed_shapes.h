@@ -47,7 +47,7 @@ inline const MeshedShape& meshed(const ShapeCase& c)
   static std::map<std::string, MeshedShape> cache;
   auto it = cache.find(c.name);
   if (it == cache.end()) {
-    ImplicitSurface surface = shapes::make_shape(c.name, c.parameters);
+    ImplicitSurface surface = make_shape(c.name, c.parameters);
     MesherResult result = mesh_implicit_surface(surface, {.edge_length = c.edge_length});
     it = cache.emplace(c.name, MeshedShape{std::move(surface), std::move(result)}).first;
   }

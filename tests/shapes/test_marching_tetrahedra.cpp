@@ -23,7 +23,7 @@ bool has_boundary(const Mesh& mesh)
 
 TEST(MarchingTetrahedra, sphere_is_closed_outward_and_near_the_surface)
 {
-  const auto sphere = shapes::sphere({.radius = 2});
+  const auto sphere = sphere_shape({.radius = 2});
   const double cell = 0.25;
   const Mesh mesh = marching_tetrahedra(sphere, {.cell_size = cell});
   const auto components = component_topology(mesh);
@@ -40,7 +40,7 @@ TEST(MarchingTetrahedra, refined_octree_has_no_cracks)
 {
   // The sintering cluster's necks and slots refine the octree; transition cells must conform,
   // or the surface would have boundary edges.
-  const auto cluster = shapes::sintering_cluster();
+  const auto cluster = sintering_cluster_shape();
   const Mesh coarse = marching_tetrahedra(cluster, {.cell_size = 0.6, .detail_levels = 0});
   const Mesh refined = marching_tetrahedra(cluster, {.cell_size = 0.6, .detail_levels = 2});
   EXPECT_GT(refined.n_vertices(), coarse.n_vertices()); // refinement happened
@@ -55,7 +55,7 @@ TEST(MarchingTetrahedra, refined_octree_has_no_cracks)
 TEST(MarchingTetrahedra, thin_tubes_are_resolved_by_detail_levels)
 {
   // A neck of radius 0.15 in cells of 0.6: only refinement keeps the dumbbell in one piece.
-  const auto dumbbell = shapes::dumbbell({.neck_width = 0.3});
+  const auto dumbbell = dumbbell_shape({.neck_width = 0.3});
   const Mesh mesh = marching_tetrahedra(dumbbell, {.cell_size = 0.6, .detail_levels = 3});
   const auto components = component_topology(mesh);
   ASSERT_EQ(components.size(), 1u);
@@ -65,7 +65,7 @@ TEST(MarchingTetrahedra, thin_tubes_are_resolved_by_detail_levels)
 
 TEST(MarchingTetrahedra, clipping_cuts_a_plane_to_a_disk)
 {
-  const auto scene = shapes::spheres_on_plane({.disk_radius = 9});
+  const auto scene = spheres_on_plane_shape({.disk_radius = 9});
   const double cell = scene.feature_size / 2; // what the mesher uses: resolves the central hole
   const Mesh plane = marching_tetrahedra(scene, {.cell_size = cell});
   EXPECT_TRUE(has_boundary(plane)); // the plane leaves the box
@@ -87,7 +87,7 @@ TEST(MarchingTetrahedra, clipping_cuts_a_plane_to_a_disk)
 
 TEST(MarchingTetrahedra, refuses_bad_options)
 {
-  const auto sphere = shapes::sphere();
+  const auto sphere = sphere_shape();
   EXPECT_THROW(marching_tetrahedra(sphere, {.cell_size = 0}), InvalidParameter);
   EXPECT_THROW(marching_tetrahedra(sphere, {.cell_size = 0.1, .detail_levels = -1}), InvalidParameter);
   EXPECT_THROW(marching_tetrahedra(sphere, {.cell_size = 1e-7}), InvalidParameter); // lattice too fine

@@ -6,9 +6,9 @@
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/expression.h"
 #include "sdflow/shapes/mesher.h"
+#include "shapes/meshed_shapes.h"
 #include "support/convergence.h"
 #include "support/exact_intersections.h"
-#include "shapes/meshed_shapes.h"
 
 #include <gtest/gtest.h>
 
@@ -58,7 +58,7 @@ TEST(MeshedShapes, the_disk_rim_is_exact)
   const auto& c = shape_cases().back();
   ASSERT_EQ(c.name, "spheres-on-plane");
   const auto& [surface, result] = meshed(c);
-  const double disk = c.parameters.at("disk-radius"), plane = -shapes::SpheresOnPlaneParameters{}.radius;
+  const double disk = c.parameters.at("disk-radius"), plane = -SpheresOnPlaneParameters{}.radius;
   int rim = 0;
   for (auto v : result.mesh.vertices()) {
     if (!result.mesh.is_boundary(v))
@@ -154,14 +154,14 @@ void expect_second_order(const ImplicitSurface& surface, double area, double vol
 TEST(Mesher, sphere_area_and_volume_converge_quadratically)
 {
   constexpr double R = 1;
-  expect_second_order(shapes::sphere({.radius = R}), 4 * std::numbers::pi * R * R, 4 * std::numbers::pi * R * R * R / 3, 0.4);
+  expect_second_order(sphere_shape({.radius = R}), 4 * std::numbers::pi * R * R, 4 * std::numbers::pi * R * R * R / 3, 0.4);
 }
 
 TEST(Mesher, torus_area_and_volume_converge_quadratically)
 {
-  const shapes::TorusParameters p;
+  const TorusParameters p;
   const double pi2 = std::numbers::pi * std::numbers::pi;
-  expect_second_order(shapes::torus(p), 4 * pi2 * p.major * p.minor, 2 * pi2 * p.major * p.minor * p.minor, 1.6);
+  expect_second_order(torus_shape(p), 4 * pi2 * p.major * p.minor, 2 * pi2 * p.major * p.minor * p.minor, 1.6);
 }
 
 TEST(Mesher, ellipsoid_area_and_volume_converge_quadratically)
@@ -172,39 +172,39 @@ TEST(Mesher, ellipsoid_area_and_volume_converge_quadratically)
   const double area = 2 * std::numbers::pi * c * c +
                       2 * std::numbers::pi * a * b / std::sin(phi) *
                           (std::ellint_2(k, phi) * std::sin(phi) * std::sin(phi) + std::ellint_1(k, phi) * std::cos(phi) * std::cos(phi));
-  expect_second_order(shapes::ellipsoid({a, b, c}), area, 4 * std::numbers::pi * a * b * c / 3, 1.6);
+  expect_second_order(ellipsoid_shape({a, b, c}), area, 4 * std::numbers::pi * a * b * c / 3, 1.6);
 }
 
 TEST(Mesher, dumbbell_volume_converges_to_the_profiles)
 {
-  const shapes::DumbbellProfile profile;
-  expect_second_order(shapes::dumbbell(), profile.area(), profile.volume(), 1.6);
+  const DumbbellProfile profile;
+  expect_second_order(dumbbell_shape(), profile.area(), profile.volume(), 1.6);
 }
 
 TEST(Mesher, vertex_count_is_within_ten_percent_of_the_request)
 {
   for (const auto& [name, count] : std::vector<std::pair<std::string, int>>{{"sphere", 400}, {"torus", 1500}, {"sintering", 3000}}) {
     SCOPED_TRACE(name);
-    const auto result = mesh_implicit_surface(shapes::make_shape(name), {.vertices = count});
+    const auto result = mesh_implicit_surface(make_shape(name), {.vertices = count});
     EXPECT_NEAR(static_cast<double>(result.mesh.n_vertices()), count, kVertexCountTolerance * count);
   }
 }
 
 TEST(Mesher, sharp_unions_keep_the_papers_topology)
 {
-  const auto sintering = mesh_implicit_surface(shapes::sintering_cluster({.blend = 0}), {.edge_length = 0.45});
+  const auto sintering = mesh_implicit_surface(sintering_cluster_shape({.blend = 0}), {.edge_length = 0.45});
   EXPECT_EQ(component_topology(sintering.mesh)[0].genus, 5);
   EXPECT_LE(sintering.max_level_set_distance, kLevelSetTolerance);
 }
 
 TEST(Mesher, refuses_bad_options_and_empty_level_sets)
 {
-  const auto sphere = shapes::sphere();
+  const auto sphere = sphere_shape();
   EXPECT_THROW(mesh_implicit_surface(sphere, {}), InvalidParameter);
   EXPECT_THROW(mesh_implicit_surface(sphere, {.edge_length = 0.1, .vertices = 100}), InvalidParameter);
   EXPECT_THROW(mesh_implicit_surface(sphere, {.vertices = 3}), InvalidParameter);
   EXPECT_THROW(mesh_implicit_surface(sphere, {.edge_length = 0.1, .iterations = 0}), InvalidParameter);
-  const auto nothing = shapes::expression_surface({"x^2 + y^2 + z^2 + 1", {Eigen::Vector3d(-2, -2, -2), Eigen::Vector3d(2, 2, 2)}});
+  const auto nothing = expression_surface({"x^2 + y^2 + z^2 + 1", {Eigen::Vector3d(-2, -2, -2), Eigen::Vector3d(2, 2, 2)}});
   try {
     mesh_implicit_surface(nothing, {.edge_length = 0.2});
     FAIL() << "an empty level set was meshed";
@@ -216,7 +216,7 @@ TEST(Mesher, refuses_bad_options_and_empty_level_sets)
 TEST(Mesher, surfaces_leaving_the_box_are_cut_by_it)
 {
   // The plane z = 0.3 x through a box: a rectangle with four corners, one boundary loop.
-  const auto plane = shapes::expression_surface({"z - 0.3 * x", {Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 1, 1)}});
+  const auto plane = expression_surface({"z - 0.3 * x", {Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 1, 1)}});
   const auto result = mesh_implicit_surface(plane, {.edge_length = 0.2});
   const auto components = component_topology(result.mesh);
   ASSERT_EQ(components.size(), 1u);

@@ -86,10 +86,10 @@ GeneratingCurve capsule(double length_ratio, double radius, int nodes)
   return c;
 }
 
-GeneratingCurve dumbbell(const shapes::DumbbellParameters& parameters, int nodes)
+GeneratingCurve dumbbell(const DumbbellParameters& parameters, int nodes)
 {
   check_count(nodes, 16);
-  const shapes::DumbbellProfile profile(parameters);
+  const DumbbellProfile profile(parameters);
   const double radius = parameters.radius, centre = parameters.separation / 2, join = profile.join();
   // The caps by angle about their centres, the isthmus by z: the cap meets the isthmus where
   // |z| = join, at the angle whose cosine is (centre − join) / R.

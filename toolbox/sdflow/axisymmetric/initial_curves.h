@@ -20,7 +20,7 @@ GeneratingCurve torus(double major, double minor, int nodes = 400);
 GeneratingCurve capsule(double length_ratio, double radius = 1, int nodes = 2000);
 
 //! The dumbbell of shapes/dumbbell.h (its axis is x there, z here).
-GeneratingCurve dumbbell(const shapes::DumbbellParameters& parameters = {}, int nodes = 2000);
+GeneratingCurve dumbbell(const DumbbellParameters& parameters = {}, int nodes = 2000);
 
 //! A profile from a text file: one "r z" or "r,z" point a line (a header line and # comments
 //! allowed). A first point on the axis makes an open curve (the last must be on the axis too), one

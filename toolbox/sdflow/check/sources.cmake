@@ -1,2 +1,3 @@
 target_sources(sdflow_toolbox PRIVATE
-  sdflow/check/tetgen_volume.cpp)
+  sdflow/check/tetgen_volume.cpp
+  sdflow/check/statistics.cpp)

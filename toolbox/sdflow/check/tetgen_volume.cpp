@@ -1,6 +1,7 @@
 #include "sdflow/check/tetgen_volume.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 
 #include <fmt/format.h>
@@ -82,11 +83,7 @@ ComponentVolumeCheck check_component(const Mesh& mesh, const std::vector<int>& f
   for (auto f : mesh.faces()) {
     if (face_id[f.idx()] != component)
       continue;
-    auto h = mesh.halfedge_handle(f);
-    const Eigen::Vector3d a = to_eigen(mesh.point(mesh.from_vertex_handle(h)));
-    const Eigen::Vector3d b = to_eigen(mesh.point(mesh.to_vertex_handle(h)));
-    const Eigen::Vector3d c = to_eigen(mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h))));
-    result.divergence_volume += a.dot(b.cross(c)) / 6.0;
+    result.divergence_volume += cone_volume(mesh, f);
     for (auto v : f.vertices()) {
       if (local[v.idx()] < 0) {
         local[v.idx()] = static_cast<int>(points.size() / 3);

@@ -1,7 +1,7 @@
 #include "sdflow/flow/checkpoint.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/io.h"
+#include "sdflow/io/io.h"
 
 #include <fmt/format.h>
 

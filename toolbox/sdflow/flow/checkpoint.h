@@ -5,7 +5,7 @@
 //! snapshot series, in one binary file with a checksum, written atomically.
 
 #include "sdflow/flow/flow_state.h"
-#include "sdflow/io_vtk.h"
+#include "sdflow/io/vtk.h"
 
 #include <filesystem>
 #include <vector>

@@ -3,8 +3,9 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/volume.h"
 #include "sdflow/geometry/measures.h"
-#include "sdflow/retri/intersect.h"
-#include "sdflow/retri/remesh.h"
+#include "sdflow/geometry/quality.h"
+#include "sdflow/remesh/remesh.h"
+#include "sdflow/spatial/intersect.h"
 #include "sdflow/stopwatch.h"
 
 #include <fmt/format.h>
@@ -18,18 +19,6 @@
 
 namespace sdflow {
 namespace {
-
-//! Smallest corner angle of face f, in degrees.
-double smallest_angle_deg(const Mesh& mesh, Mesh::FaceHandle f)
-{
-  const auto x = triangle_corners(mesh, f).point;
-  double smallest = 180;
-  for (int i = 0; i < 3; ++i) {
-    const Eigen::Vector3d a = x[(i + 1) % 3] - x[i], b = x[(i + 2) % 3] - x[i];
-    smallest = std::min(smallest, std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / std::numbers::pi);
-  }
-  return smallest;
-}
 
 //! The self-intersections of the surface from step to step: a SelfIntersectionTracker refitted
 //! while the connectivity stays the same, rebuilt when it changes. Its pairs are exactly those of
@@ -99,22 +88,6 @@ std::string reason_to_retriangulate(const Mesh& mesh, const RetriangulationSched
   return {};
 }
 
-std::string describe(const RetriangulationResult& r)
-{
-  std::string s = fmt::format("{} splits, {} collapses, {} flips", r.remesh.splits, r.remesh.collapses, r.remesh.flips);
-  if (r.merged_components > 0)
-    s += fmt::format("; {} intersecting components joined", r.merged_components);
-  if (r.rebuilt)
-    s += fmt::format("; {} intersecting pairs, {} faces removed, {} points dropped, rebuilt, {} holes filled",
-                     r.intersecting_pairs, r.removed_faces, r.removed_points, r.filled_holes);
-  if (r.uniform_fallback)
-    s += "; uniform ℓ (the adapted one left crossing sheets)";
-  s += fmt::format("; components {} → {}", r.components_before, r.components_after);
-  if (r.dropped_components > 0)
-    s += fmt::format(" ({} debris dropped)", r.dropped_components);
-  return s;
-}
-
 } // namespace
 
 void validate_retriangulation_schedule(const RetriangulationSchedule& s)
@@ -166,7 +139,7 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     report.merged = r.merged_components > 0;
     report.degraded_left = degraded_elements(r.mesh, schedule).total();
     report.detail =
-        fmt::format("{}: {}{}; {} degraded elements left", reason, describe(r), volume_note, report.degraded_left);
+        fmt::format("{}: {}{}; {} degraded elements left", reason, retriangulation_summary(r), volume_note, report.degraded_left);
     mesh = std::move(r.mesh);
     return report;
   };

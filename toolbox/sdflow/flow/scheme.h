@@ -3,8 +3,8 @@
 //! \brief One step of the semi-implicit scheme, eq. (6) of the paper in the SPD form of docs/design.md §2:
 //! (M + τβ L M⁻¹ L) w = L H, then X ← X - τ w N (so the normal velocity is V_N = -w ≈ -ΔH).
 
-#include "sdflow/flow/cotangent_cache.h"
 #include "sdflow/flow/solver.h"
+#include "sdflow/geometry/cotangent_cache.h"
 #include "sdflow/geometry/curvature.h"
 #include "sdflow/geometry/normals.h"
 #include "sdflow/mesh.h"

@@ -3,8 +3,8 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/checkpoint.h"
 #include "sdflow/flow/run_lock.h"
-#include "sdflow/io.h"
-#include "sdflow/io_vtk.h"
+#include "sdflow/io/io.h"
+#include "sdflow/io/vtk.h"
 #include "sdflow/log.h"
 #include "sdflow/stopwatch.h"
 

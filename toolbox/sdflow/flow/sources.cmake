@@ -1,6 +1,5 @@
 target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/checkpoint.cpp
-  sdflow/flow/cotangent_cache.cpp
   sdflow/flow/parameter_schema.cpp
   sdflow/flow/parameters.cpp
   sdflow/flow/retriangulation.cpp

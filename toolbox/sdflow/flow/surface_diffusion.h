@@ -15,11 +15,11 @@
 //! const Mesh& result = flow.mesh();
 //! ```
 
-#include "sdflow/flow/cotangent_cache.h"
 #include "sdflow/flow/flow_state.h"
 #include "sdflow/flow/parameters.h"
 #include "sdflow/flow/retriangulation.h"
 #include "sdflow/flow/scheme.h"
+#include "sdflow/geometry/cotangent_cache.h"
 #include "sdflow/mesh.h"
 
 #include <optional>

@@ -1,9 +1,10 @@
 #include "sdflow/flow/volume.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/normals.h"
 #include "sdflow/geometry/topology.h"
-#include "sdflow/retri/closest_point_grid.h"
+#include "sdflow/spatial/closest_point_grid.h"
 
 #include <fmt/format.h>
 
@@ -12,7 +13,6 @@
 
 namespace sdflow {
 namespace {
-
 
 //! Signed volume of each component, and the derivative of each volume when every vertex moves
 //! along `direction` at unit speed: Σ_f (b×c·d_a + c×a·d_b + a×b·d_c)/6.
@@ -24,25 +24,13 @@ void volumes_and_rates(const VertexVectors& x, const VertexVectors& direction, c
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     const Eigen::Vector3d a = x.row(faces(f, 0)), b = x.row(faces(f, 1)), c = x.row(faces(f, 2));
     const int k = component[f];
-    volume[k] += a.dot(b.cross(c)) / 6.0;
+    volume[k] += cone_volume(a, b, c);
     rate[k] += (b.cross(c).dot(direction.row(faces(f, 0))) + c.cross(a).dot(direction.row(faces(f, 1))) +
                 a.cross(b).dot(direction.row(faces(f, 2)))) / 6.0;
   }
 }
 
 } // namespace
-
-std::vector<double> component_volumes(const VertexVectors& positions, const FaceIndices& triangles,
-                                      const std::vector<int>& face_component, int count)
-{
-  std::vector<double> volume(count, 0.0);
-  for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
-    const Eigen::Vector3d a = positions.row(triangles(f, 0)), b = positions.row(triangles(f, 1)),
-                          c = positions.row(triangles(f, 2));
-    volume[face_component[f]] += a.dot(b.cross(c)) / 6.0;
-  }
-  return volume;
-}
 
 VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& target_volumes)
 {

@@ -15,12 +15,6 @@ struct VolumeRestoration {
   double max_relative_error = 0;  //!< largest |V - V_target| / |V_target| left, over closed components
 };
 
-//! Signed enclosed volume of each component: Σ a·(b×c)/6 over its triangles, for positions and
-//! triangles given as arrays (`face_component[f]` in 0..count-1), e.g. to test trial positions.
-std::vector<double> component_volumes(const VertexVectors& positions,
-                                      const FaceIndices& triangles,
-                                      const std::vector<int>& face_component, int count);
-
 //! Offset each closed component so that its signed volume equals `target_volumes[c]` (components
 //! in the order of face_component_ids); open components are left alone. The volume is a cubic in
 //! the offset δ; Newton's method from δ = 0 reaches round-off in a few iterations.

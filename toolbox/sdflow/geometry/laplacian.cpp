@@ -1,6 +1,7 @@
 #include "sdflow/geometry/laplacian.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/geometry/detail/mixed_voronoi.h"
 
 #include <fmt/format.h>
 
@@ -40,22 +41,10 @@ Eigen::VectorXd mixed_voronoi_areas(const Mesh& mesh)
   for (auto f : mesh.faces()) {
     const TriangleCorners t = triangle_corners(mesh, f);
     const double twice_area = (t.point[1] - t.point[0]).cross(t.point[2] - t.point[0]).norm();
-    const double area = 0.5 * twice_area;
     std::array<double, 3> dots{}; // (p[c+1]-p[c])·(p[c+2]-p[c]): negative at an obtuse corner
     for (int c = 0; c < 3; ++c)
       dots[c] = (t.point[(c + 1) % 3] - t.point[c]).dot(t.point[(c + 2) % 3] - t.point[c]);
-    const int obtuse = dots[0] < 0 ? 0 : dots[1] < 0 ? 1 : dots[2] < 0 ? 2 : -1;
-    if (obtuse >= 0) {
-      for (int c = 0; c < 3; ++c)
-        areas[t.index[c]] += c == obtuse ? area / 2 : area / 4;
-      continue;
-    }
-    // Voronoi part of corner c: (|p c+1 - p c|² cot(angle at c+2) + |p c+2 - p c|² cot(angle at c+1)) / 8.
-    for (int c = 0; c < 3; ++c) {
-      const int n1 = (c + 1) % 3, n2 = (c + 2) % 3;
-      const double cot1 = dots[n1] / twice_area, cot2 = dots[n2] / twice_area;
-      areas[t.index[c]] += ((t.point[n1] - t.point[c]).squaredNorm() * cot2 + (t.point[n2] - t.point[c]).squaredNorm() * cot1) / 8.0;
-    }
+    detail::add_mixed_voronoi_areas(t.point, t.index, dots, twice_area, areas);
   }
   return areas;
 }

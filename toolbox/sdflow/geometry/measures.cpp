@@ -10,19 +10,15 @@
 #include <limits>
 
 namespace sdflow {
-namespace {
 
-//! Signed volume of the cone from the origin over triangle f: a·(b×c)/6.
 double cone_volume(const Mesh& mesh, Mesh::FaceHandle f)
 {
   auto h = mesh.halfedge_handle(f);
   const Eigen::Vector3d a = to_eigen(mesh.point(mesh.from_vertex_handle(h)));
   const Eigen::Vector3d b = to_eigen(mesh.point(mesh.to_vertex_handle(h)));
   const Eigen::Vector3d c = to_eigen(mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h))));
-  return a.dot(b.cross(c)) / 6.0;
+  return cone_volume(a, b, c);
 }
-
-} // namespace
 
 double surface_area(const Mesh& mesh)
 {
@@ -48,6 +44,18 @@ std::vector<double> component_volumes(const Mesh& mesh)
   for (auto f : mesh.faces())
     volumes[id[f.idx()]] += cone_volume(mesh, f);
   return volumes;
+}
+
+std::vector<double> component_volumes(const VertexVectors& positions, const FaceIndices& triangles,
+                                      const std::vector<int>& face_component, int count)
+{
+  std::vector<double> volume(count, 0.0);
+  for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
+    const Eigen::Vector3d a = positions.row(triangles(f, 0)), b = positions.row(triangles(f, 1)),
+                          c = positions.row(triangles(f, 2));
+    volume[face_component[f]] += cone_volume(a, b, c);
+  }
+  return volume;
 }
 
 CurvatureDeviation curvature_deviation(const Eigen::VectorXd& curvature, const Eigen::VectorXd& vertex_areas)

@@ -13,12 +13,29 @@ namespace sdflow {
 //! Sum of triangle areas (§2.2.4).
 double surface_area(const Mesh& mesh);
 
+//! Signed volume a·(b×c)/6 of the cone from the origin over the triangle (a, b, c): summed over
+//! the triangles of a closed surface, the volume it encloses (divergence theorem, §2.2.4).
+inline double cone_volume(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c)
+{
+  return a.dot(b.cross(c)) / 6.0;
+}
+
+//! cone_volume of face f, its corners taken from its halfedge: from, to, next's to.
+double cone_volume(const Mesh& mesh, Mesh::FaceHandle f);
+
 //! Signed enclosed volume by the divergence theorem, Σ a·(b×c)/6 over triangles (§2.2.4).
 //! Positive for outward-oriented closed surfaces; meaningful only for closed components.
 double enclosed_volume(const Mesh& mesh);
 
 //! Signed volume of each component, in the order of face_component_ids().
 std::vector<double> component_volumes(const Mesh& mesh);
+
+//! Signed volume of each component for positions and triangles given as arrays
+//! (`face_component[f]` in 0..count-1), e.g. to test a step's trial positions: Σ cone_volume over
+//! its triangles, corners in the rows' order. The flow accepts or rejects steps by these sums, so
+//! their order is fixed (docs/design.md §8).
+std::vector<double> component_volumes(const VertexVectors& positions, const FaceIndices& triangles,
+                                      const std::vector<int>& face_component, int count);
 
 //! Mean edge length over the mesh (0 without edges): the scale of ℓ when none is given.
 double mean_edge_length(const Mesh& mesh);

@@ -8,6 +8,25 @@
 
 namespace sdflow {
 
+std::array<double, 3> corner_angles(const Mesh& mesh, Mesh::FaceHandle f)
+{
+  const std::array<Eigen::Vector3d, 3> p = triangle_corners(mesh, f).point;
+  std::array<double, 3> angles{};
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::Vector3d a = p[(c + 1) % 3] - p[c], b = p[(c + 2) % 3] - p[c];
+    angles[c] = std::atan2(a.cross(b).norm(), a.dot(b));
+  }
+  return angles;
+}
+
+double smallest_angle_deg(const Mesh& mesh, Mesh::FaceHandle f)
+{
+  double smallest = 180;
+  for (const double angle : corner_angles(mesh, f))
+    smallest = std::min(smallest, angle * 180 / std::numbers::pi);
+  return smallest;
+}
+
 MeshQuality mesh_quality(const Mesh& mesh)
 {
   MeshQuality q;
@@ -17,14 +36,9 @@ MeshQuality mesh_quality(const Mesh& mesh)
   q.min_angle_deg = 180;
   int obtuse = 0;
   for (auto f : mesh.faces()) {
-    std::array<Eigen::Vector3d, 3> p;
-    int k = 0;
-    for (auto v : f.vertices())
-      p[k++] = to_eigen(mesh.point(v));
     double tri_min = 180, tri_max = 0;
-    for (int c = 0; c < 3; ++c) {
-      const Eigen::Vector3d a = p[(c + 1) % 3] - p[c], b = p[(c + 2) % 3] - p[c];
-      const double angle = std::atan2(a.cross(b).norm(), a.dot(b)) * to_deg;
+    for (const double radians : corner_angles(mesh, f)) {
+      const double angle = radians * to_deg;
       tri_min = std::min(tri_min, angle);
       tri_max = std::max(tri_max, angle);
     }

@@ -4,9 +4,16 @@
 
 #include "sdflow/mesh.h"
 
+#include <array>
 #include <map>
 
 namespace sdflow {
+
+//! The corner angles of face f in radians, corner c at the face's c-th vertex (triangle_corners).
+std::array<double, 3> corner_angles(const Mesh& mesh, Mesh::FaceHandle f);
+
+//! The smallest corner angle of face f, in degrees.
+double smallest_angle_deg(const Mesh& mesh, Mesh::FaceHandle f);
 
 struct MeshQuality {
   double min_angle_deg = 0;             //!< smallest triangle angle

@@ -4,6 +4,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/geometry/cotangent_curvature.cpp
   sdflow/geometry/principal_curvature.cpp
   sdflow/geometry/laplacian.cpp
+  sdflow/geometry/cotangent_cache.cpp
   sdflow/geometry/measures.cpp
   sdflow/geometry/quality.cpp
   sdflow/geometry/topology.cpp)

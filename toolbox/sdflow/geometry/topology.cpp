@@ -48,20 +48,41 @@ std::vector<ComponentTopology> component_topology(const Mesh& mesh)
       break;
     }
   }
-  std::vector<bool> visited(mesh.n_halfedges(), false);
-  for (auto h : mesh.halfedges()) {
-    if (!h.is_boundary() || visited[h.idx()])
-      continue;
-    const auto f = h.opp().face();
-    ++components[face_id[f.idx()]].boundary_loops;
-    for (auto g = h; !visited[g.idx()]; g = g.next())
-      visited[g.idx()] = true;
-  }
+  for (const std::vector<Mesh::HalfedgeHandle>& loop : boundary_loops(mesh))
+    ++components[face_id[mesh.opposite_face_handle(loop.front()).idx()]].boundary_loops;
   for (auto& c : components) {
     c.euler_characteristic = c.vertices - c.edges + c.faces;
     c.genus = (2 - c.euler_characteristic - c.boundary_loops) / 2;
   }
   return components;
+}
+
+std::vector<std::vector<Mesh::HalfedgeHandle>> boundary_loops(const Mesh& mesh)
+{
+  std::vector<std::vector<Mesh::HalfedgeHandle>> loops;
+  std::vector<bool> visited(mesh.n_halfedges(), false);
+  for (auto h : mesh.halfedges()) {
+    if (!h.is_boundary() || visited[h.idx()])
+      continue;
+    std::vector<Mesh::HalfedgeHandle>& loop = loops.emplace_back();
+    for (auto g = h; !visited[g.idx()]; g = g.next()) {
+      visited[g.idx()] = true;
+      loop.push_back(g);
+    }
+  }
+  return loops;
+}
+
+std::vector<double> boundary_loop_lengths(const Mesh& mesh)
+{
+  std::vector<double> lengths;
+  for (const std::vector<Mesh::HalfedgeHandle>& loop : boundary_loops(mesh)) {
+    double length = 0;
+    for (const auto h : loop)
+      length += mesh.calc_edge_length(h);
+    lengths.push_back(length);
+  }
+  return lengths;
 }
 
 } // namespace sdflow

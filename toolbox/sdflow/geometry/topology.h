@@ -25,4 +25,11 @@ std::vector<int> face_component_ids(const Mesh& mesh, int* component_count = nul
 //! Topology of each component, in the order of face_component_ids.
 std::vector<ComponentTopology> component_topology(const Mesh& mesh);
 
+//! The boundary loops of `mesh`, each as its boundary halfedges h, next(h), … in order, the loops
+//! in the order of their first halfedge's index.
+std::vector<std::vector<Mesh::HalfedgeHandle>> boundary_loops(const Mesh& mesh);
+
+//! The length of each boundary loop, in the order of boundary_loops.
+std::vector<double> boundary_loop_lengths(const Mesh& mesh);
+
 } // namespace sdflow

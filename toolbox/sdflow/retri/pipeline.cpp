@@ -3,13 +3,13 @@
 #include "sdflow/errors.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
+#include "sdflow/io/soup.h"
+#include "sdflow/io/validate.h"
 #include "sdflow/log.h"
 #include "sdflow/retri/components.h"
-#include "sdflow/retri/intersect.h"
 #include "sdflow/retri/remove_intersections.h"
 #include "sdflow/retri/surface_union.h"
-#include "sdflow/soup.h"
-#include "sdflow/validate.h"
+#include "sdflow/spatial/intersect.h"
 
 #include <fmt/format.h>
 
@@ -56,26 +56,6 @@ void validate_retriangulation_options(const RetriangulationOptions& o)
 }
 
 namespace {
-
-//! Length of every boundary loop of `mesh`.
-std::vector<double> boundary_loop_lengths(const Mesh& mesh)
-{
-  std::vector<double> lengths;
-  std::vector<bool> seen(mesh.n_halfedges(), false);
-  for (const auto h0 : mesh.halfedges()) {
-    if (!mesh.is_boundary(h0) || seen[h0.idx()])
-      continue;
-    double length = 0;
-    auto h = h0;
-    do {
-      seen[h.idx()] = true;
-      length += mesh.calc_edge_length(h);
-      h = mesh.next_halfedge_handle(h);
-    } while (h != h0);
-    lengths.push_back(length);
-  }
-  return lengths;
-}
 
 //! The bound for stage 5 (the paper's, with a margin): every hole of a closed surface, otherwise the
 //! loops shorter than half the shortest true boundary loop of the remeshed surface. A rebuilt true
@@ -267,14 +247,27 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
   r.open_holes = static_cast<int>(boundary_loop_lengths(r.mesh).size());
   r.seconds.components = seconds_since(start);
 
-  logger().debug("re-triangulated: {} merged, {} intersecting pairs, {} faces removed, {} points dropped, {} holes "
-                 "filled, {} → {} components ({} dropped)",
-                 r.merged_components, r.intersecting_pairs, r.removed_faces, r.removed_points, r.filled_holes,
-                 r.components_before, r.components_after, r.dropped_components);
+  logger().debug("re-triangulated: {}", retriangulation_summary(r));
   return r;
 }
 
 } // namespace
+
+std::string retriangulation_summary(const RetriangulationResult& r)
+{
+  std::string s = fmt::format("{} splits, {} collapses, {} flips", r.remesh.splits, r.remesh.collapses, r.remesh.flips);
+  if (r.merged_components > 0)
+    s += fmt::format("; {} intersecting components joined", r.merged_components);
+  if (r.rebuilt)
+    s += fmt::format("; {} intersecting pairs, {} faces removed, {} points dropped, rebuilt, {} holes filled",
+                     r.intersecting_pairs, r.removed_faces, r.removed_points, r.filled_holes);
+  if (r.uniform_fallback)
+    s += "; uniform ℓ (the adapted one left crossing sheets)";
+  s += fmt::format("; components {} → {}", r.components_before, r.components_after);
+  if (r.dropped_components > 0)
+    s += fmt::format(" ({} debris dropped)", r.dropped_components);
+  return s;
+}
 
 RetriangulationResult retriangulate(const Mesh& input, const RetriangulationOptions& options)
 {

@@ -2,21 +2,23 @@
 //! \file pipeline.h
 //! \brief The re-triangulation of paper §3.2.1 (with Appendix B), composed from the toolbox:
 //! 0. components that intersect each other are joined into the boundary of their union (surface_union.h);
-//! 1. isotropic remeshing to the target edge length ℓ, finer where the curvature is large (remesh.h);
+//! 1. isotropic remeshing to the target edge length ℓ, finer where the curvature is large (remesh/remesh.h);
 //! 2. the self-intersecting faces are removed, then the vertices left without a face (remove_intersections.h);
-//! 3. jet normals oriented by a minimum spanning tree; inconsistently oriented points are dropped (point_normals.h);
-//! 4. the surface is rebuilt from the oriented points by advancing front (reconstruct.h);
-//! 5. holes shorter than a bound are filled (holes.h);
+//! 3. jet normals oriented by a minimum spanning tree; inconsistently oriented points are dropped (reconstruct/point_normals.h);
+//! 4. the surface is rebuilt from the oriented points by advancing front (reconstruct/advancing_front.h);
+//! 5. holes shorter than a bound are filled (reconstruct/holes.h);
 //! 6. debris is dropped: components with fewer triangles than a bound, and closed components that
 //!    enclose almost no volume (a collapsed double sheet), both before and after stage 5 (components.h).
 //! Stages 3–5 run only when stage 2 found something to remove (or when asked to always run):
 //! on a surface without singularities they would only re-triangulate the same points.
 
 #include "sdflow/mesh.h"
-#include "sdflow/retri/holes.h"
-#include "sdflow/retri/point_normals.h"
-#include "sdflow/retri/reconstruct.h"
-#include "sdflow/retri/remesh.h"
+#include "sdflow/reconstruct/advancing_front.h"
+#include "sdflow/reconstruct/holes.h"
+#include "sdflow/reconstruct/point_normals.h"
+#include "sdflow/remesh/remesh.h"
+
+#include <string>
 
 namespace sdflow {
 
@@ -79,6 +81,10 @@ struct RetriangulationResult {
 
 //! Throws InvalidParameter for options out of range.
 void validate_retriangulation_options(const RetriangulationOptions& options);
+
+//! One line saying what a re-triangulation did (the operations of each stage that ran, the
+//! components before and after), as runs write it to events.log.
+std::string retriangulation_summary(const RetriangulationResult& result);
 
 //! Re-triangulate `mesh` by the pipeline above. Throws InvalidParameter for options out of range,
 //! InvalidMesh when nothing is left (every component dropped) or the result is not a valid mesh.

@@ -5,7 +5,7 @@
 //! its holes are what the point-normal and reconstruction steps repair.
 
 #include "sdflow/mesh.h"
-#include "sdflow/retri/intersect.h"
+#include "sdflow/spatial/intersect.h"
 
 #include <vector>
 

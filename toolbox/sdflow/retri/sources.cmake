@@ -1,3 +1,6 @@
-# Re-triangulation toolbox (docs/design.md §3): one algorithm per file.
-file(GLOB _sdflow_retri CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/*.cpp)
-target_sources(sdflow_toolbox PRIVATE ${_sdflow_retri})
+# Re-triangulation (docs/design.md §3): the pipeline and the stages that only it composes.
+target_sources(sdflow_toolbox PRIVATE
+  sdflow/retri/components.cpp
+  sdflow/retri/remove_intersections.cpp
+  sdflow/retri/surface_union.cpp
+  sdflow/retri/pipeline.cpp)

@@ -1,9 +1,10 @@
 #include "sdflow/retri/surface_union.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/geometry/topology.h"
 #include "sdflow/log.h"
-#include "sdflow/retri/bvh.h"
-#include "sdflow/retri/intersect.h"
+#include "sdflow/spatial/bvh.h"
+#include "sdflow/spatial/intersect.h"
 
 #include <fmt/format.h>
 
@@ -137,18 +138,15 @@ struct Loop {
 };
 
 //! Boundary loops of `mesh` in boundary-halfedge order, vertex indices shifted by `offset`.
-std::vector<Loop> boundary_loops(const Mesh& mesh, int offset)
+std::vector<Loop> loops_of(const Mesh& mesh, int offset)
 {
   std::vector<Loop> loops;
-  std::vector<bool> seen(mesh.n_halfedges(), false);
-  for (auto h : mesh.halfedges()) {
-    if (!h.is_boundary() || seen[h.idx()])
-      continue;
+  for (const std::vector<Mesh::HalfedgeHandle>& halfedges : boundary_loops(mesh)) {
     Loop loop;
-    for (auto g = h; !seen[g.idx()]; g = g.next()) {
-      seen[g.idx()] = true;
-      loop.points.push_back(to_eigen(mesh.point(g.from())));
-      loop.vertices.push_back(g.from().idx() + offset);
+    for (const auto g : halfedges) {
+      const auto from = mesh.from_vertex_handle(g);
+      loop.points.push_back(to_eigen(mesh.point(from)));
+      loop.vertices.push_back(from.idx() + offset);
       loop.centre += loop.points.back();
     }
     loop.centre /= static_cast<double>(loop.points.size());
@@ -255,7 +253,7 @@ UnionResult surface_union(const Mesh& a, const Mesh& b)
   append(kept_a, x, faces, 0);
   append(kept_b, x, faces, offset);
 
-  const std::vector<Loop> loops_a = boundary_loops(kept_a, 0), loops_b = boundary_loops(kept_b, offset);
+  const std::vector<Loop> loops_a = loops_of(kept_a, 0), loops_b = loops_of(kept_b, offset);
   if (loops_a.size() != loops_b.size())
     throw InvalidMesh(fmt::format("surface union: removing the overlap left {} boundary loop(s) on the first surface "
                                   "and {} on the second; they cannot be paired (refine the meshes near the contact)",

@@ -12,7 +12,7 @@
 #include <numbers>
 #include <utility>
 
-namespace sdflow::shapes {
+namespace sdflow {
 namespace {
 
 //! A distance-like value and its gradient.
@@ -111,7 +111,7 @@ Eigen::AlignedBox3d padded_box(const Eigen::Vector3d& lo, const Eigen::Vector3d&
 
 } // namespace
 
-ImplicitSurface sphere(const SphereParameters& parameters)
+ImplicitSurface sphere_shape(const SphereParameters& parameters)
 {
   require_positive("sphere", "radius", parameters.radius);
   if (!parameters.centre.allFinite())
@@ -130,7 +130,7 @@ ImplicitSurface sphere(const SphereParameters& parameters)
   return s;
 }
 
-ImplicitSurface ellipsoid(const EllipsoidParameters& parameters)
+ImplicitSurface ellipsoid_shape(const EllipsoidParameters& parameters)
 {
   const double a = parameters.a, b = parameters.b, c = parameters.c;
   require_positive("ellipsoid", "semi-axis a", a);
@@ -152,7 +152,7 @@ ImplicitSurface ellipsoid(const EllipsoidParameters& parameters)
   return s;
 }
 
-ImplicitSurface torus(const TorusParameters& parameters)
+ImplicitSurface torus_shape(const TorusParameters& parameters)
 {
   const double R = parameters.major, r = parameters.minor;
   require_positive("torus", "major radius", R);
@@ -174,7 +174,7 @@ ImplicitSurface torus(const TorusParameters& parameters)
   return s;
 }
 
-ImplicitSurface dumbbell(const DumbbellParameters& parameters)
+ImplicitSurface dumbbell_shape(const DumbbellParameters& parameters)
 {
   const auto profile = std::make_shared<const DumbbellProfile>(parameters);
   ImplicitSurface s;
@@ -193,7 +193,7 @@ ImplicitSurface dumbbell(const DumbbellParameters& parameters)
   return s;
 }
 
-ImplicitSurface sintering_cluster(const SinteringParameters& parameters)
+ImplicitSurface sintering_cluster_shape(const SinteringParameters& parameters)
 {
   const double R = parameters.radius, rho = parameters.neck_radius;
   require_positive("sintering", "sphere radius", R);
@@ -219,7 +219,7 @@ ImplicitSurface sintering_cluster(const SinteringParameters& parameters)
   return s;
 }
 
-ImplicitSurface spheres_on_plane(const SpheresOnPlaneParameters& parameters)
+ImplicitSurface spheres_on_plane_shape(const SpheresOnPlaneParameters& parameters)
 {
   const double R = parameters.radius, plane_neck = parameters.plane_neck_radius,
                sphere_neck = parameters.sphere_neck_radius, disk = parameters.disk_radius;
@@ -282,28 +282,28 @@ const std::vector<Entry>& entries()
                    {"cy", 0, "centre y"},
                    {"cz", 0, "centre z"}}},
                  [](const auto& get) {
-                   return sphere({get("radius"), Eigen::Vector3d(get("cx"), get("cy"), get("cz"))});
+                   return sphere_shape({get("radius"), Eigen::Vector3d(get("cx"), get("cy"), get("cz"))});
                  }});
     const EllipsoidParameters ep;
     e.push_back({{"ellipsoid", "ellipsoid x²/a² + y²/b² + z²/c² = 1 (§4.5)",
                   {{"a", ep.a, "semi-axis along x"}, {"b", ep.b, "semi-axis along y"}, {"c", ep.c, "semi-axis along z"}}},
-                 [](const auto& get) { return ellipsoid({get("a"), get("b"), get("c")}); }});
+                 [](const auto& get) { return ellipsoid_shape({get("a"), get("b"), get("c")}); }});
     const TorusParameters tp;
     e.push_back({{"torus", "torus about the z axis (§4.1)",
                   {{"major", tp.major, "radius R of the centre circle"}, {"minor", tp.minor, "tube radius r < R"}}},
-                 [](const auto& get) { return torus({get("major"), get("minor")}); }});
+                 [](const auto& get) { return torus_shape({get("major"), get("minor")}); }});
     const DumbbellParameters dp;
     e.push_back({{"dumbbell", "two spheres joined by a parabolic isthmus, C¹ profile, axis x (§3.2.2)",
                   {{"radius", dp.radius, "radius R of the end circles"},
                    {"neck-width", dp.neck_width, "width of the isthmus at its narrowest"},
                    {"separation", dp.separation, "distance between the end-circle centres (> 2R)"}}},
-                 [](const auto& get) { return dumbbell({get("radius"), get("neck-width"), get("separation")}); }});
+                 [](const auto& get) { return dumbbell_shape({get("radius"), get("neck-width"), get("separation")}); }});
     const SinteringParameters sintering;
     e.push_back({{"sintering", "8 touching spheres at (±r, ±r, ±r) joined by contact cylinders, genus 5 (§4.2)",
                   {{"radius", sintering.radius, "sphere radius r"},
                    {"neck-radius", sintering.neck_radius, "radius of the contact cylinders (√59/10)"},
                    {"blend", sintering.blend, "smooth-union width (0 = sharp creases)"}}},
-                 [](const auto& get) { return sintering_cluster({get("radius"), get("neck-radius"), get("blend")}); }});
+                 [](const auto& get) { return sintering_cluster_shape({get("radius"), get("neck-radius"), get("blend")}); }});
     const SpheresOnPlaneParameters plane;
     e.push_back({{"spheres-on-plane",
                   "3 touching spheres on the plane z = -r, joined by contact cylinders, plane cut to a disk: "
@@ -314,7 +314,7 @@ const std::vector<Entry>& entries()
                    {"disk-radius", plane.disk_radius, "radius of the disk the plane is cut to"},
                    {"blend", plane.blend, "smooth-union width (0 = sharp creases)"}}},
                  [](const auto& get) {
-                   return spheres_on_plane({get("radius"), get("plane-neck-radius"), get("sphere-neck-radius"),
+                   return spheres_on_plane_shape({get("radius"), get("plane-neck-radius"), get("sphere-neck-radius"),
                                             get("disk-radius"), get("blend")});
                  }});
     return e;
@@ -362,4 +362,4 @@ ImplicitSurface make_shape(std::string_view name, const std::map<std::string, do
   return entry->make(get);
 }
 
-} // namespace sdflow::shapes
+} // namespace sdflow

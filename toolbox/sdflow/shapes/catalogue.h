@@ -24,30 +24,30 @@
 #include <string_view>
 #include <vector>
 
-namespace sdflow::shapes {
+namespace sdflow {
 
 struct SphereParameters {
   double radius = 1; //!< the unit sphere of §4.4
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
 };
 //! Sphere |p − centre| = radius.
-ImplicitSurface sphere(const SphereParameters& parameters = {});
+ImplicitSurface sphere_shape(const SphereParameters& parameters = {});
 
 struct EllipsoidParameters {
   double a = 5, b = 4, c = 3; //!< semi-axes along x, y, z (§4.5)
 };
 //! Ellipsoid x²/a² + y²/b² + z²/c² = 1, as min(a, b, c)·(|(x/a, y/b, z/c)| − 1).
-ImplicitSurface ellipsoid(const EllipsoidParameters& parameters = {});
+ImplicitSurface ellipsoid_shape(const EllipsoidParameters& parameters = {});
 
 struct TorusParameters {
   double major = 6; //!< R, radius of the centre circle (§4.1)
   double minor = 3; //!< r, radius of the tube, 0 < r < R
 };
 //! Torus about the z axis: (√(x² + y²) − R)² + z² = r².
-ImplicitSurface torus(const TorusParameters& parameters = {});
+ImplicitSurface torus_shape(const TorusParameters& parameters = {});
 
 //! Dumbbell of §3.2.2 about the x axis (profile in dumbbell.h), exact signed distance.
-ImplicitSurface dumbbell(const DumbbellParameters& parameters = {});
+ImplicitSurface dumbbell_shape(const DumbbellParameters& parameters = {});
 
 struct SinteringParameters {
   double radius = 3;               //!< the 8 spheres, centred at (±radius, ±radius, ±radius) (§4.2)
@@ -56,7 +56,7 @@ struct SinteringParameters {
 };
 //! Eight touching spheres on the corners of a cube, each touching pair joined by a cylinder:
 //! one closed surface of genus 5.
-ImplicitSurface sintering_cluster(const SinteringParameters& parameters = {});
+ImplicitSurface sintering_cluster_shape(const SinteringParameters& parameters = {});
 
 struct SpheresOnPlaneParameters {
   double radius = 3;               //!< three mutually touching spheres, centres on z = 0 (§4.3)
@@ -67,7 +67,7 @@ struct SpheresOnPlaneParameters {
 };
 //! Three touching spheres resting on a plane, joined by contact cylinders; the plane is cut to
 //! a disk: one surface with one boundary loop, genus 3 (a clipped implicit surface).
-ImplicitSurface spheres_on_plane(const SpheresOnPlaneParameters& parameters = {});
+ImplicitSurface spheres_on_plane_shape(const SpheresOnPlaneParameters& parameters = {});
 
 //! A named parameter of a catalogue shape, for `sdflow shape --list` and the registry.
 struct ShapeParameter {
@@ -90,4 +90,4 @@ const std::vector<ShapeDescription>& shape_catalogue();
 //! InvalidParameter for an unknown shape, an unknown parameter or an out-of-range value.
 ImplicitSurface make_shape(std::string_view name, const std::map<std::string, double>& parameters = {});
 
-} // namespace sdflow::shapes
+} // namespace sdflow

@@ -10,7 +10,7 @@
 #include <limits>
 #include <numbers>
 
-namespace sdflow::shapes {
+namespace sdflow {
 
 DumbbellProfile::DumbbellProfile(const DumbbellParameters& parameters) : parameters_(parameters)
 {
@@ -160,4 +160,4 @@ double DumbbellProfile::area() const
   return 2 * (isthmus + cap);
 }
 
-} // namespace sdflow::shapes
+} // namespace sdflow

@@ -13,7 +13,7 @@
 //! R = 6, width 1 and the default centre separation 2c = 18 (not stated in the paper): t ≈ 4.08,
 //! ρ_t ≈ 3.43, k ≈ 0.176; the dumbbell spans |x| ≤ 15.
 
-namespace sdflow::shapes {
+namespace sdflow {
 
 struct DumbbellParameters {
   double radius = 6;      //!< R, radius of the end circles (paper: "semicircles of radius 6")
@@ -49,4 +49,4 @@ private:
   double rho0_ = 0, centre_ = 0, join_ = 0, join_radius_ = 0, k_ = 0, join_angle_ = 0;
 };
 
-} // namespace sdflow::shapes
+} // namespace sdflow

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <memory>
 
-namespace sdflow::shapes {
+namespace sdflow {
 namespace {
 
 //! A parser bound to its own variables: muparser keeps pointers to them, so they live together.
@@ -72,4 +72,4 @@ ImplicitSurface expression_surface(const ExpressionParameters& parameters)
   return s;
 }
 
-} // namespace sdflow::shapes
+} // namespace sdflow

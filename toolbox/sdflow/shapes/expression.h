@@ -6,7 +6,7 @@
 
 #include <string>
 
-namespace sdflow::shapes {
+namespace sdflow {
 
 struct ExpressionParameters {
   //! muparser syntax in the variables x, y, z, e.g. "x^2 + y^2 + z^2 - 1" or
@@ -23,4 +23,4 @@ struct ExpressionParameters {
 //! box is empty or not finite.
 ImplicitSurface expression_surface(const ExpressionParameters& parameters);
 
-} // namespace sdflow::shapes
+} // namespace sdflow

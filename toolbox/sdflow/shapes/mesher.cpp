@@ -2,6 +2,7 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/geometry/measures.h"
+#include "sdflow/geometry/quality.h"
 #include "sdflow/log.h"
 #include "sdflow/shapes/marching_tetrahedra.h"
 
@@ -83,18 +84,8 @@ AngleDistribution triangle_min_angle_distribution(const Mesh& mesh)
   AngleDistribution d;
   std::vector<double> angles;
   angles.reserve(mesh.n_faces());
-  for (auto f : mesh.faces()) {
-    std::array<Eigen::Vector3d, 3> p;
-    int k = 0;
-    for (auto v : f.vertices())
-      p[k++] = to_eigen(mesh.point(v));
-    double smallest = 180;
-    for (int c = 0; c < 3; ++c) {
-      const Eigen::Vector3d a = p[(c + 1) % 3] - p[c], b = p[(c + 2) % 3] - p[c];
-      smallest = std::min(smallest, std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / std::numbers::pi);
-    }
-    angles.push_back(smallest);
-  }
+  for (auto f : mesh.faces())
+    angles.push_back(smallest_angle_deg(mesh, f));
   if (angles.empty())
     return d;
   std::sort(angles.begin(), angles.end());

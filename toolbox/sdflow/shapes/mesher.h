@@ -1,7 +1,7 @@
 #pragma once
 //! \file mesher.h
 //! \brief Implicit surface → quality triangulation: marching tetrahedra on a grid fine enough for
-//! the topology, then isotropic remeshing (retri/remesh.h) to the target edge length with every
+//! the topology, then isotropic remeshing (remesh/remesh.h) to the target edge length with every
 //! vertex projected onto f = 0 by Newton steps (and boundary vertices onto the curve f = g = 0).
 //!
 //! This replaces the paper's CGAL Delaunay-refinement surface mesher (§3.1, angle bound 30°):
@@ -9,7 +9,7 @@
 //! the per-triangle minimum angle stays above 30°.
 
 #include "sdflow/mesh.h"
-#include "sdflow/retri/remesh.h"
+#include "sdflow/remesh/remesh.h"
 #include "sdflow/shapes/implicit.h"
 
 #include <array>

@@ -1,0 +1,1 @@
+target_sources(sdflow_tests PRIVATE ${CMAKE_CURRENT_LIST_DIR}/test_remesh.cpp)

@@ -1,0 +1,51 @@
+#include "sdflow/check/statistics.h"
+
+#include "sdflow/check/tetgen_volume.h"
+#include "sdflow/geometry/curvature.h"
+#include "sdflow/geometry/laplacian.h"
+#include "sdflow/geometry/normals.h"
+#include "sdflow/spatial/intersect.h"
+
+namespace sdflow {
+
+MeshStatistics mesh_statistics(const Mesh& mesh, const StatisticsOptions& options)
+{
+  MeshStatistics s;
+  s.vertices = static_cast<int>(mesh.n_vertices());
+  s.edges = static_cast<int>(mesh.n_edges());
+  s.faces = static_cast<int>(mesh.n_faces());
+
+  const std::vector<int> face_id = face_component_ids(mesh);
+  const std::vector<double> volumes = component_volumes(mesh);
+  for (const ComponentTopology& topology : component_topology(mesh)) {
+    s.components.push_back({.topology = topology});
+    s.genus += topology.genus;
+    s.boundary_loops += topology.boundary_loops;
+  }
+  for (auto f : mesh.faces())
+    s.components[face_id[f.idx()]].area += mesh.calc_face_area(f);
+  for (std::size_t c = 0; c < s.components.size(); ++c) {
+    ComponentStatistics& component = s.components[c];
+    s.area += component.area;
+    if (component.topology.closed()) {
+      component.volume = volumes[c];
+      s.volume += volumes[c];
+    }
+  }
+  if (options.intersection_check)
+    s.self_intersecting_pairs = static_cast<long>(self_intersections(mesh).size());
+  if (options.tetgen_check) {
+    double total = 0;
+    for (const ComponentVolumeCheck& check : tetgen_volume_check(mesh)) {
+      s.components[check.component].tetgen_volume = check.tetgen_volume;
+      s.components[check.component].tetrahedra = check.tetrahedra;
+      total += check.tetgen_volume;
+    }
+    s.tetgen_volume = total;
+  }
+  s.curvature = curvature_deviation(mean_curvature(mesh, vertex_normals(mesh)), mixed_voronoi_areas(mesh));
+  s.quality = mesh_quality(mesh);
+  return s;
+}
+
+} // namespace sdflow

@@ -1,0 +1,104 @@
+#include "sdflow/geometry/cotangent_cache.h"
+
+#include "sdflow/errors.h"
+#include "sdflow/geometry/detail/mixed_voronoi.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace sdflow {
+namespace {
+
+std::array<int, 3> corners(const Mesh& mesh, Mesh::FaceHandle f)
+{
+  std::array<int, 3> idx{};
+  int k = 0;
+  for (auto v : mesh.fv_range(f))
+    idx[k++] = v.idx();
+  return idx;
+}
+
+} // namespace
+
+CotangentCache::CotangentCache(const Mesh& mesh)
+{
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(12 * mesh.n_faces());
+  triangles_.reserve(mesh.n_faces());
+  for (auto f : mesh.faces()) {
+    const auto t = corners(mesh, f);
+    if (mesh.valence(f) != 3)
+      throw InvalidMesh(fmt::format("CotangentCache: face {} is not a triangle", f.idx()));
+    triangles_.push_back(t);
+    for (int c = 0; c < 3; ++c) {
+      const int j = t[(c + 1) % 3], k = t[(c + 2) % 3];
+      entries.emplace_back(j, k, 1.0);
+      entries.emplace_back(k, j, 1.0);
+      entries.emplace_back(j, j, 1.0);
+      entries.emplace_back(k, k, 1.0);
+    }
+  }
+  pattern_.resize(mesh.n_vertices(), mesh.n_vertices());
+  pattern_.setFromTriplets(entries.begin(), entries.end());
+  pattern_.makeCompressed();
+  const auto slot = [&](int row, int col) {
+    const int* begin = pattern_.innerIndexPtr() + pattern_.outerIndexPtr()[col];
+    const int* end = pattern_.innerIndexPtr() + pattern_.outerIndexPtr()[col + 1];
+    return static_cast<int>(std::lower_bound(begin, end, row) - pattern_.innerIndexPtr());
+  };
+  slots_.reserve(triangles_.size());
+  for (const auto& t : triangles_) {
+    std::array<int, 12> s{};
+    for (int c = 0; c < 3; ++c) {
+      const int j = t[(c + 1) % 3], k = t[(c + 2) % 3];
+      s[4 * c] = slot(j, k);
+      s[4 * c + 1] = slot(k, j);
+      s[4 * c + 2] = slot(j, j);
+      s[4 * c + 3] = slot(k, k);
+    }
+    slots_.push_back(s);
+  }
+}
+
+bool CotangentCache::fits(const Mesh& mesh) const
+{
+  if (mesh.n_faces() != triangles_.size() || static_cast<Eigen::Index>(mesh.n_vertices()) != pattern_.rows())
+    return false;
+  for (auto f : mesh.faces())
+    if (corners(mesh, f) != triangles_[f.idx()])
+      return false;
+  return true;
+}
+
+void CotangentCache::assemble(const Mesh& mesh, SparseMatrix& laplacian, Eigen::VectorXd& areas) const
+{
+  if (!fits(mesh))
+    throw InvalidParameter("CotangentCache: the mesh's connectivity is not the one the cache was built for");
+  laplacian = pattern_;
+  double* values = laplacian.valuePtr();
+  std::fill(values, values + laplacian.nonZeros(), 0.0);
+  areas = Eigen::VectorXd::Zero(mesh.n_vertices());
+  for (std::size_t f = 0; f < triangles_.size(); ++f) {
+    const auto& t = triangles_[f];
+    const std::array<Eigen::Vector3d, 3> p{to_eigen(mesh.point(Mesh::VertexHandle(t[0]))),
+                                           to_eigen(mesh.point(Mesh::VertexHandle(t[1]))),
+                                           to_eigen(mesh.point(Mesh::VertexHandle(t[2])))};
+    const double twice_area = (p[1] - p[0]).cross(p[2] - p[0]).norm();
+    if (!(twice_area > 0))
+      throw InvalidMesh(fmt::format("cotangent_laplacian: triangle {} has zero area", f));
+    std::array<double, 3> dots{};
+    for (int c = 0; c < 3; ++c) {
+      dots[c] = (p[(c + 1) % 3] - p[c]).dot(p[(c + 2) % 3] - p[c]);
+      const double half_cot = 0.5 * dots[c] / twice_area;
+      const auto& s = slots_[f];
+      values[s[4 * c]] += half_cot;
+      values[s[4 * c + 1]] += half_cot;
+      values[s[4 * c + 2]] += -half_cot;
+      values[s[4 * c + 3]] += -half_cot;
+    }
+    detail::add_mixed_voronoi_areas(p, t, dots, twice_area, areas);
+  }
+}
+
+} // namespace sdflow

@@ -1,0 +1,119 @@
+#pragma once
+//! \file remesh.h
+//! \brief Isotropic remeshing (Botsch & Kobbelt 2004, "A remeshing approach to multiresolution
+//! modeling"): the first step of the re-triangulation of paper §3.2.1 and the finishing step of
+//! the implicit-surface mesher.
+//!
+//! Each iteration splits edges longer than 4/3 ℓ, collapses edges shorter than 4/5 ℓ (unless the
+//! collapse would create an edge longer than 4/3 ℓ, invert a triangle or change the topology),
+//! flips edges toward valence 6 (4 on the boundary), relaxes vertices tangentially and projects
+//! them back onto the reference surface. What "the reference surface" is belongs to the caller:
+//! a projection function (onto an implicit surface for the mesher, onto the pre-remesh surface
+//! through a closest-point grid for the re-triangulation pipeline). After every iteration the
+//! mesh is renumbered along a Morton curve (spatial_order.h), so the sweeps of the next one, and
+//! their projections, read memory in order.
+
+#include "sdflow/mesh.h"
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <vector>
+
+namespace sdflow {
+
+//! Maps a point near the surface to its closest point on it (or on a boundary curve).
+using PointProjection = std::function<Eigen::Vector3d(const Eigen::Vector3d&)>;
+
+//! Target edge length at a point, for adaptive remeshing.
+using SizingField = std::function<double(const Eigen::Vector3d&)>;
+
+enum class BoundaryMode {
+  remesh, //!< boundary edges are split and collapsed along the boundary, vertices slide on it
+  keep,   //!< boundary vertices and edges are left exactly as they are
+};
+
+struct RemeshOptions {
+  //! ℓ, the target edge length; 0 takes the input's mean edge length.
+  double target_edge_length = 0;
+  //! Split / collapse / flip / relax / project rounds.
+  int iterations = 10;
+  //! Tangential relaxation sweeps (each followed by projection) per iteration.
+  int relaxation_steps = 3;
+  //! Closest point on the surface. Empty: the input mesh itself (exact closest point, through
+  //! the grid of spatial/closest_point_grid.h). A given function is called from one thread at a
+  //! time; with both projections left empty the relaxation sweeps run on TBB threads (with the
+  //! same results).
+  PointProjection project;
+  //! With the default projection: lift the closest point on the input's flat triangles onto the
+  //! smooth surface they sample (a Phong tessellation from the eq. 8 normals), so that remeshing
+  //! does not shrink convex parts by the triangles' sagitta. Off: the flat triangles themselves.
+  bool curved_projection = false;
+  //! Closest point on the boundary curves (BoundaryMode::remesh). Empty: the input's boundary
+  //! polylines, through a nearest-vertex search (remesh/star_projection.h).
+  PointProjection project_boundary;
+  BoundaryMode boundary = BoundaryMode::remesh;
+  //! Boundary vertices where the boundary turns by more than this angle (degrees) are corners:
+  //! never moved or removed, so polygonal boundaries keep their shape.
+  double boundary_corner_angle_deg = 45;
+  //! Local target ℓ(p) for adaptive remeshing (e.g. curvature_sizing, or nearest_vertex_sizing of
+  //! radius_targets); empty: uniform ℓ.
+  //! An edge's target is the mean of the targets at its two ends.
+  SizingField sizing;
+};
+
+//! What the remesher did, summed over all iterations.
+struct RemeshStatistics {
+  long splits = 0;
+  long collapses = 0;
+  long flips = 0;
+  long relaxation_reverts = 0; //!< vertex moves undone because they would have inverted a triangle
+  double target_edge_length = 0; //!< the ℓ used (uniform part)
+};
+
+struct RemeshResult {
+  Mesh mesh; //!< garbage-collected (vertex i is VertexHandle(i)), numbered along a Morton curve
+  RemeshStatistics statistics;
+};
+
+//! Isotropic remeshing of `mesh` (Botsch & Kobbelt 2004). Genus, components and boundary loops
+//! are preserved (collapses pass OpenMesh's link condition; boundary vertices stay on the
+//! boundary). Throws InvalidParameter for a non-positive ℓ, negative iteration counts or a
+//! sizing field that returns a non-positive length, InvalidMesh for an empty mesh.
+RemeshResult isotropic_remesh(const Mesh& mesh, const RemeshOptions& options = {});
+
+//! Curvature-adapted sizing (Dunyach et al. 2013): ℓ(v) = √(6ε/κ − 3ε²) where κ is the largest
+//! absolute principal curvature at v (from the discrete mean curvature, eq. 9, and the angle
+//! defect), so the chord deviates at most ε from the surface; clamped to [min_length, max_length].
+struct CurvatureSizingOptions {
+  double tolerance = 0;  //!< ε, the approximation error allowed (> 0)
+  double min_length = 0; //!< smallest target (> 0)
+  double max_length = 0; //!< largest target (≥ min_length)
+};
+
+//! Sizing field from the curvature of `mesh`: the target at a point is the one of the nearest
+//! vertex of `mesh`. Throws InvalidParameter for out-of-range options.
+SizingField curvature_sizing(const Mesh& mesh, const CurvatureSizingOptions& options);
+
+//! A sizing field from a target length at each vertex of `mesh` (no deleted elements): the target
+//! at a point is the one of the nearest vertex. Throws InvalidParameter unless there is one length
+//! per vertex.
+SizingField nearest_vertex_sizing(const Mesh& mesh, std::vector<double> lengths);
+
+//! Targets by the radius of curvature: ℓ(v) = 1 / (n κ(v)), n edges per radius of curvature at
+//! the vertex (κ its largest absolute principal curvature, from the cotangent H and the angle
+//! defect), clamped to [min_length, max_length]. A thinning neck of radius r gets edges of r / n,
+//! so it stays resolved as it closes; flat and gently curved parts keep max_length. Where the
+//! radius of curvature is below the local mean edge length h (a crease, a fold, two sheets that
+//! crossed), the curvature is not one the mesh resolves: the target there is h (clamped).
+struct RadiusSizingOptions {
+  double edges_per_radius = 4; //!< n (> 0)
+  double min_length = 0;       //!< floor (> 0)
+  double max_length = 0;       //!< ceiling (≥ min_length, finite)
+};
+
+//! The target length ℓ(v) of the rule above at each vertex of `mesh` (no deleted elements).
+//! Throws InvalidParameter for out-of-range options.
+std::vector<double> radius_targets(const Mesh& mesh, const RadiusSizingOptions& options);
+
+} // namespace sdflow

@@ -1,0 +1,3 @@
+target_sources(sdflow_toolbox PRIVATE
+  sdflow/remesh/remesh.cpp
+  sdflow/remesh/star_projection.cpp)
