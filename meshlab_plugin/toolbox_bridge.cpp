@@ -260,14 +260,8 @@ ShadedSurface retriangulate_surface(const Surface& input, const std::string& nam
   options.fill_holes = settings.fill_holes;
   options.min_component_faces = settings.min_component_faces;
   const RetriangulationResult r = retriangulate(mesh, options);
-  logger().info("re-triangulation to edge length {:.6g}: {} vertices, {} component(s) → {} vertices, "
-                "{} component(s); {} component(s) joined, {} intersecting face pairs, {} faces removed, {}, "
-                "{} debris component(s) dropped, {} boundary loop(s) left",
-                r.target_edge_length, mesh.n_vertices(), r.components_before, r.mesh.n_vertices(), r.components_after,
-                r.merged_components, r.intersecting_pairs, r.removed_faces,
-                r.rebuilt ? fmt::format("rebuilt from the points ({} hole(s) filled)", r.filled_holes)
-                          : std::string("not rebuilt (nothing intersected)"),
-                r.dropped_components, r.open_holes);
+  logger().info("re-triangulation to edge length {:.6g}: {} → {} vertices; {}; {} boundary loop(s) left",
+                r.target_edge_length, mesh.n_vertices(), r.mesh.n_vertices(), retriangulation_summary(r), r.open_holes);
   const VertexVectors normals = vertex_normals(r.mesh);
   return shaded(r.mesh, normals, mean_curvature(r.mesh, normals));
 }

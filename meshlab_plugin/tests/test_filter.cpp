@@ -350,7 +350,7 @@ TEST_F(FilterTest, retriangulation_joins_overlapping_spheres_into_one_outward_su
     const Point3m centre(v.cP()[0] < 0 ? -0.6f : 0.6f, 0, 0);
     EXPECT_GT(v.cN() * (v.cP() - centre), 0); // away from the nearer centre
   }
-  EXPECT_TRUE(log_text().contains("1 component(s) joined")) << log_text().toStdString();
+  EXPECT_TRUE(log_text().contains("1 intersecting components joined")) << log_text().toStdString();
 }
 
 TEST_F(FilterTest, flow_with_retriangulation_remeshes_to_the_given_edge_length)
