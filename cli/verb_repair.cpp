@@ -37,16 +37,6 @@ struct RepairReport {
   std::size_t intersecting_pairs = 0; //!< of the surface written
 };
 
-const char* severity_name(Severity s)
-{
-  switch (s) {
-  case Severity::info: return "info";
-  case Severity::warning: return "warning";
-  case Severity::error: return "error";
-  }
-  return "?";
-}
-
 const Mesh& written_mesh(const RepairReport& r)
 {
   return r.resolved ? r.resolved->mesh : r.repaired.mesh;
