@@ -37,6 +37,7 @@ struct Work {
   std::vector<Eigen::Vector3d> points;
   std::vector<std::size_t> point_lines;
   std::vector<Triangle> triangles;
+  std::size_t collapsed_polygons = 0; //!< polygons whose corners merged into fewer than 3 vertices
 };
 
 //! The repairs made so far, in order, each code once.
@@ -212,8 +213,7 @@ Work triangulate(const PolygonSoup& soup, const RepairOptions& options, Repairs&
               fmt::format("dropped {} face(s) whose outline crosses itself (bow-tie polygons)", crossing));
   repairs.add("polygon-triangulated", triangulated,
               fmt::format("triangulated {} face(s) with more than 3 corners", triangulated));
-  repairs.add("zero-area-face", collapsed,
-              fmt::format("dropped {} face(s) whose corners merged into fewer than 3 vertices", collapsed));
+  work.collapsed_polygons = collapsed;
   return work;
 }
 
@@ -287,13 +287,11 @@ std::pair<std::size_t, std::size_t> remove_caps(Work& work, double tolerance)
   return {split, dropped};
 }
 
-//! Step 4 (collapsed triangles and caps) and step 5 (repeated triangles).
+//! Step 4 (caps; the collapsed polygons were dropped by triangulate) and step 5 (repeated triangles).
 void drop_degenerate_and_repeated(Work& work, const RepairOptions& options, Repairs& repairs)
 {
   auto& ts = work.triangles;
-  const std::size_t before = ts.size();
-  ts.erase(std::remove_if(ts.begin(), ts.end(), [](const Triangle& t) { return t.collapsed(); }), ts.end());
-  const std::size_t collapsed = before - ts.size();
+  const std::size_t collapsed = work.collapsed_polygons;
   const auto [split, dropped] = remove_caps(work, options.zero_area_tolerance);
   ts.erase(std::remove_if(ts.begin(), ts.end(), [](const Triangle& t) { return t.collapsed(); }), ts.end());
   repairs.add("zero-area-face", collapsed + split + dropped,
