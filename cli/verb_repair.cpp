@@ -114,9 +114,10 @@ void add_repair_verb(CLI::App& app)
   verb->add_option("input", args->input, "Input mesh (OFF, OBJ, PLY, STL)")->required();
   verb->add_option("-o,--output", args->output, "Output mesh")->required();
   verb->add_option("--merge-tolerance", args->options.merge_tolerance,
-                   "Merge vertices closer than this fraction of the bounding-box diagonal (0: only identical ones)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 0.1));
+                   "Merge vertices closer than this fraction of the bounding-box diagonal, at most 0.1 "
+                   "(default 0: only identical ones)")
+      ->type_name("F")
+      ->check(CLI::Range(0.0, 0.1).description(""));
   verb->add_flag("--remove-self-intersections", args->remove_self_intersections,
                  "Re-triangulate a surface that crosses itself until it does not (the pipeline of `sdflow "
                  "retriangulate` with its defaults, at most 5 passes)");
