@@ -232,7 +232,7 @@ void link(EdgeFaces& edges, const Triangle& triangle, int t)
     edges[edge_key(triangle.v[k], triangle.v[(k + 1) % 3])].push_back(t);
 }
 
-//! Step 4 on caps: a triangle (p, q, r) with r on its longest edge pq is removed by splitting the
+//! Step 5 on caps: a triangle (p, q, r) with r on its longest edge pq is removed by splitting the
 //! one other triangle on pq at r, which leaves the surface closed and its area unchanged; where pq
 //! has no single other triangle, or the split would make another degenerate triangle, the cap is
 //! dropped. Returns the numbers split away and dropped; removed triangles are marked collapsed.
@@ -287,21 +287,14 @@ std::pair<std::size_t, std::size_t> remove_caps(Work& work, double tolerance)
   return {split, dropped};
 }
 
-//! Step 4 (caps; the collapsed polygons were dropped by triangulate) and step 5 (repeated triangles).
-void drop_degenerate_and_repeated(Work& work, const RepairOptions& options, Repairs& repairs)
+//! Step 4 (repeated triangles, before their geometry is looked at) and step 5 (caps; the collapsed
+//! polygons were dropped by triangulate).
+void drop_repeated_and_degenerate(Work& work, const RepairOptions& options, Repairs& repairs)
 {
   auto& ts = work.triangles;
-  const std::size_t collapsed = work.collapsed_polygons;
-  const auto [split, dropped] = remove_caps(work, options.zero_area_tolerance);
-  ts.erase(std::remove_if(ts.begin(), ts.end(), [](const Triangle& t) { return t.collapsed(); }), ts.end());
-  repairs.add("zero-area-face", collapsed + split + dropped,
-              fmt::format("removed {} zero-area triangle(s): {} with two corners at one vertex dropped, {} with "
-                          "collinear corners split into their neighbour, {} with collinear corners dropped",
-                          collapsed + split + dropped, collapsed, split, dropped));
-
   std::unordered_set<std::array<std::int64_t, 3>, CellHash> seen;
   seen.reserve(ts.size());
-  const std::size_t unique_before = ts.size();
+  const std::size_t before = ts.size();
   ts.erase(std::remove_if(ts.begin(), ts.end(),
                           [&](const Triangle& t) {
                             std::array<std::int64_t, 3> key{t.v[0], t.v[1], t.v[2]};
@@ -309,9 +302,16 @@ void drop_degenerate_and_repeated(Work& work, const RepairOptions& options, Repa
                             return !seen.insert(key).second;
                           }),
            ts.end());
-  repairs.add("repeated-face", unique_before - ts.size(),
-              fmt::format("dropped {} triangle(s) on the same three vertices as an earlier one",
-                          unique_before - ts.size()));
+  repairs.add("repeated-face", before - ts.size(),
+              fmt::format("dropped {} triangle(s) on the same three vertices as an earlier one", before - ts.size()));
+
+  const std::size_t collapsed = work.collapsed_polygons;
+  const auto [split, dropped] = remove_caps(work, options.zero_area_tolerance);
+  ts.erase(std::remove_if(ts.begin(), ts.end(), [](const Triangle& t) { return t.collapsed(); }), ts.end());
+  repairs.add("zero-area-face", collapsed + split + dropped,
+              fmt::format("removed {} zero-area triangle(s): {} with two corners at one vertex dropped, {} with "
+                          "collinear corners split into their neighbour, {} with collinear corners dropped",
+                          collapsed + split + dropped, collapsed, split, dropped));
 }
 
 //! One side of an edge: the triangle and whether it runs from the lower vertex to the higher.
@@ -669,7 +669,7 @@ RepairResult repair_soup(const PolygonSoup& soup, std::string_view source, const
 
   Repairs repairs(source);
   Work work = triangulate(soup, options, repairs);
-  drop_degenerate_and_repeated(work, options, repairs);
+  drop_repeated_and_degenerate(work, options, repairs);
   std::unordered_set<std::uint64_t> cut = orient_consistently(work, repairs);
   split_non_manifold(work, std::move(cut), options.split_offset, repairs);
   RepairResult result;

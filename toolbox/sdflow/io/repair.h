@@ -12,12 +12,12 @@
 //! 3. `face-repeated-index` (a polygon that visits a vertex twice, not in a row) and
 //!    `self-intersecting-face` (a bow-tie polygon): dropped; `polygon-triangulated`: the others
 //!    with more than 3 corners are triangulated (triangulate_polygon.h);
-//! 4. `zero-area-face`: triangles with two corners at one vertex are dropped (an edge collapsed by
-//!    the merge); a cap, three distinct collinear corners (has_zero_area), is removed by splitting
-//!    the triangle across its longest edge at its middle corner, which keeps the surface closed and
-//!    its area, or dropped where that edge has no single other triangle;
-//! 5. `repeated-face`: triangles on the same three vertices as an earlier one (in either
+//! 4. `repeated-face`: triangles on the same three vertices as an earlier one (in either
 //!    orientation) are dropped;
+//! 5. `zero-area-face`: faces whose corners merged into fewer than 3 vertices are dropped (an edge
+//!    collapsed by the merge); a cap, three distinct collinear corners (has_zero_area), is removed
+//!    by splitting the triangle across its longest edge at its middle corner, which keeps the
+//!    surface closed and its area, or dropped where that edge has no single other triangle;
 //! 6. `inconsistent-orientation`: the triangles of each component (joined through edges of exactly
 //!    two triangles) are flipped to agree with the majority of the component; edges where no
 //!    orientation agrees (a Möbius band) are cut;
