@@ -25,6 +25,10 @@ namespace {
 //! what the one before left; real meshes need one).
 constexpr int max_split_rounds = 4;
 
+//! Lengths of the step (in units of the split offset) a copy of a split vertex tries before its
+//! place is taken by another (validation then names the two).
+constexpr int max_separation_steps = 16;
+
 //! A triangle of the repaired soup, with the soup polygon it comes from.
 struct Triangle {
   std::array<int, 3> v;
@@ -523,23 +527,40 @@ bool detach_bad_edges(Work& work)
 
 //! Moves every copy of a split vertex (points from `first_copy` on) `offset` of the way toward the
 //! centroid of the other corners of its triangles: validation refuses two vertices at one point,
-//! and moving into its own fan parts the copy from the sheets it was split from.
+//! and moving into its own fan parts the copy from the sheets it was split from. Where that point
+//! is taken (symmetric fans have one centroid), toward the other corners of one of its triangles,
+//! or farther.
 void separate_copies(Work& work, std::size_t first_copy, double offset)
 {
   const std::size_t copies = work.points.size() - first_copy;
-  std::vector<Eigen::Vector3d> sum(copies, Eigen::Vector3d::Zero());
+  std::vector<std::vector<Eigen::Vector3d>> targets(copies, std::vector<Eigen::Vector3d>(1, Eigen::Vector3d::Zero()));
   std::vector<int> count(copies, 0);
   for (const Triangle& t : work.triangles)
     for (int k = 0; k < 3; ++k)
       if (const auto v = static_cast<std::size_t>(t.v[k]); v >= first_copy) {
-        sum[v - first_copy] += work.points[t.v[(k + 1) % 3]] + work.points[t.v[(k + 2) % 3]];
+        const Eigen::Vector3d others = work.points[t.v[(k + 1) % 3]] + work.points[t.v[(k + 2) % 3]];
+        targets[v - first_copy].front() += others;
+        targets[v - first_copy].push_back(others / 2);
         count[v - first_copy] += 2;
       }
-  for (std::size_t c = 0; c < copies; ++c)
-    if (count[c] > 0) {
-      Eigen::Vector3d& p = work.points[first_copy + c];
-      p += offset * (sum[c] / count[c] - p);
-    }
+  std::unordered_set<std::array<std::int64_t, 3>, CellHash> taken;
+  for (std::size_t i = 0; i < first_copy; ++i)
+    taken.insert(cell_of(work.points[i], 0.0));
+  for (std::size_t c = 0; c < copies; ++c) {
+    Eigen::Vector3d& p = work.points[first_copy + c];
+    if (count[c] == 0)
+      continue;
+    targets[c].front() /= count[c];
+    const Eigen::Vector3d from = p;
+    // Copies split from one another before moving can have equal targets: then a longer step.
+    bool placed = false;
+    for (int step = 1; step <= max_separation_steps && !placed; ++step)
+      for (const Eigen::Vector3d& target : targets[c]) {
+        p = from + step * offset * (target - from);
+        if ((placed = taken.insert(cell_of(p, 0.0)).second))
+          break;
+      }
+  }
 }
 
 //! Step 7: vertices split until every edge has at most two triangles running along it in opposite
