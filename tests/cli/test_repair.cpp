@@ -216,6 +216,26 @@ TEST_F(RepairCommand, a_cad_like_stl_soup_closes_with_a_merge_tolerance)
   EXPECT_NEAR(json_number(stats, "volume"), volume, 1e-7);
 }
 
+TEST_F(RepairCommand, remove_self_intersections_leaves_none)
+{
+  // The damaged sphere with its cap above z = 0.2 folded down through the rest.
+  damaged_sphere();
+  for (auto& p : points)
+    if (p.z() > 0.2)
+      p.z() = 0.2 - 2.2 * (p.z() - 0.2);
+  write_off(dir / "folded.off", points, triangles);
+  const std::string plain = output_of("repair --json " + (dir / "folded.off").string() + " -o " + (dir / "a.off").string());
+  EXPECT_GT(json_number(plain, "self_intersecting_pairs"), 0) << plain;
+  EXPECT_EQ(json_number(plain, "retriangulation_passes"), 0) << plain;
+
+  const std::string clean = output_of("repair --json --remove-self-intersections " + (dir / "folded.off").string() +
+                                      " -o " + (dir / "b.off").string());
+  EXPECT_EQ(json_number(clean, "self_intersecting_pairs"), 0) << clean;
+  EXPECT_GE(json_number(clean, "retriangulation_passes"), 1) << clean;
+  const std::string stats = output_of("stats --json " + (dir / "b.off").string());
+  EXPECT_EQ(json_number(stats, "self_intersecting_pairs"), 0) << stats;
+}
+
 TEST_F(RepairCommand, an_unrepairable_file_is_refused_with_exit_code_two)
 {
   std::ofstream(dir / "broken.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n";
