@@ -62,6 +62,7 @@ private:
   std::vector<Repair> list_;
 };
 
+//! The undirected edge ab as low << 32 | high.
 std::uint64_t edge_key(int a, int b)
 {
   const auto low = static_cast<std::uint64_t>(std::min(a, b)), high = static_cast<std::uint64_t>(std::max(a, b));
@@ -224,12 +225,14 @@ Work triangulate(const PolygonSoup& soup, const RepairOptions& options, Repairs&
 //! The triangles of the work on each edge (alive ones only, kept up to date by remove_caps).
 using EdgeFaces = std::unordered_map<std::uint64_t, std::vector<int>>;
 
+//! Triangle t no longer on edge ab.
 void unlink(EdgeFaces& edges, int a, int b, int t)
 {
   auto& list = edges[edge_key(a, b)];
   list.erase(std::remove(list.begin(), list.end(), t), list.end());
 }
 
+//! Triangle t (`triangle`) on each of its edges.
 void link(EdgeFaces& edges, const Triangle& triangle, int t)
 {
   for (int k = 0; k < 3; ++k)
