@@ -2,6 +2,8 @@
 //! (or between two surfaces), decided exactly (spatial/intersect.h); with -o, the surface without
 //! them (retri/remove_intersections.h). Exit code 0 whether or not pairs are found.
 
+#include "common_options.h"
+#include "json_report.h"
 #include "verbs.h"
 
 #include "sdflow/errors.h"
@@ -23,6 +25,7 @@ struct IntersectionsArguments {
   std::string mesh;
   std::string other;
   std::string output;
+  Encoding encoding = Encoding::binary;
   bool json = false;
 };
 
@@ -47,7 +50,7 @@ void run(const IntersectionsArguments& args)
   } else if (!args.output.empty()) {
     removal = remove_self_intersections(mesh);
     pairs = removal->intersecting_pairs;
-    write_mesh(removal->mesh, args.output);
+    write_mesh(removal->mesh, args.output, {.encoding = args.encoding});
   } else {
     pairs = self_intersections(mesh);
   }
@@ -70,7 +73,7 @@ void run(const IntersectionsArguments& args)
       root.insert("removed_vertices", static_cast<int64_t>(removal->removed_vertices.size()));
       root.insert("pinched_vertices", static_cast<int64_t>(removal->pinched_vertices.size()));
     }
-    std::cout << toml::json_formatter{root} << '\n';
+    print_json(std::move(root));
     return;
   }
   if (args.other.empty())
@@ -96,9 +99,10 @@ void add_intersections_verb(CLI::App& app)
     "intersections", "List the intersecting face pairs of a surface (exact), or between two surfaces; -o removes them");
   verb->add_option("mesh", args->mesh, "Mesh file (OFF, OBJ, PLY, STL)")->required();
   verb->add_option("other", args->other, "Second mesh: list the pairs between the two surfaces instead");
-  verb->add_option("-o,--output", args->output,
-                   "Write the surface without its intersecting faces and the vertices they leave alone");
-  verb->add_flag("--json", args->json, "Print a JSON object: file, faces, intersecting_pairs, pairs, ...");
+  add_output_option(*verb, args->output,
+                    "Write the surface without its intersecting faces and the vertices they leave alone");
+  add_encoding_flags(*verb, args->encoding);
+  add_json_flag(*verb, args->json);
   verb->callback([args] { run(*args); });
 }
 
