@@ -12,6 +12,7 @@ namespace sdflow::cli {
 namespace {
 
 constexpr auto terminal_delay = std::chrono::seconds(1);
+constexpr auto first_line_delay = std::chrono::seconds(2);
 constexpr auto line_interval = std::chrono::seconds(10);
 
 } // namespace
@@ -30,7 +31,9 @@ void WorkProgress::stage(std::string what)
 {
   std::lock_guard lock(mutex_);
   stage_ = std::move(what);
-  stage_start_ = last_line_ = Clock::now();
+  stage_start_ = Clock::now();
+  // The first line after first_line_delay, the next ones every line_interval.
+  last_line_ = stage_start_ - line_interval + first_line_delay;
 }
 
 void WorkProgress::finish()

@@ -2,8 +2,8 @@
 //! \file work_progress.h
 //! \brief Progress of a verb's long work on stderr, as `sdflow run` reports its steps: on a
 //! terminal one line rewritten every second (the verb, the stage, its seconds so far) once a stage
-//! has lasted a second; otherwise a line every 10 s while a stage lasts. Nothing under `-q` (the
-//! log level above info), nothing for work that ends within a second.
+//! has lasted a second; otherwise a line when a stage has lasted 2 s, then every 10 s. Nothing
+//! under `-q` (the log level above info), nothing for work that ends within a second.
 
 #include <chrono>
 #include <condition_variable>
