@@ -39,16 +39,6 @@ void drop_non_finite(toml::node& node)
 
 } // namespace
 
-const char* severity_name(Severity severity)
-{
-  switch (severity) {
-  case Severity::info: return "info";
-  case Severity::warning: return "warning";
-  case Severity::error: return "error";
-  }
-  return "?";
-}
-
 toml::array findings_json(const std::vector<Finding>& findings)
 {
   toml::array out;

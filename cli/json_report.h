@@ -10,9 +10,6 @@
 
 namespace sdflow::cli {
 
-//! "info", "warning" or "error".
-const char* severity_name(Severity severity);
-
 //! Validation findings as `[{severity, code, message}, ...]` (codes in README, `sdflow stats`).
 toml::array findings_json(const std::vector<Finding>& findings);
 

@@ -51,7 +51,7 @@ void run(const RemeshArguments& args)
   progress.stage(fmt::format("{} iterations to edge length {:.6g}", args.iterations, args.edge_length));
   // Projection onto the input surface (its BVH) and its boundary polylines: the defaults.
   const RemeshResult result = isotropic_remesh(
-      input.mesh, {.target_edge_length = args.edge_length,
+      input.mesh, {.edge_length = args.edge_length,
                    .iterations = args.iterations,
                    .boundary = args.keep_boundary ? BoundaryMode::keep : BoundaryMode::remesh});
   progress.stage("writing " + args.output);
@@ -71,7 +71,7 @@ void run(const RemeshArguments& args)
                            {"input_faces", static_cast<int64_t>(input.mesh.n_faces())},
                            {"vertices", static_cast<int64_t>(result.mesh.n_vertices())},
                            {"faces", static_cast<int64_t>(result.mesh.n_faces())},
-                           {"target_edge_length", args.edge_length},
+                           {"edge_length", args.edge_length},
                            {"edges_in_band_fraction", in_band_fraction},
                            {"splits", static_cast<int64_t>(s.splits)},
                            {"collapses", static_cast<int64_t>(s.collapses)},

@@ -213,11 +213,16 @@ std::string gnuplot_script(const RenderArguments& a, const fs::path& data, const
     // font, about 70 pixels) and 'H' above it; the surface keeps the rest of the picture.
     const double width = a.size[0], box_width = std::max(10.0, 0.025 * width);
     const double box_left = 1 - (70 + box_width + 6) / width;
-    s += fmt::format("set palette defined {}\nset cbrange [{:.17g}:{:.17g}]\nset cbtics {}\n"
-                     "set size {:.4f},1\nset colorbox vertical user origin screen {:.4f},0.2 size screen {:.4f},0.6\n"
-                     "set label 'H' at screen {:.4f},0.84 center\n",
-                     viridis, range.first, range.second, colour_tics(range.first, range.second), box_left - 0.02,
-                     box_left, box_width / width, box_left + 0.5 * box_width / width);
+    s += fmt::format("set palette defined {}\nset cbrange [{:.17g}:{:.17g}]\n", viridis, range.first, range.second);
+    // A picture too narrow for the strip (under about 180 pixels) keeps the colours without the scale.
+    if (box_left < 0.5)
+      s += "unset colorbox\n";
+    else
+      s += fmt::format("set cbtics {}\nset size {:.4f},1\n"
+                       "set colorbox vertical user origin screen {:.4f},0.2 size screen {:.4f},0.6\n"
+                       "set label 'H' at screen {:.4f},0.84 center\n",
+                       colour_tics(range.first, range.second), box_left - 0.02, box_left, box_width / width,
+                       box_left + 0.5 * box_width / width);
   } else {
     s += fmt::format("set palette defined (0 {0}, 1 {0})\nset cbrange [0:1]\nunset colorbox\n", plain_colour);
   }
