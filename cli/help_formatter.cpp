@@ -53,10 +53,13 @@ std::string HelpFormatter::make_option_opts(const CLI::Option* option) const
     return " " + option->get_option_text();
   std::ostringstream out;
   if (option->get_type_size() != 0) {
-    if (const std::string placeholder = value_placeholder(option->get_type_name()); !placeholder.empty())
+    const std::string placeholder = value_placeholder(option->get_type_name());
+    if (!placeholder.empty())
       out << ' ' << placeholder;
     if (option->get_expected_max() == CLI::detail::expected_max_vector_size)
       out << " ...";
+    else if (option->get_expected_min() > 1 && placeholder.find(',') == std::string::npos)
+      out << " x " << option->get_expected_min(); // "X,Y,Z" says it already
     if (!option->get_default_str().empty())
       out << " (default: " << option->get_default_str() << ')';
     if (option->get_required())

@@ -15,7 +15,8 @@ class HelpFormatter : public CLI::Formatter {
 public:
   //! Every name of the option, short ones first: `-o, --output, --out`.
   std::string make_option_name(const CLI::Option* option, bool is_positional) const override;
-  //! The value's placeholder (its choices, FILE, DIR, INT, FLOAT, TEXT), the default, REQUIRED.
+  //! The value's placeholder (its choices, FILE, DIR, INT, FLOAT, TEXT), how many values, the
+  //! default, REQUIRED, the options it excludes.
   std::string make_option_opts(const CLI::Option* option) const override;
 };
 

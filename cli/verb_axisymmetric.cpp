@@ -124,7 +124,7 @@ void add_axisymmetric_verb(CLI::App& app)
   CLI::App* verb = app.add_subcommand(
       "axisymmetric", "Surface diffusion of a surface of revolution, in 1-D (a reference for the 3-D flow): event "
                       "times of pinch-offs and seals, bodies, volume drift");
-  verb->add_option("shape", a->shape, "torus, capsule, dumbbell, sphere-mode or profile")
+  verb->add_option("shape", a->shape, "The surface of revolution: a catalogue shape or a profile file's")
       ->required()
       ->check(CLI::IsMember({"torus", "capsule", "dumbbell", "sphere-mode", "profile"}));
   verb->add_option("file", a->profile, "For profile: the generating curve, one \"r z\" point a line");

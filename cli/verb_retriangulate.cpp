@@ -121,7 +121,7 @@ void add_retriangulate_verb(CLI::App& app)
   verb->add_option("--edge-length", o.edge_length, "Target edge length (default: the input's mean)")
       ->check(CLI::PositiveNumber);
   verb->add_option("--remesh-iterations,--iterations", o.remesh_iterations,
-                   "Remeshing iterations (0: no remeshing; --iterations is its older name)")
+                   "Remeshing iterations (0: no remeshing; --iterations: its older name)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   verb->add_option("--edges-per-radius", o.edges_per_radius,
