@@ -16,8 +16,10 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <cstdio>
 #include <exception>
 #include <memory>
+#include <unistd.h>
 
 namespace {
 
@@ -25,7 +27,9 @@ void install_stderr_logger(bool verbose, bool quiet)
 {
   auto sink = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
   auto logger = std::make_shared<spdlog::logger>("sdflow", sink);
-  logger->set_pattern("%^%l%$: %v");
+  // On a terminal a log line first clears the progress line it may interrupt (run's bar,
+  // WorkProgress); the progress is drawn again on its next tick.
+  logger->set_pattern(::isatty(::fileno(stderr)) ? "\r\033[K%^%l%$: %v" : "%^%l%$: %v");
   logger->set_level(quiet ? spdlog::level::err : verbose ? spdlog::level::debug : spdlog::level::info);
   sdflow::set_logger(logger);
 }
