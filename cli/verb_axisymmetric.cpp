@@ -2,7 +2,7 @@
 //! axisymmetric solver (toolbox/sdflow/axisymmetric/): event times, bodies, drift, time series.
 //!   sdflow axisymmetric torus|capsule|dumbbell|sphere-mode|profile [shape options]
 //!                       [--end-time T] [--max-displacement D] [--max-edge H] [--edges-per-radius N]
-//!                       [--stop-at-first-event] [--csv OUT.csv] [--json]
+//!                       [--stop-at-first-event] [-o SERIES.csv] [--json]
 
 #include "common_options.h"
 #include "json_report.h"
@@ -153,7 +153,8 @@ void add_axisymmetric_verb(CLI::App& app)
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   verb->add_flag("--stop-at-first-event", a->first_event_only, "Stop at the first pinch-off or seal");
-  verb->add_option("--csv", a->csv, "Write the time series (every tenth step) to this CSV file");
+  verb->add_option(std::string(output_names) + ",--csv", a->csv,
+                   "Write the time series (every tenth step) to this CSV file (--csv: its older name)");
   add_json_flag(*verb, a->json, "event_time is the first event's t*; keys documented in README.md");
   verb->callback([a] { run(*a); });
 }

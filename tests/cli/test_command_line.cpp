@@ -242,7 +242,8 @@ TEST_F(CommandLine, older_option_names_still_work)
       "components " + path("sphere.ply") + " -o " + path("d.off") + " --min-component-faces 2",
       "remesh " + path("sphere.ply") + " -o " + path("i.off") + " --edge-length 0.4 --iterations 1",
       "remesh " + path("sphere.ply") + " -o " + path("j.off") + " --edge-length 0.4 --remesh-iterations 1",
-      "axisymmetric sphere-mode --t-end 0.001",
+      "axisymmetric sphere-mode --t-end 0.001 --csv " + path("series_csv.csv"),
+      "axisymmetric sphere-mode --end-time 0.001 --out " + path("series_out.csv"),
       "run --input " + path("sphere.ply") + " --steps 1 -q --output " + path("run_output"),
       "stats --json " + path("sphere.ply") + " -q",
   };
@@ -251,6 +252,8 @@ TEST_F(CommandLine, older_option_names_still_work)
     const auto r = analytic::run_sdflow_streams(call);
     EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
   }
+  EXPECT_TRUE(fs::exists(*dir_ / "series_csv.csv"));
+  EXPECT_TRUE(fs::exists(*dir_ / "series_out.csv"));
   // One default encoding: binary PLY, --ascii for text.
   ASSERT_EQ(analytic::run_sdflow("normals " + path("sphere.ply") + " -o " + path("binary.ply")).exit_code, 0);
   ASSERT_EQ(analytic::run_sdflow("normals " + path("sphere.ply") + " --ascii -o " + path("ascii.ply")).exit_code, 0);
@@ -286,7 +289,7 @@ TEST(CommandLineHelp, lists_choices_without_cli11_notation_or_source_pointers)
   EXPECT_TRUE(has("axisymmetric", "torus|capsule|dumbbell|sphere-mode|profile"));
   EXPECT_TRUE(has("run", "--out, -o, --output") || has("run", "-o, --out, --output"));
   for (const std::string verb : {"components", "fill-holes", "normals", "plot", "reconstruct", "remesh", "render",
-                                 "retriangulate", "shape", "union", "intersections"})
+                                 "retriangulate", "shape", "union", "intersections", "axisymmetric"})
     EXPECT_TRUE(has(verb, "-o, --output, --out")) << verb;
 }
 
