@@ -8,12 +8,14 @@ namespace {
 
 void drop_non_finite(toml::node& node);
 
+//! Whether `node` is an infinite or NaN floating-point value, which JSON cannot hold.
 bool non_finite(const toml::node& node)
 {
   const auto* number = node.as_floating_point();
   return number && !std::isfinite(number->get());
 }
 
+//! Remove the non-finite numbers from the tables and arrays under `node`.
 void drop_non_finite(toml::node& node)
 {
   if (auto* table = node.as_table()) {

@@ -30,7 +30,9 @@ public:
 
 private:
   using Clock = std::chrono::steady_clock;
+  //! The ticker thread: wakes every second until stopped and shows the stage.
   void tick(std::stop_token stop);
+  //! Draw the terminal line, or print a plain line when one is due (the mutex held).
   void show(Clock::time_point now);
 
   std::string verb_;
