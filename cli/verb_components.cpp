@@ -41,14 +41,14 @@ void run(const ComponentsArguments& args)
   for (int c : selection.dropped)
     std::cout << fmt::format("  dropped component {}: {} faces\n", c, selection.faces[c]);
   if (!args.split) {
-    write_mesh(selection.mesh, args.output);
+    write_mesh(selection.mesh, args.output, {.vertex_fields = surface_fields(selection.mesh)});
     std::cout << fmt::format("wrote {} ({} faces)\n", args.output, selection.mesh.n_faces());
     return;
   }
   const std::vector<Mesh> parts = split_components(mesh, args.options);
   for (std::size_t i = 0; i < parts.size(); ++i) {
     const auto file = numbered(args.output, i);
-    write_mesh(parts[i], file);
+    write_mesh(parts[i], file, {.vertex_fields = surface_fields(parts[i])});
     std::cout << fmt::format("wrote {} ({} faces)\n", file.string(), parts[i].n_faces());
   }
 }

@@ -62,7 +62,8 @@ void add_fill_holes_verb(CLI::App& app)
   verb->callback([args] {
     const BuiltMesh built = read_mesh(args->input);
     const FilledHoles result = fill_holes(built.mesh, args->options);
-    write_mesh(result.mesh, args->output, {.encoding = args->binary ? Encoding::binary : Encoding::ascii});
+    write_mesh(result.mesh, args->output, {.encoding = args->binary ? Encoding::binary : Encoding::ascii,
+                                           .vertex_fields = surface_fields(result.mesh)});
     int filled = 0;
     for (const HoleReport& loop : result.loops) {
       filled += loop.outcome == LoopOutcome::filled;

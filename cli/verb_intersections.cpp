@@ -47,7 +47,7 @@ void run(const IntersectionsArguments& args)
   } else if (!args.output.empty()) {
     removal = remove_self_intersections(mesh);
     pairs = removal->intersecting_pairs;
-    write_mesh(removal->mesh, args.output);
+    write_mesh(removal->mesh, args.output, {.vertex_fields = surface_fields(removal->mesh)});
   } else {
     pairs = self_intersections(mesh);
   }

@@ -66,7 +66,8 @@ void add_reconstruct_verb(CLI::App& app)
       cloud.normals.rowwise().normalize();
     }
     const Reconstruction r = reconstruct_surface(cloud.points, cloud.normals, args->options);
-    write_mesh(r.mesh, args->output, {.encoding = args->binary ? Encoding::binary : Encoding::ascii});
+    write_mesh(r.mesh, args->output, {.encoding = args->binary ? Encoding::binary : Encoding::ascii,
+                                      .vertex_fields = surface_fields(r.mesh)});
     int genus = 0, loops = 0;
     for (const auto& c : component_topology(r.mesh)) {
       genus += c.genus;

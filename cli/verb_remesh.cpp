@@ -45,7 +45,7 @@ void run(const RemeshArguments& args)
       input.mesh, {.target_edge_length = args.edge_length,
                    .iterations = args.iterations,
                    .boundary = args.keep_boundary ? BoundaryMode::keep : BoundaryMode::remesh});
-  write_mesh(result.mesh, args.output, {.encoding = Encoding::binary});
+  write_mesh(result.mesh, args.output, {.encoding = Encoding::binary, .vertex_fields = surface_fields(result.mesh)});
   int in_band = 0;
   for (auto e : result.mesh.edges()) {
     const double r = result.mesh.calc_edge_length(e) / args.edge_length;

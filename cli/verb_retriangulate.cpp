@@ -92,7 +92,7 @@ void run(const RetriangulateArguments& args)
   check_remeshed_size(input.mesh, args.options.target_edge_length,
                       fmt::format("retriangulate --edge-length {}", args.options.target_edge_length), limits);
   const RetriangulationResult result = retriangulate(input.mesh, args.options);
-  write_mesh(result.mesh, args.output, {.encoding = Encoding::binary});
+  write_mesh(result.mesh, args.output, {.encoding = Encoding::binary, .vertex_fields = surface_fields(result.mesh)});
   if (args.json)
     report_json(args, input, result);
   else

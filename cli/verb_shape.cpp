@@ -98,7 +98,7 @@ void run(const ShapeArguments& args)
   const MesherResult result = mesh_implicit_surface(
       surface, {.edge_length = args.edge_length, .vertices = args.vertices, .iterations = args.iterations,
                 .edges_per_radius = args.edges_per_radius, .grid_cell = args.grid_cell});
-  write_mesh(result.mesh, args.output, {.encoding = Encoding::binary});
+  write_mesh(result.mesh, args.output, {.encoding = Encoding::binary, .vertex_fields = surface_fields(result.mesh)});
 
   const auto& a = result.min_angles;
   std::cout << fmt::format("{}: {} vertices, {} faces, edge length {:.6g} (marching grid {:.4g}: {} vertices)\n",

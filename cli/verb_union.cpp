@@ -22,7 +22,7 @@ void add_union_verb(CLI::App& app)
   verb->add_option("-o,--output", args->output, "Output mesh file")->required();
   verb->callback([args] {
     const UnionResult u = surface_union(read_mesh(args->first).mesh, read_mesh(args->second).mesh);
-    write_mesh(u.mesh, args->output);
+    write_mesh(u.mesh, args->output, {.vertex_fields = surface_fields(u.mesh)});
     logger().info("union: removed {} faces of {} and {} of {}, joined {} loop pair(s); {} vertices, {} faces written "
                   "to {}",
                   u.removed_faces_a, args->first, u.removed_faces_b, args->second, u.joined_loops,

@@ -79,7 +79,7 @@ std::vector<ParameterEntry> build_schema()
     e.written = [](const RunParameters&) { return false; }; // run.toml holds what it resolved to
   }
   {
-    auto& e = add(entry("input", "--input", ParameterType::path, "The initial mesh (OFF, OBJ, PLY, STL)"));
+    auto& e = add(entry("input", "--input", ParameterType::path, "The initial mesh (OFF, OBJ, PLY, STL, VTP)"));
     e.existing_file = true;
     bind<std::filesystem::path>(e, &RunParameters::input);
     e.written = [](const RunParameters& p) { return !p.input.empty(); };
@@ -351,12 +351,13 @@ std::vector<ParameterEntry> build_schema()
   {
     auto& e = add(entry("retriangulation.enabled", "--retriangulate", ParameterType::boolean,
                         "Re-triangulate between steps when the surface intersects itself or its triangles degrade "
-                        "(paper §3.2.1)"));
+                        "(paper §3.2.1); off, a step that makes the surface intersect itself stops the run (exit 3)"));
     e.meshlab = {.name = "Retriangulate", .label = "Re-triangulate",
                  .help = "Re-triangulate between steps when the surface intersects itself (a pinch-off, a hole "
                          "closing, bodies touching) or its triangles degrade (an angle below 15°, an edge outside "
                          "[ℓ/2, 2ℓ]), by the pipeline of <i>Surface diffusion: re-triangulate</i>. The number of "
-                         "vertices then changes."};
+                         "vertices then changes. Off, the filter fails at the first step that makes the surface "
+                         "intersect itself."};
     bind<bool>(e, &RunParameters::retriangulation, &RS::enabled);
   }
   {

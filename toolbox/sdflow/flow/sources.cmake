@@ -1,5 +1,6 @@
 target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/checkpoint.cpp
+  sdflow/flow/intersection_guard.cpp
   sdflow/flow/parameter_schema.cpp
   sdflow/flow/parameters.cpp
   sdflow/flow/retriangulation.cpp
