@@ -232,7 +232,7 @@ TEST(Vtp, bad_files_are_refused_with_the_reason)
   expect_refused(document("header_type=\"UInt64\"", appended_points, "<AppendedData encoding=\"raw\">_" +
                                                                          with_header<std::uint64_t>(std::string(40, 'a'), false)
                                                                              .substr(0, 20)),
-                 "announces 40 bytes, more than the 12 left");
+                 "announces 40 bytes, more than the 23 left");
   expect_refused(document("header_type=\"UInt64\"", appended_points, "<AppendedData encoding=\"raw\">\n  no underscore"),
                  "must begin with '_'");
   expect_refused(document("", appended_points), "has no <AppendedData>");

@@ -67,6 +67,12 @@ struct DataArray {
   std::size_t line = 0;
 };
 
+//! How messages name an array: 'NAME', or where it sits when it has no name.
+std::string label(const DataArray& a)
+{
+  return a.name.empty() ? fmt::format("(unnamed, in {})", a.section) : fmt::format("'{}'", a.name);
+}
+
 //! What the XML declares, gathered by expat's callbacks.
 struct Declarations {
   std::string type;
@@ -160,16 +166,16 @@ void XMLCALL start_element(void* data, const XML_Char* name, const XML_Char** at
     a.type = type ? type : "";
     if (const char* components = attribute(attributes, "NumberOfComponents"))
       if (!(parse_integer(components, a.components) && a.components >= 1))
-        return refuse(p, fmt::format("DataArray '{}': NumberOfComponents=\"{}\" is not a count ≥ 1", a.name, components));
+        return refuse(p, fmt::format("DataArray {}: NumberOfComponents=\"{}\" is not a count ≥ 1", label(a), components));
     if (const char* format = attribute(attributes, "format"))
       a.format = format;
     if (a.format != "ascii" && a.format != "binary" && a.format != "appended")
-      return refuse(p, fmt::format("DataArray '{}': format=\"{}\" (expected ascii, binary or appended)", a.name,
+      return refuse(p, fmt::format("DataArray {}: format=\"{}\" (expected ascii, binary or appended)", label(a),
                                    a.format));
     if (a.format == "appended") {
       const char* offset = attribute(attributes, "offset");
       if (!(offset && parse_integer(offset, a.offset) && a.offset >= 0))
-        return refuse(p, fmt::format("DataArray '{}': an appended array needs an offset ≥ 0", a.name));
+        return refuse(p, fmt::format("DataArray {}: an appended array needs an offset ≥ 0", label(a)));
     }
     d.arrays.push_back(std::move(a));
     d.in_array = true;
@@ -225,7 +231,7 @@ public:
     read(a, [&](std::string_view token) {
       double v = 0;
       if (!parse_double(token, v))
-        fail(file_, a.line, fmt::format("DataArray '{}': '{}' is not a number", a.name, token));
+        fail(file_, a.line, fmt::format("DataArray {}: '{}' is not a number", label(a), token));
       values.push_back(v);
     }, [&](const char* p, Scalar type) { values.push_back(load_real(p, type)); });
     return values;
@@ -236,12 +242,12 @@ public:
   {
     const std::optional<Scalar> type = scalar_named(a.type);
     if (!type || !is_integer(*type))
-      fail(file_, a.line, fmt::format("DataArray '{}' has type \"{}\"; cells need an integer type", a.name, a.type));
+      fail(file_, a.line, fmt::format("DataArray {} has type \"{}\"; cells need an integer type", label(a), a.type));
     std::vector<long long> values;
     read(a, [&](std::string_view token) {
       long long v = 0;
       if (!parse_integer(token, v))
-        fail(file_, a.line, fmt::format("DataArray '{}': '{}' is not an integer", a.name, token));
+        fail(file_, a.line, fmt::format("DataArray {}: '{}' is not an integer", label(a), token));
       values.push_back(v);
     }, [&](const char* p, Scalar t) { values.push_back(load_integer(p, t, a)); });
     return values;
@@ -253,8 +259,8 @@ private:
   {
     const std::optional<Scalar> type = scalar_named(a.type);
     if (!type)
-      fail(file_, a.line, fmt::format("DataArray '{}' has type \"{}\" (expected Int8 … UInt64, Float32 or Float64)",
-                                      a.name, a.type));
+      fail(file_, a.line, fmt::format("DataArray {} has type \"{}\" (expected Int8 … UInt64, Float32 or Float64)",
+                                      label(a), a.type));
     if (a.format == "ascii") {
       for (std::string_view t : split_tokens(a.text))
         token(t);
@@ -262,7 +268,7 @@ private:
       const std::string bytes = block(a);
       const std::size_t size = size_of(*type);
       if (bytes.size() % size != 0)
-        fail(file_, a.line, fmt::format("DataArray '{}': {} bytes is not a whole number of {}-byte values", a.name,
+        fail(file_, a.line, fmt::format("DataArray {}: {} bytes is not a whole number of {}-byte values", label(a),
                                         bytes.size(), size));
       for (std::size_t i = 0; i < bytes.size(); i += size)
         binary(bytes.data() + i, *type);
@@ -273,37 +279,37 @@ private:
   std::string block(const DataArray& a) const
   {
     if (a.format == "appended" && !d_.appended)
-      fail(file_, a.line, fmt::format("DataArray '{}' is appended but the file has no <AppendedData>", a.name));
+      fail(file_, a.line, fmt::format("DataArray {} is appended but the file has no <AppendedData>", label(a)));
     std::string decoded;
     if (a.format == "binary" || d_.appended_encoding == "base64") {
       std::string_view text = a.format == "binary" ? std::string_view(a.text) : appended_;
       std::size_t pos = 0;
       if (a.format == "appended") {
         if (static_cast<unsigned long long>(a.offset) > text.size())
-          fail(file_, a.line, fmt::format("DataArray '{}': offset {} is beyond the appended data ({} characters)",
-                                          a.name, a.offset, text.size()));
+          fail(file_, a.line, fmt::format("DataArray {}: offset {} is beyond the appended data ({} characters)",
+                                          label(a), a.offset, text.size()));
         pos = static_cast<std::size_t>(a.offset);
       }
       if (!decode_base64(text, pos, d_.header_bytes, decoded))
-        fail(file_, a.line, fmt::format("DataArray '{}': the base64 data is malformed or truncated", a.name));
+        fail(file_, a.line, fmt::format("DataArray {}: the base64 data is malformed or truncated", label(a)));
       const std::size_t count = byte_count(decoded.data(), a);
       // Each base64 group gives at most 3 bytes: no more data than characters left can follow.
       if (count > 3 * ((text.size() - pos) / 4 + 1))
-        fail(file_, a.line, fmt::format("DataArray '{}' announces {} bytes, more than the data holds", a.name, count));
+        fail(file_, a.line, fmt::format("DataArray {} announces {} bytes, more than the data holds", label(a), count));
       if (!decode_base64(text, pos, d_.header_bytes + count, decoded))
-        fail(file_, a.line, fmt::format("DataArray '{}': the base64 data is malformed or truncated", a.name));
+        fail(file_, a.line, fmt::format("DataArray {}: the base64 data is malformed or truncated", label(a)));
       return decoded.substr(d_.header_bytes, count);
     }
     if (d_.appended_encoding != "raw")
       fail(file_, a.line, fmt::format("<AppendedData encoding=\"{}\"> (expected raw or base64)", d_.appended_encoding));
     const unsigned long long offset = static_cast<unsigned long long>(a.offset);
     if (offset > appended_.size() || appended_.size() - offset < d_.header_bytes)
-      fail(file_, a.line, fmt::format("DataArray '{}': offset {} is beyond the appended data ({} bytes)", a.name,
+      fail(file_, a.line, fmt::format("DataArray {}: offset {} is beyond the appended data ({} bytes)", label(a),
                                       a.offset, appended_.size()));
     const std::size_t count = byte_count(appended_.data() + offset, a);
     if (count > appended_.size() - offset - d_.header_bytes)
-      fail(file_, a.line, fmt::format("DataArray '{}' announces {} bytes, more than the {} left in the appended data "
-                                      "(truncated?)", a.name, count, appended_.size() - offset - d_.header_bytes));
+      fail(file_, a.line, fmt::format("DataArray {} announces {} bytes, more than the {} left in the appended data "
+                                      "(truncated?)", label(a), count, appended_.size() - offset - d_.header_bytes));
     return std::string(appended_.substr(offset + d_.header_bytes, count));
   }
 
@@ -312,7 +318,7 @@ private:
     const std::uint64_t count = d_.header_bytes == 8 ? load_scalar<std::uint64_t>(header, d_.order)
                                                      : load_scalar<std::uint32_t>(header, d_.order);
     if (count > std::numeric_limits<std::size_t>::max() / 2)
-      fail(file_, a.line, fmt::format("DataArray '{}' announces {} bytes", a.name, count));
+      fail(file_, a.line, fmt::format("DataArray {} announces {} bytes", label(a), count));
     return static_cast<std::size_t>(count);
   }
 
@@ -338,7 +344,7 @@ private:
     if (type == Scalar::uint64) {
       const std::uint64_t v = load_scalar<std::uint64_t>(p, d_.order);
       if (v > static_cast<std::uint64_t>(std::numeric_limits<long long>::max()))
-        fail(file_, a.line, fmt::format("DataArray '{}': {} is out of range", a.name, v));
+        fail(file_, a.line, fmt::format("DataArray {}: {} is out of range", label(a), v));
       return static_cast<long long>(v);
     }
     if (type == Scalar::int64)
