@@ -250,8 +250,8 @@ void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
     guard_.emplace(mesh_);
     return;
   }
-  if (!(schedule.pipeline.target_edge_length > 0))
-    schedule.pipeline.target_edge_length = mean_edge_length(mesh_);
+  if (!(schedule.pipeline.edge_length > 0))
+    schedule.pipeline.edge_length = mean_edge_length(mesh_);
   retriangulate_ = make_retriangulation_hook(schedule);
 }
 
