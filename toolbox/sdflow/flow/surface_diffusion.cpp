@@ -88,6 +88,7 @@ bool SurfaceDiffusion::finished() const
 StepRecord SurfaceDiffusion::step()
 {
   const Stopwatch watch;
+  const double cpu_start = process_cpu_seconds();
   const long next_step = step_ + 1;
   const TimeStepState controller_before = controller_.state();
   std::vector<std::string> events;
@@ -181,6 +182,7 @@ StepRecord SurfaceDiffusion::step()
   record.rejections = rejections;
   record.event = join_events(events);
   record.times.total = watch.seconds();
+  record.times.cpu = process_cpu_seconds() - cpu_start;
   return record;
 }
 
