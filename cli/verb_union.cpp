@@ -1,4 +1,4 @@
-//! `sdflow union A B -o OUT`: the boundary of the union of two closed surfaces (Appendix B).
+//! `sdflow union A B -o OUT`: the boundary of the union of two surfaces (Appendix B).
 
 #include "verbs.h"
 
@@ -16,9 +16,9 @@ void add_union_verb(CLI::App& app)
     std::string first, second, output;
   };
   auto args = std::make_shared<Arguments>();
-  CLI::App* verb = app.add_subcommand("union", "Join two intersecting closed surfaces into the boundary of their union");
-  verb->add_option("first", args->first, "First closed surface")->required();
-  verb->add_option("second", args->second, "Second closed surface")->required();
+  CLI::App* verb = app.add_subcommand("union", "Join two intersecting surfaces into the boundary of their union (a surface with a boundary keeps it)");
+  verb->add_option("first", args->first, "First surface (its inside: the side its normals point away from)")->required();
+  verb->add_option("second", args->second, "Second surface")->required();
   verb->add_option("-o,--output", args->output, "Output mesh file")->required();
   verb->callback([args] {
     const UnionResult u = surface_union(read_mesh(args->first).mesh, read_mesh(args->second).mesh);
