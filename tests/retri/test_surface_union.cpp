@@ -157,9 +157,11 @@ TEST(SurfaceUnion, bubble_reaching_a_sheet_opens_into_a_dimple_and_the_sheet_kee
         }
       }
       // The space between the sheet and its old plane is the bubble's part below the plane (the
-      // mesh is inscribed in the sphere: 1%).
-      const double expected = unit_ball_below_plane(h);
-      EXPECT_NEAR(-side * cone_volume_from_origin(u.mesh), expected, 0.01 * expected);
+      // mesh is inscribed in the sphere: up to 1% less), and the thin wedge between sheet and bubble
+      // that the joint, about an edge wide, opens (up to 3% more).
+      const double expected = unit_ball_below_plane(h), joined = -side * cone_volume_from_origin(u.mesh);
+      EXPECT_GT(joined, 0.99 * expected);
+      EXPECT_LT(joined, 1.03 * expected);
     }
 }
 
@@ -199,8 +201,11 @@ TEST(SurfaceUnion, cavity_reaching_the_wall_of_its_body_opens_through_it)
     const double pit = ball_intersection_volume(2.0, 0.5, std::hypot(0.02, 0.01, 1.6)) * enclosed_volume(cavity) /
                        (4.0 / 3 * pi * 0.125);
     // The result is oriented as the first surface: outward with the body first, inward with the
-    // cavity first (the pipeline orients closed components outward afterwards).
-    EXPECT_NEAR((body_first ? 1 : -1) * enclosed_volume(u.mesh), enclosed_volume(body) - pit, 0.02 * pit);
+    // cavity first (the pipeline orients closed components outward afterwards). The joint, about an
+    // edge wide, also opens the thin wedge of the wall next to the contact (up to 5% of the pit).
+    const double left = (body_first ? 1 : -1) * enclosed_volume(u.mesh);
+    EXPECT_LT(left, enclosed_volume(body) - 0.98 * pit);
+    EXPECT_GT(left, enclosed_volume(body) - 1.05 * pit);
   }
 }
 

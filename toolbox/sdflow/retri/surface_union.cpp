@@ -62,12 +62,18 @@ public:
     }
   }
 
-  //! True when q lies inside the closed surface.
-  bool inside(const Eigen::Vector3d& q) const
+  struct Side {
+    bool inside = false;
+    double distance = std::numeric_limits<double>::infinity();
+    int face = -1; //!< the face of the closest point
+  };
+
+  //! Whether q lies inside the surface, and its distance to it.
+  Side side(const Eigen::Vector3d& q) const
   {
     const ClosestPoint cp = bvh_.closest_point(q);
     if (cp.face < 0)
-      return false;
+      return {};
     const Mesh::FaceHandle f(cp.face);
     constexpr double on_element = 1e-10;
     int zeros = 0, nonzero = -1;
@@ -95,7 +101,7 @@ public:
         }
       }
     }
-    return (q - cp.point).dot(normal) < 0;
+    return {.inside = (q - cp.point).dot(normal) < 0, .distance = std::sqrt(cp.squared_distance), .face = cp.face};
   }
 
 private:
@@ -253,38 +259,60 @@ int keep_faces(Mesh& mesh, const std::vector<bool>& remove, OpenMesh::VPropHandl
   return removed;
 }
 
-//! Which faces of each surface are inside the other (by the centroid; SideOracle) and which cross it.
+//! Per face of one surface, seen from the other: crossing it, inside it (by the centroid;
+//! SideOracle), and closer to it than the longer of the longest edges of the face and of the
+//! other's face nearest to it (the same reach from both sides, so that the holes match).
+struct FacesAgainst {
+  std::vector<bool> crossing, inside, near;
+};
+
+std::vector<double> longest_edges(const Mesh& mesh)
+{
+  std::vector<double> longest(mesh.n_faces(), 0.0);
+  for (auto f : mesh.faces())
+    for (auto e : f.edges())
+      longest[f.idx()] = std::max(longest[f.idx()], mesh.calc_edge_length(e));
+  return longest;
+}
+
+FacesAgainst faces_against(const Mesh& surface, const std::vector<double>& longest, const SideOracle& other,
+                           const std::vector<double>& other_longest)
+{
+  FacesAgainst r{.crossing = std::vector<bool>(surface.n_faces(), false),
+                 .inside = std::vector<bool>(surface.n_faces(), false),
+                 .near = std::vector<bool>(surface.n_faces(), false)};
+  for (auto f : surface.faces()) {
+    const SideOracle::Side side = other.side(to_eigen(surface.calc_face_centroid(f)));
+    r.inside[f.idx()] = side.inside;
+    r.near[f.idx()] = side.face >= 0 && side.distance < std::max(longest[f.idx()], other_longest[side.face]);
+  }
+  return r;
+}
+
+//! Which faces of each surface cross the other, lie inside it or come close to it.
 struct Overlap {
-  std::vector<bool> a_crossing, b_crossing;
-  std::vector<bool> a_inside_b, b_inside_a;
+  FacesAgainst a, b;
 };
 
 Overlap overlap_of(const Mesh& a, const Mesh& b)
 {
-  Overlap o{.a_crossing = std::vector<bool>(a.n_faces(), false),
-            .b_crossing = std::vector<bool>(b.n_faces(), false),
-            .a_inside_b = std::vector<bool>(a.n_faces(), false),
-            .b_inside_a = std::vector<bool>(b.n_faces(), false)};
+  const SideOracle oracle_a(a), oracle_b(b);
+  const std::vector<double> longest_a = longest_edges(a), longest_b = longest_edges(b);
+  Overlap o{.a = faces_against(a, longest_a, oracle_b, longest_b), .b = faces_against(b, longest_b, oracle_a, longest_a)};
   for (const FacePair& p : surface_intersections(a, b)) {
-    o.a_crossing[p.first] = true;
-    o.b_crossing[p.second] = true;
+    o.a.crossing[p.first] = true;
+    o.b.crossing[p.second] = true;
   }
-  const SideOracle inside_a(a), inside_b(b);
-  for (auto f : a.faces())
-    o.a_inside_b[f.idx()] = inside_b.inside(to_eigen(a.calc_face_centroid(f)));
-  for (auto f : b.faces())
-    o.b_inside_a[f.idx()] = inside_a.inside(to_eigen(b.calc_face_centroid(f)));
   return o;
 }
 
-//! The faces to remove: those crossing the other surface, and those on the other's inside (its
-//! complement when `other_reversed`).
-std::vector<bool> faces_to_remove(const std::vector<bool>& crossing, const std::vector<bool>& inside_other,
-                                  bool other_reversed)
+//! The faces to remove: those crossing the other surface, those on the other's inside (its
+//! complement when `other_reversed`), and with `near_too` those closer to it than their longest edge.
+std::vector<bool> faces_to_remove(const FacesAgainst& faces, bool other_reversed, bool near_too)
 {
-  std::vector<bool> remove(crossing.size());
-  for (std::size_t f = 0; f < crossing.size(); ++f)
-    remove[f] = crossing[f] || inside_other[f] != other_reversed;
+  std::vector<bool> remove(faces.crossing.size());
+  for (std::size_t f = 0; f < remove.size(); ++f)
+    remove[f] = faces.crossing[f] || faces.inside[f] != other_reversed || (near_too && faces.near[f]);
   return remove;
 }
 
@@ -298,12 +326,12 @@ Mesh reversed(const Mesh& mesh)
 
 //! True when most of `surface`'s area that does not cross the other surface lies on the other's
 //! inside.
-bool mostly_inside(const Mesh& surface, const std::vector<bool>& crossing, const std::vector<bool>& inside_other)
+bool mostly_inside(const Mesh& surface, const FacesAgainst& faces)
 {
   double inside = 0, outside = 0;
   for (auto f : surface.faces())
-    if (!crossing[f.idx()])
-      (inside_other[f.idx()] ? inside : outside) += surface.calc_face_area(f);
+    if (!faces.crossing[f.idx()])
+      (faces.inside[f.idx()] ? inside : outside) += surface.calc_face_area(f);
   return inside > outside;
 }
 
@@ -373,8 +401,7 @@ UnionResult surface_union(const Mesh& a, const Mesh& b)
   if (same_triangles(a, b))
     return itself(a);
   const Overlap o = overlap_of(a, b);
-  return join(a, b, faces_to_remove(o.a_crossing, o.a_inside_b, false),
-              faces_to_remove(o.b_crossing, o.b_inside_a, false));
+  return join(a, b, faces_to_remove(o.a, false, false), faces_to_remove(o.b, false, false));
 }
 
 UnionResult merge_touching_surfaces(const Mesh& a, const Mesh& b)
@@ -383,11 +410,13 @@ UnionResult merge_touching_surfaces(const Mesh& a, const Mesh& b)
     return itself(a);
   const Overlap o = overlap_of(a, b);
   // Each surface's inside must be the side away from the other, the region that joins.
-  const bool reverse_a = mostly_inside(b, o.b_crossing, o.b_inside_a);
-  const bool reverse_b = mostly_inside(a, o.a_crossing, o.a_inside_b);
+  const bool reverse_a = mostly_inside(b, o.b);
+  const bool reverse_b = mostly_inside(a, o.a);
+  // Where surfaces that just touched close in on each other the two sides of the joint would meet
+  // at a cusp, whose faces the next steps push through each other: the faces within an edge of
+  // the other surface go too, so that the joint starts about an edge wide.
   UnionResult result = join(reverse_a ? reversed(a) : a, reverse_b ? reversed(b) : b,
-                            faces_to_remove(o.a_crossing, o.a_inside_b, reverse_b),
-                            faces_to_remove(o.b_crossing, o.b_inside_a, reverse_a));
+                            faces_to_remove(o.a, reverse_b, true), faces_to_remove(o.b, reverse_a, true));
   if (reverse_a)
     result.mesh = reversed(result.mesh);
   return result;

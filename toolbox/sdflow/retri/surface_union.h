@@ -33,7 +33,9 @@ UnionResult surface_union(const Mesh& a, const Mesh& b);
 //! other's area lies) as its inside, and their union is formed as surface_union does. Two bodies
 //! that touch become their union; a cavity that reaches the wall of the body around it, or a closed
 //! bubble that reaches a sheet with a boundary, opens through it (the wall or sheet dimpled into
-//! the bubble, the sheet's boundary unchanged). The result keeps the first surface's orientation.
+//! the bubble, the sheet's boundary unchanged). Where the surfaces come closer than a triangle's
+//! longest edge its faces are removed too, so the joint starts about an edge wide instead of as a
+//! cusp narrower than the mesh resolves. The result keeps the first surface's orientation.
 //! Throws InvalidMesh as surface_union does.
 UnionResult merge_touching_surfaces(const Mesh& a, const Mesh& b);
 
