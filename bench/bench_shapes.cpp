@@ -50,7 +50,7 @@ void torus_remesh_3_iterations(benchmark::State& state)
   const sdflow::Mesh input = sdflow::mesh_implicit_surface(torus, {.edge_length = 0.0875, .iterations = 2}).mesh;
   const auto project = [&](const Eigen::Vector3d& p) { return sdflow::project_to_level_set(torus, p); };
   for (auto _ : state) {
-    auto r = sdflow::isotropic_remesh(input, {.target_edge_length = 0.0875, .iterations = 3, .project = project});
+    auto r = sdflow::isotropic_remesh(input, {.edge_length = 0.0875, .iterations = 3, .project = project});
     state.counters["vertices"] = static_cast<double>(r.mesh.n_vertices());
     benchmark::DoNotOptimize(r);
   }

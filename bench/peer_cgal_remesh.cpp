@@ -119,7 +119,7 @@ struct Case {
 
 RemeshOptions sdflow_options(const Case& c, int relaxation_steps)
 {
-  return {.target_edge_length = c.ell(), .iterations = kIterations, .relaxation_steps = relaxation_steps};
+  return {.edge_length = c.ell(), .iterations = kIterations, .relaxation_steps = relaxation_steps};
 }
 
 struct Quality {

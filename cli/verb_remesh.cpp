@@ -42,7 +42,7 @@ void run(const RemeshArguments& args)
   check_remeshed_size(input.mesh, args.edge_length, fmt::format("remesh --edge-length {}", args.edge_length), limits);
   // Projection onto the input surface (its BVH) and its boundary polylines: the defaults.
   const RemeshResult result = isotropic_remesh(
-      input.mesh, {.target_edge_length = args.edge_length,
+      input.mesh, {.edge_length = args.edge_length,
                    .iterations = args.iterations,
                    .boundary = args.keep_boundary ? BoundaryMode::keep : BoundaryMode::remesh});
   write_mesh(result.mesh, args.output, {.encoding = Encoding::binary});

@@ -38,7 +38,7 @@ void report_json(const RetriangulateArguments& args, const BuiltMesh& input, con
                    {"input_faces", static_cast<int64_t>(input.mesh.n_faces())},
                    {"vertices", static_cast<int64_t>(r.mesh.n_vertices())},
                    {"faces", static_cast<int64_t>(r.mesh.n_faces())},
-                   {"target_edge_length", r.target_edge_length},
+                   {"edge_length", r.edge_length},
                    {"merged_components", r.merged_components},
                    {"splits", static_cast<int64_t>(r.remesh.splits)},
                    {"collapses", static_cast<int64_t>(r.remesh.collapses)},
@@ -66,7 +66,7 @@ void report_text(const RetriangulateArguments& args, const BuiltMesh& input, con
     std::cout << fmt::format("  0. {} intersecting component(s) joined into others (Appendix B)\n",
                              r.merged_components);
   std::cout << fmt::format("  1. remeshed to edge length {:.6g}: {} splits, {} collapses, {} flips ({:.3f} s)\n",
-                           r.target_edge_length, r.remesh.splits, r.remesh.collapses, r.remesh.flips, r.seconds.remesh);
+                           r.edge_length, r.remesh.splits, r.remesh.collapses, r.remesh.flips, r.seconds.remesh);
   std::cout << fmt::format("  2. {} intersecting face pairs, {} faces removed ({:.3f} s)\n", r.intersecting_pairs,
                            r.removed_faces, r.seconds.intersections);
   if (r.rebuilt) {
@@ -89,8 +89,8 @@ void run(const RetriangulateArguments& args)
   const SizeLimits limits{.force = args.force};
   check_count(args.options.remesh_iterations, limits.max_iterations, "--remesh-iterations", limits);
   const BuiltMesh input = read_mesh(args.input);
-  check_remeshed_size(input.mesh, args.options.target_edge_length,
-                      fmt::format("retriangulate --edge-length {}", args.options.target_edge_length), limits);
+  check_remeshed_size(input.mesh, args.options.edge_length,
+                      fmt::format("retriangulate --edge-length {}", args.options.edge_length), limits);
   const RetriangulationResult result = retriangulate(input.mesh, args.options);
   write_mesh(result.mesh, args.output, {.encoding = Encoding::binary});
   if (args.json)
@@ -110,7 +110,7 @@ void add_retriangulate_verb(CLI::App& app)
                        "normals, advancing-front reconstruction, hole filling, components");
   verb->add_option("input", args->input, "Input mesh (OFF, OBJ, PLY, STL)")->required();
   verb->add_option("-o,--output", args->output, "Output mesh")->required();
-  verb->add_option("--edge-length", o.target_edge_length, "Target edge length (default: the input's mean)")
+  verb->add_option("--edge-length", o.edge_length, "Target edge length (default: the input's mean)")
       ->check(CLI::PositiveNumber);
   verb->add_option("--remesh-iterations,--iterations", o.remesh_iterations,
                    "Remeshing iterations (0: no remeshing; --iterations is its older name)")

@@ -3,6 +3,7 @@
 //!   sdflow run SCENARIO.toml [flags]     (flags override the file's keys)
 //!   sdflow run --resume DIR [--steps N] [--end-time T] [the other flags the schema marks resumable]
 //!   sdflow run --help-scenario           (the table of keys and flags, markdown, as in README)
+//!   sdflow run --help-meshlab            (the MeshLab filter's parameters, markdown, as in README)
 //! The flags, their checks and the resume rules come from the schema (flow/parameter_schema.h).
 //! SIGINT / SIGTERM stop the run after the current step with a checkpoint (exit 130 / 143).
 
@@ -75,7 +76,7 @@ struct SchemaFlag {
 
 struct RunArguments {
   std::string scenario, resume;
-  bool quiet = false, force = false, help_scenario = false;
+  bool quiet = false, force = false, help_scenario = false, help_meshlab = false;
   CLI::Option* resume_option = nullptr;
   std::deque<SchemaFlag> flags; // one per schema entry, in the schema's order (a deque: stable addresses)
 };
@@ -246,9 +247,9 @@ void run(const RunArguments& a)
       for (const auto& f : built.findings)
         logger().warn("{}: {}", p.input.string(), f.message);
       if (p.retriangulation.enabled)
-        check_remeshed_size(built.mesh, p.retriangulation.pipeline.target_edge_length,
+        check_remeshed_size(built.mesh, p.retriangulation.pipeline.edge_length,
                             fmt::format("run --retriangulate --edge-length {}",
-                                        p.retriangulation.pipeline.target_edge_length),
+                                        p.retriangulation.pipeline.edge_length),
                             limits);
       result = run_simulation(built.mesh, options);
     }
@@ -368,8 +369,14 @@ void add_run_verb(CLI::App& app)
   verb->add_flag("--force", args->force, "Skip the plausibility limits (steps, size of the re-triangulated surface)");
   verb->add_flag("--help-scenario", args->help_scenario,
                  "Print the table of scenario keys and their flags (markdown, as in README) and exit");
+  verb->add_flag("--help-meshlab", args->help_meshlab,
+                 "Print the table of the MeshLab filter's parameters and their flags (markdown, as in README) and exit");
   add_schema_flags(*verb, *args);
   verb->callback([args] {
+    if (args->help_meshlab) {
+      std::cout << meshlab_parameter_table_markdown();
+      return;
+    }
     if (args->help_scenario) {
       std::cout << parameter_table_markdown();
       return;

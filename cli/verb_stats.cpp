@@ -22,16 +22,6 @@ struct StatsArguments {
   bool no_tetgen = false;
 };
 
-const char* severity_name(Severity s)
-{
-  switch (s) {
-  case Severity::info: return "info";
-  case Severity::warning: return "warning";
-  case Severity::error: return "error";
-  }
-  return "?";
-}
-
 toml::table histogram(const std::map<int, int>& counts)
 {
   toml::table t;

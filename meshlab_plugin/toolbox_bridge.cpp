@@ -254,14 +254,14 @@ ShadedSurface retriangulate_surface(const Surface& input, const std::string& nam
   const LoggerScope scope(reporter);
   const Mesh mesh = checked_mesh(input, name);
   RetriangulationOptions options;
-  options.target_edge_length = settings.edge_length;
+  options.edge_length = settings.edge_length;
   options.remesh_iterations = settings.remesh_iterations;
   options.always_rebuild = settings.always_rebuild;
   options.fill_holes = settings.fill_holes;
   options.min_component_faces = settings.min_component_faces;
   const RetriangulationResult r = retriangulate(mesh, options);
   logger().info("re-triangulation to edge length {:.6g}: {} → {} vertices; {}; {} boundary loop(s) left",
-                r.target_edge_length, mesh.n_vertices(), r.mesh.n_vertices(), retriangulation_summary(r), r.open_holes);
+                r.edge_length, mesh.n_vertices(), r.mesh.n_vertices(), retriangulation_summary(r), r.open_holes);
   const VertexVectors normals = vertex_normals(r.mesh);
   return shaded(r.mesh, normals, mean_curvature(r.mesh, normals));
 }

@@ -40,16 +40,6 @@ PyObject* make_type(py::module_& m, const char* name, const char* doc, std::init
   return type;
 }
 
-const char* severity_name(Severity s)
-{
-  switch (s) {
-  case Severity::info: return "info";
-  case Severity::warning: return "warning";
-  case Severity::error: return "error";
-  }
-  return "?";
-}
-
 void raise(PyObject* type, const char* message, const std::vector<Finding>* findings = nullptr)
 {
   py::object instance = py::reinterpret_steal<py::object>(PyObject_CallFunction(type, "s", message));

@@ -281,9 +281,9 @@ void bind_flow(py::module_& m)
           built = built_from_arrays(V, F);
         }
         if (p.retriangulation.enabled)
-          check_remeshed_size(built.mesh, p.retriangulation.pipeline.target_edge_length,
+          check_remeshed_size(built.mesh, p.retriangulation.pipeline.edge_length,
                               fmt::format("run with retriangulation.edge_length = {}",
-                                          p.retriangulation.pipeline.target_edge_length),
+                                          p.retriangulation.pipeline.edge_length),
                               limits);
         RunCallbacks callbacks{.progress = progress};
         const std::filesystem::path dir = p.output_dir;

@@ -57,7 +57,7 @@ void bind_retri(py::module_& m)
     const HoleFillingOptions holes;
     const ComponentOptions components;
     py::dict d;
-    d["retriangulate"] = py::dict(py::arg("edge_length") = r.target_edge_length,
+    d["retriangulate"] = py::dict(py::arg("edge_length") = r.edge_length,
                                   py::arg("iterations") = r.remesh_iterations,
                                   py::arg("edges_per_radius") = r.edges_per_radius,
                                   py::arg("min_edge_fraction") = r.min_edge_fraction,
@@ -88,7 +88,7 @@ void bind_retri(py::module_& m)
          double min_edge_fraction, bool curved_projection, bool always_rebuild, int neighbours, bool fill_holes,
          double max_hole_length, int min_component_faces, double min_component_thickness, bool force) {
         RetriangulationOptions o;
-        o.target_edge_length = edge_length;
+        o.edge_length = edge_length;
         o.remesh_iterations = iterations;
         o.edges_per_radius = edges_per_radius;
         o.min_edge_fraction = min_edge_fraction;
@@ -122,7 +122,7 @@ void bind_retri(py::module_& m)
         info["input_faces"] = input.mesh.n_faces();
         info["vertices"] = r.mesh.n_vertices();
         info["faces"] = r.mesh.n_faces();
-        info["target_edge_length"] = r.target_edge_length;
+        info["edge_length"] = r.edge_length;
         info["merged_components"] = r.merged_components;
         info["splits"] = r.remesh.splits;
         info["collapses"] = r.remesh.collapses;
@@ -158,7 +158,7 @@ void bind_retri(py::module_& m)
         RemeshResult r;
         {
           ToolboxLock lock;
-          r = isotropic_remesh(input.mesh, {.target_edge_length = edge_length,
+          r = isotropic_remesh(input.mesh, {.edge_length = edge_length,
                                             .iterations = iterations,
                                             .curved_projection = curved_projection,
                                             .boundary = keep_boundary ? BoundaryMode::keep : BoundaryMode::remesh});
@@ -168,7 +168,7 @@ void bind_retri(py::module_& m)
         info["collapses"] = r.statistics.collapses;
         info["flips"] = r.statistics.flips;
         info["relaxation_reverts"] = r.statistics.relaxation_reverts;
-        info["target_edge_length"] = r.statistics.target_edge_length;
+        info["edge_length"] = r.statistics.edge_length;
         return with_info(r.mesh, info);
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length"), py::arg("iterations"), py::arg("keep_boundary"),

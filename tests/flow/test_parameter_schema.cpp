@@ -224,7 +224,7 @@ radius = 1
   EXPECT_EQ(p.time_step.schedule_retries, 16);
   EXPECT_EQ(p.time_step.schedule.tau_for_step(60), 0.02);
   EXPECT_EQ(p.time_step.adaptive.max_tau, 1e300);
-  EXPECT_EQ(p.retriangulation.pipeline.target_edge_length, 0.4125);
+  EXPECT_EQ(p.retriangulation.pipeline.edge_length, 0.4125);
   EXPECT_NO_THROW(validate_run_parameters(p));
 }
 
@@ -315,6 +315,24 @@ TEST(ParameterSchema, readme_table_is_the_schemas)
   EXPECT_EQ(readme.substr(from + begin.size(), to - from - begin.size()), parameter_table_markdown())
       << "README's table of scenario keys differs from the schema: paste `sdflow run --help-scenario` between "
          "the markers";
+}
+
+TEST(ParameterSchema, readme_meshlab_table_is_the_schemas)
+{
+  // README's table of the MeshLab filter's parameters is `sdflow run --help-meshlab`.
+  const std::string readme = test::read_file(fs::path(SDFLOW_SOURCE_DIR) / "README.md");
+  const std::string begin = "<!-- meshlab-parameters: begin (sdflow run --help-meshlab) -->\n";
+  const std::string end = "<!-- meshlab-parameters: end -->";
+  const auto from = readme.find(begin);
+  const auto to = readme.find(end);
+  ASSERT_NE(from, std::string::npos) << "README lost its marker " << begin;
+  ASSERT_NE(to, std::string::npos) << "README lost its marker " << end;
+  const std::string table = meshlab_parameter_table_markdown();
+  EXPECT_EQ(readme.substr(from + begin.size(), to - from - begin.size()), table)
+      << "README's MeshLab table differs from the schema: paste `sdflow run --help-meshlab` between the markers";
+  for (const ParameterEntry& e : parameter_schema())
+    if (!e.meshlab.name.empty())
+      EXPECT_NE(table.find("(`" + e.meshlab.name + "`)"), std::string::npos) << e.meshlab.name;
 }
 
 } // namespace

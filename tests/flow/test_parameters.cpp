@@ -36,7 +36,7 @@ TEST(RunParameters, resolved_toml_reads_back_to_the_same_parameters)
   p.retriangulation.edge_ratio = 1.8;
   p.retriangulation.degraded_fraction = 0.02;
   p.retriangulation.always = true;
-  p.retriangulation.pipeline.target_edge_length = 0.25;
+  p.retriangulation.pipeline.edge_length = 0.25;
   p.retriangulation.pipeline.remesh_iterations = 5;
   p.retriangulation.pipeline.normals.neighbours = 24;
   p.retriangulation.pipeline.fill_holes = false;
@@ -72,7 +72,7 @@ TEST(RunParameters, resolved_toml_reads_back_to_the_same_parameters)
   EXPECT_EQ(r.edge_ratio, 1.8);
   EXPECT_EQ(r.degraded_fraction, 0.02);
   EXPECT_TRUE(r.always);
-  EXPECT_EQ(r.pipeline.target_edge_length, 0.25);
+  EXPECT_EQ(r.pipeline.edge_length, 0.25);
   EXPECT_EQ(r.pipeline.remesh_iterations, 5);
   EXPECT_EQ(r.pipeline.normals.neighbours, 24);
   EXPECT_FALSE(r.pipeline.fill_holes);

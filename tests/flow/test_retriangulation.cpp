@@ -122,7 +122,7 @@ TEST(RetriangulatingRun, edge_length_is_fixed_from_the_initial_surface_in_run_to
   RunParameters q;
   read_run_parameters(dir / "run/run.toml", q);
   EXPECT_TRUE(q.retriangulation.enabled);
-  EXPECT_NEAR(q.retriangulation.pipeline.target_edge_length, 0.5, 0.1);
+  EXPECT_NEAR(q.retriangulation.pipeline.edge_length, 0.5, 0.1);
 }
 
 //! Edges outside [ℓ/2, 2ℓ] and triangles with an angle below 15°, counted here independently of the hook.
@@ -160,7 +160,7 @@ TEST(RetriangulationHook, tolerates_what_the_last_retriangulation_left_until_mor
 
   RetriangulationSchedule schedule;
   schedule.enabled = true;
-  schedule.pipeline.target_edge_length = ell;
+  schedule.pipeline.edge_length = ell;
   const RetriangulationHook hook = make_retriangulation_hook(schedule);
 
   Mesh tolerated = mesh;
@@ -187,7 +187,7 @@ TEST(RetriangulationHook, gives_back_the_volume_a_remeshing_takes)
   RetriangulationSchedule schedule;
   schedule.enabled = true;
   schedule.always = true;
-  schedule.pipeline.target_edge_length = 2 * ell;
+  schedule.pipeline.edge_length = 2 * ell;
   for (const bool restore : {true, false}) {
     SCOPED_TRACE(restore);
     schedule.restore_volume = restore;
@@ -247,7 +247,7 @@ TEST(RetriangulationHook, a_forced_call_runs_the_pipeline_whatever_the_schedule)
   RetriangulationSchedule schedule;
   schedule.enabled = true;
   schedule.every = 5;
-  schedule.pipeline.target_edge_length = 0.15;
+  schedule.pipeline.edge_length = 0.15;
   const RetriangulationHook hook = make_retriangulation_hook(schedule);
   Mesh idle = analytic::icosphere(3);
   EXPECT_FALSE(hook(idle, {.step = 3}).changed()) << "not a step the schedule looks at";

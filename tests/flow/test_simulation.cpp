@@ -223,12 +223,12 @@ TEST(Simulation, timings_csv_splits_each_steps_wall_time_by_stage)
   p.retriangulation.every = 3;
   run_simulation(analytic::ellipsoid(3, 5, 4, 3), {.parameters = p});
 
-  const auto rows = read_metrics(dir / "run/timings.csv", timings_header, 18);
+  const auto rows = read_metrics(dir / "run/timings.csv", timings_header, 19);
   ASSERT_EQ(rows.size(), 6u) << "one row per step, none for step 0";
-  double solve = 0;
+  double solve = 0, cpu = 0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     SCOPED_TRACE(i + 1);
-    ASSERT_EQ(rows[i].size(), 18u);
+    ASSERT_EQ(rows[i].size(), 19u);
     EXPECT_EQ(rows[i][0], std::to_string(i + 1));
     double parts = 0;
     for (std::size_t c = 2; c < 17; ++c) {
@@ -245,8 +245,11 @@ TEST(Simulation, timings_csv_splits_each_steps_wall_time_by_stage)
     else
       EXPECT_EQ(remesh, 0.0);
     solve += column(rows[i], 4) + column(rows[i], 5);
+    EXPECT_GE(column(rows[i], 18), 0.0) << "CPU seconds";
+    cpu += column(rows[i], 18);
   }
   EXPECT_GT(solve, 0.0);
+  EXPECT_GT(cpu, 0.0) << "the step's CPU time is recorded";
   EXPECT_NE(test::read_file(dir / "run/events.log").find("time by stage: "), std::string::npos);
 }
 

@@ -73,7 +73,7 @@ TEST(Remesh, edges_fall_in_the_band_on_spheres_and_tori)
   cases.push_back({"torus", analytic::torus(60, 20, 3, 1), onto_torus(3, 1), 0.25});
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
-    const auto result = isotropic_remesh(c.mesh, {.target_edge_length = c.ell, .project = c.project});
+    const auto result = isotropic_remesh(c.mesh, {.edge_length = c.ell, .project = c.project});
     EXPECT_GE(band_share(result.mesh, c.ell), kEdgeBandShare);
     EXPECT_GT(worst_fold_cosine(result.mesh), kMaxFoldCosine);
   }
@@ -99,7 +99,7 @@ TEST(Remesh, keeps_genus_components_and_orientation)
     return Eigen::Vector3d(c + 0.8 * (p - c).normalized());
   };
   const auto project = [&](const Eigen::Vector3d& p) { return p.z() > 1.5 ? sphere(p) : torus(p); };
-  const auto result = isotropic_remesh(mesh, {.target_edge_length = 0.3, .project = project});
+  const auto result = isotropic_remesh(mesh, {.edge_length = 0.3, .project = project});
   const auto components = component_topology(result.mesh);
   ASSERT_EQ(components.size(), 2u);
   EXPECT_EQ(components[0].genus + components[1].genus, 1);
@@ -113,7 +113,7 @@ TEST(Remesh, volume_error_falls_like_the_square_of_the_edge_length)
   const double R = 1, exact = 4 * std::numbers::pi / 3;
   std::vector<double> h, error;
   for (double ell : {0.4, 0.2, 0.1}) {
-    const auto result = isotropic_remesh(analytic::icosphere(3, R), {.target_edge_length = ell, .project = onto_sphere(R)});
+    const auto result = isotropic_remesh(analytic::icosphere(3, R), {.edge_length = ell, .project = onto_sphere(R)});
     h.push_back(ell);
     error.push_back(std::abs(enclosed_volume(result.mesh) - exact) / exact);
   }
@@ -135,9 +135,9 @@ TEST(Remesh, curved_projection_puts_new_vertices_on_the_smooth_surface)
       worst = std::max(worst, std::abs(mesh.point(v).norm() - 1));
     return worst;
   };
-  const double flat = radius_error(isotropic_remesh(sphere, {.target_edge_length = 0.6 * ell, .iterations = 3}).mesh);
+  const double flat = radius_error(isotropic_remesh(sphere, {.edge_length = 0.6 * ell, .iterations = 3}).mesh);
   const double curved = radius_error(
-      isotropic_remesh(sphere, {.target_edge_length = 0.6 * ell, .iterations = 3, .curved_projection = true}).mesh);
+      isotropic_remesh(sphere, {.edge_length = 0.6 * ell, .iterations = 3, .curved_projection = true}).mesh);
   EXPECT_GT(flat, 5e-4);
   EXPECT_LT(curved, 0.1 * flat);
   EXPECT_LT(curved, 1e-4);
@@ -151,7 +151,7 @@ TEST(Remesh, disk_boundary_stays_on_its_circle)
     return Eigen::Vector3d(radius * Eigen::Vector3d(p.x(), p.y(), 0).normalized());
   };
   const auto result = isotropic_remesh(analytic::disk(6, radius),
-                                       {.target_edge_length = ell, .project = plane, .project_boundary = circle});
+                                       {.edge_length = ell, .project = plane, .project_boundary = circle});
   const auto components = component_topology(result.mesh);
   ASSERT_EQ(components.size(), 1u);
   EXPECT_EQ(components[0].boundary_loops, 1);
@@ -175,7 +175,7 @@ TEST(Remesh, keep_mode_leaves_the_boundary_untouched)
     if (disk.is_boundary(v))
       rim.push_back(to_eigen(disk.point(v)));
   const PointProjection plane = [](const Eigen::Vector3d& p) { return Eigen::Vector3d(p.x(), p.y(), 0); };
-  const auto result = isotropic_remesh(disk, {.target_edge_length = 0.1, .project = plane, .boundary = BoundaryMode::keep});
+  const auto result = isotropic_remesh(disk, {.edge_length = 0.1, .project = plane, .boundary = BoundaryMode::keep});
   std::vector<Eigen::Vector3d> after;
   for (auto v : result.mesh.vertices())
     if (result.mesh.is_boundary(v))
@@ -190,7 +190,7 @@ TEST(Remesh, default_projection_follows_the_input_surface)
   // No projection given: the remesher projects onto the input mesh itself.
   const double a = 3, b = 2, c = 1;
   const Mesh input = analytic::ellipsoid(5, a, b, c);
-  const auto result = isotropic_remesh(input, {.target_edge_length = 0.2});
+  const auto result = isotropic_remesh(input, {.edge_length = 0.2});
   const StarProjection reference(input);
   double worst = 0;
   for (auto v : result.mesh.vertices()) {
@@ -212,7 +212,7 @@ TEST(Remesh, curvature_sizing_shortens_edges_where_the_surface_bends)
     const double s = std::sqrt(p.x() * p.x() / (a * a) + (p.y() * p.y() + p.z() * p.z()) / (b * b));
     return Eigen::Vector3d(p / s);
   };
-  const auto result = isotropic_remesh(input, {.target_edge_length = 0.6, .project = project, .sizing = sizing});
+  const auto result = isotropic_remesh(input, {.edge_length = 0.6, .project = project, .sizing = sizing});
   double tip = 0, waist = 0;
   int tips = 0, waists = 0;
   for (auto e : result.mesh.edges()) {
@@ -235,10 +235,10 @@ TEST(Remesh, curvature_sizing_shortens_edges_where_the_surface_bends)
 TEST(Remesh, refuses_bad_options)
 {
   const Mesh sphere = analytic::icosphere(2);
-  EXPECT_THROW(isotropic_remesh(sphere, {.target_edge_length = -1}), InvalidParameter);
-  EXPECT_THROW(isotropic_remesh(sphere, {.target_edge_length = 0.1, .iterations = -1}), InvalidParameter);
-  EXPECT_THROW(isotropic_remesh(sphere, {.target_edge_length = 0.1, .boundary_corner_angle_deg = 200}), InvalidParameter);
-  EXPECT_THROW(isotropic_remesh(sphere, {.target_edge_length = 0.1, .sizing = [](const Eigen::Vector3d&) { return 0.0; }}),
+  EXPECT_THROW(isotropic_remesh(sphere, {.edge_length = -1}), InvalidParameter);
+  EXPECT_THROW(isotropic_remesh(sphere, {.edge_length = 0.1, .iterations = -1}), InvalidParameter);
+  EXPECT_THROW(isotropic_remesh(sphere, {.edge_length = 0.1, .boundary_corner_angle_deg = 200}), InvalidParameter);
+  EXPECT_THROW(isotropic_remesh(sphere, {.edge_length = 0.1, .sizing = [](const Eigen::Vector3d&) { return 0.0; }}),
                InvalidParameter);
   EXPECT_THROW(isotropic_remesh(Mesh{}, {}), InvalidMesh);
   EXPECT_THROW(curvature_sizing(sphere, {.tolerance = 0, .min_length = 0.1, .max_length = 1}), InvalidParameter);

@@ -32,7 +32,7 @@ std::vector<int> closed_genera(const Mesh& mesh)
 TEST(Pipeline, clean_sphere_is_only_remeshed)
 {
   const Mesh sphere = analytic::icosphere(4);
-  const RetriangulationResult r = retriangulate(sphere, {.target_edge_length = 0.1});
+  const RetriangulationResult r = retriangulate(sphere, {.edge_length = 0.1});
   EXPECT_FALSE(r.rebuilt);
   EXPECT_EQ(r.intersecting_pairs, 0);
   EXPECT_EQ(closed_genera(r.mesh), std::vector<int>{0});
@@ -50,7 +50,7 @@ TEST(Pipeline, default_edge_length_is_the_input_mean)
 {
   const Mesh sphere = analytic::icosphere(3);
   const RetriangulationResult r = retriangulate(sphere, {.remesh_iterations = 0});
-  EXPECT_NEAR(r.target_edge_length, checks::mean_edge_length(sphere), 1e-12);
+  EXPECT_NEAR(r.edge_length, checks::mean_edge_length(sphere), 1e-12);
   EXPECT_EQ(r.mesh.n_vertices(), sphere.n_vertices()) << "no remeshing, nothing to remove: unchanged";
 }
 
@@ -91,7 +91,7 @@ TEST(Pipeline, a_true_boundary_that_the_rebuild_shortens_stays_open)
   ASSERT_EQ(before.size(), 1u);
   ASSERT_EQ(before[0].boundary_loops, 1);
   const RetriangulationResult r =
-      retriangulate(cap, {.target_edge_length = 3 * checks::mean_edge_length(cap), .always_rebuild = true});
+      retriangulate(cap, {.edge_length = 3 * checks::mean_edge_length(cap), .always_rebuild = true});
   EXPECT_TRUE(r.rebuilt);
   const auto after = component_topology(r.mesh);
   ASSERT_EQ(after.size(), 1u);
@@ -105,7 +105,7 @@ TEST(Pipeline, intersecting_components_are_joined_into_the_boundary_of_their_uni
   // Two unit spheres whose centres are 1.2 apart: the union's volume is 2·(4π/3) minus the lens.
   const Mesh a = analytic::icosphere(4, 1.0, {-0.6, 0, 0});
   const Mesh b = analytic::icosphere(4, 1.0, {0.6, 0, 0});
-  const RetriangulationResult r = retriangulate(analytic::disjoint_union(a, b), {.target_edge_length = 0.08});
+  const RetriangulationResult r = retriangulate(analytic::disjoint_union(a, b), {.edge_length = 0.08});
   EXPECT_EQ(r.components_before, 2);
   EXPECT_EQ(r.merged_components, 1);
   EXPECT_EQ(closed_genera(r.mesh), std::vector<int>{0});
@@ -171,7 +171,7 @@ TEST(Pipeline, closed_components_enclosing_no_volume_are_dropped)
     return Eigen::Vector3d(p.x(), p.y(), 3e-4 * p.z());
   });
   const RetriangulationResult r =
-      retriangulate(analytic::disjoint_union(sphere, pillow), {.target_edge_length = 0.2, .remesh_iterations = 0});
+      retriangulate(analytic::disjoint_union(sphere, pillow), {.edge_length = 0.2, .remesh_iterations = 0});
   EXPECT_EQ(r.dropped_components, 1);
   EXPECT_EQ(r.mesh.n_faces(), sphere.n_faces());
 }
@@ -179,7 +179,7 @@ TEST(Pipeline, closed_components_enclosing_no_volume_are_dropped)
 TEST(Pipeline, bad_options_and_empty_results_are_refused)
 {
   const Mesh sphere = analytic::icosphere(1);
-  EXPECT_THROW(retriangulate(sphere, {.target_edge_length = -1}), InvalidParameter);
+  EXPECT_THROW(retriangulate(sphere, {.edge_length = -1}), InvalidParameter);
   EXPECT_THROW(retriangulate(sphere, {.remesh_iterations = -1}), InvalidParameter);
   EXPECT_THROW(retriangulate(sphere, {.max_hole_length = -1}), InvalidParameter);
   EXPECT_THROW(retriangulate(sphere, {.min_component_faces = 0}), InvalidParameter);
@@ -214,8 +214,8 @@ TEST(Pipeline, a_thin_neck_gets_edges_by_its_radius_of_curvature)
   constexpr double ell = 0.5;
   const Mesh dumbbell =
       mesh_implicit_surface(dumbbell_shape({.radius = 3, .separation = 9}), {.edge_length = ell}).mesh;
-  const RetriangulationResult adapted = retriangulate(dumbbell, {.target_edge_length = ell});
-  const RetriangulationResult uniform = retriangulate(dumbbell, {.target_edge_length = ell, .edges_per_radius = 0});
+  const RetriangulationResult adapted = retriangulate(dumbbell, {.edge_length = ell});
+  const RetriangulationResult uniform = retriangulate(dumbbell, {.edge_length = ell, .edges_per_radius = 0});
   EXPECT_LT(mean_edge_length_near_neck(adapted.mesh, 0.3), 0.45 * ell);
   EXPECT_GT(mean_edge_length_near_neck(uniform.mesh, 0.3), 0.75 * ell);
   EXPECT_GT(adapted.mesh.n_vertices(), uniform.mesh.n_vertices());

@@ -1,9 +1,10 @@
 #pragma once
 //! \file stopwatch.h
 //! \brief Wall time since construction (std::chrono::steady_clock), for the per-stage timings of
-//! runs (timings.csv, simulation.h) and of the re-triangulation pipeline.
+//! runs (timings.csv, simulation.h) and of the re-triangulation pipeline, and the process's CPU time.
 
 #include <chrono>
+#include <ctime>
 
 namespace sdflow {
 
@@ -24,5 +25,9 @@ private:
   using Clock = std::chrono::steady_clock;
   Clock::time_point start_ = Clock::now();
 };
+
+//! CPU seconds the process has used so far, all threads together (std::clock): beside wall time,
+//! what a step costs on a machine other programs load too.
+inline double process_cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 } // namespace sdflow

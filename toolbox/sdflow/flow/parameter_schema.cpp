@@ -397,7 +397,7 @@ std::vector<ParameterEntry> build_schema()
                  .help = "Target edge length of the re-triangulation, used only when it is on (≥ 0; 0: the mesh's "
                          "mean edge length at the start). The default is this mesh's mean edge length.",
                  .source = MeshlabParameter::Default::mean_edge_length};
-    bind<double>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::target_edge_length);
+    bind<double>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::edge_length);
   }
   {
     auto& e = add(entry("retriangulation.remesh_iterations", "--remesh-iterations", ParameterType::integer,
@@ -691,6 +691,23 @@ std::string parameter_table_markdown()
     s += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", key, flag, type,
                      default_text == "none" ? "—" : "`" + default_text + "`", e.range.text(),
                      e.resumable ? "yes" : "", cell);
+  }
+  return s;
+}
+
+std::string meshlab_parameter_table_markdown()
+{
+  std::string s = "| parameter (.mlx name) | meaning | `sdflow run` |\n|---|---|---|\n";
+  for (const ParameterEntry& e : parameter_schema()) {
+    if (e.meshlab.name.empty())
+      continue;
+    std::string cell;
+    for (char c : e.meshlab.help.empty() ? e.help : e.meshlab.help)
+      cell += c == '|' ? std::string("\\|") : std::string(1, c);
+    std::string flag = "`" + e.flag + "`";
+    for (const auto& shorthand : e.shorthands)
+      flag += ", `" + shorthand.flag + "`";
+    s += fmt::format("| {} (`{}`) | {} | {} |\n", e.meshlab.label, e.meshlab.name, cell, flag);
   }
   return s;
 }

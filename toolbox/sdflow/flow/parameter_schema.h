@@ -16,10 +16,10 @@
 //! the flag is `--name` with dashes, or `--section-name` where the name alone would not say what it
 //! is (`--retriangulate-every`, `--reference-radius`, `--tau-growth`); the MeshLab parameter is the
 //! flag in CamelCase (`--edge-length`, `EdgeLength`). Defaults are those of a default-constructed
-//! RunParameters, never typed twice. Where a library struct's field has another name
-//! (`RetriangulationOptions::target_edge_length` for `retriangulation.edge_length`,
-//! `min_angle_deg` for `retriangulation.min_angle`), the entry's accessor is the one place that
-//! maps them. Renamed keys and flags stay accepted as aliases (`t_end` and `--t-end` for
+//! RunParameters, never typed twice. The library's fields carry the same names
+//! (`RetriangulationOptions::edge_length` for `retriangulation.edge_length`); where one says its
+//! unit (`min_angle_deg` for `retriangulation.min_angle`), the entry's accessor is the one place
+//! that maps them. Renamed keys and flags stay accepted as aliases (`t_end` and `--t-end` for
 //! `end_time`); run.toml is written under the canonical names. Kept as they were, because
 //! scripts and .mlx files use them: `--retriangulate` (`retriangulation.enabled`), `--tolerance`
 //! (`adaptive.tolerance`), `--adaptive` (time_step = "adaptive") and MeshLab's `AutomaticTau`.
@@ -164,5 +164,8 @@ void check_range(const ParameterEntry& entry, const ParameterValue& value);
 
 //! README's table of scenario keys (markdown): key, flag, type, default, range, `--resume`, meaning.
 std::string parameter_table_markdown();
+
+//! README's table of the MeshLab filter's parameters (markdown): label and .mlx name, tooltip, flag.
+std::string meshlab_parameter_table_markdown();
 
 } // namespace sdflow

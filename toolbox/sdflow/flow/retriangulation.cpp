@@ -51,7 +51,7 @@ struct Degraded {
 Degraded degraded_elements(const Mesh& mesh, const RetriangulationSchedule& s)
 {
   const RetriangulationOptions& pipeline = s.pipeline;
-  const double ell = pipeline.target_edge_length;
+  const double ell = pipeline.edge_length;
   // The targets the pipeline's remesher would aim at: a closing neck asks for shorter edges.
   const std::vector<double> target =
       pipeline.edges_per_radius > 0
@@ -107,7 +107,7 @@ void validate_retriangulation_schedule(const RetriangulationSchedule& s)
 RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& schedule)
 {
   validate_retriangulation_schedule(schedule);
-  if (!(schedule.pipeline.target_edge_length > 0))
+  if (!(schedule.pipeline.edge_length > 0))
     throw InvalidParameter("the re-triangulation hook needs a resolved target edge length (> 0)");
   auto watch = std::make_shared<IntersectionWatch>();
   return [schedule, watch](Mesh& mesh, const RetriangulationContext& context) {

@@ -71,7 +71,7 @@ using RetriangulationHook = std::function<RetriangulationReport(Mesh&, const Ret
 void validate_retriangulation_schedule(const RetriangulationSchedule& schedule);
 
 //! The hook a flow makes from its schedule (SurfaceDiffusion, surface_diffusion.h).
-//! `schedule.pipeline.target_edge_length` must be resolved (> 0). Deterministic: its only state is a cache of the self-intersection search
+//! `schedule.pipeline.edge_length` must be resolved (> 0). Deterministic: its only state is a cache of the self-intersection search
 //! (refitted between steps), and what it reports in RetriangulationReport::degraded_left comes back
 //! through the context (and the checkpoint), so a resumed run re-triangulates exactly as the original.
 RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& schedule);

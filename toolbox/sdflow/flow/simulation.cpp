@@ -309,10 +309,10 @@ std::string timings_row(long step, const StepTimes& t, double output)
                                 t.retriangulation_check + p.merge + p.remesh + p.intersections + p.normals +
                                 p.reconstruction + p.holes + p.components + t.volume_restoration + output);
   return fmt::format("{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},"
-                     "{:.6f},{:.6f},{:.6f},{:.6f}\n",
+                     "{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}\n",
                      step, total, t.operators, t.assembly, t.factorisation, t.solve, t.acceptance,
                      t.retriangulation_check, p.merge, p.remesh, p.intersections, p.normals, p.reconstruction, p.holes,
-                     p.components, t.volume_restoration, output, other);
+                     p.components, t.volume_restoration, output, other, t.cpu);
 }
 
 SimulationResult run_simulation(const Mesh& initial, const SimulationOptions& options)

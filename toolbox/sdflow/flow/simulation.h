@@ -32,10 +32,11 @@ inline constexpr const char* metrics_header =
 std::string metrics_row(long step, double time, double tau, const FlowMetrics& metrics, const std::string& event);
 
 //! The columns of timings.csv (seconds of wall time per step): the stages of StepTimes, the
-//! run directory's files (`output`), and `other`, the rest of the step's total.
+//! run directory's files (`output`), `other`, the rest of the step's total, and `cpu`, the CPU
+//! seconds of the step itself (files excluded; all threads).
 inline constexpr const char* timings_header =
     "step,total,operators,assembly,factorisation,solve,acceptance,retriangulation_check,merge,remesh,"
-    "intersections,normals,reconstruction,holes,components,volume_restoration,output,other";
+    "intersections,normals,reconstruction,holes,components,volume_restoration,output,other,cpu";
 
 //! One line of timings.csv (with its newline); `output` is the time spent writing the run's files.
 std::string timings_row(long step, const StepTimes& times, double output);

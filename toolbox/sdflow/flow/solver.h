@@ -5,6 +5,7 @@
 //! optionally reused across steps as a conjugate-gradient preconditioner, or the paper's sparse QR
 //! (SuiteSparseQR, Davis 2011) on the non-symmetric form (I + τβΔ²) w = ΔH as a reference.
 
+#include "sdflow/flow/blas_threads.h"
 #include "sdflow/geometry/laplacian.h"
 
 #include <Eigen/Core>
@@ -47,6 +48,8 @@ struct SolverOptions {
   //! the time ratio because factorisation runs dense BLAS-3 kernels much faster than the
   //! memory-bound triangular solves. Calibrated on this machine (bench_flow_solver).
   double factorisation_cost_scale = 0.12;
+  //! BLAS threads of the numeric factorisation (blas_threads.h); solves run on one thread.
+  BlasThreadPolicy blas;
 };
 
 //! What one solve did.

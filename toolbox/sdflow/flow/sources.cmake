@@ -1,4 +1,5 @@
 target_sources(sdflow_toolbox PRIVATE
+  sdflow/flow/blas_threads.cpp
   sdflow/flow/checkpoint.cpp
   sdflow/flow/parameter_schema.cpp
   sdflow/flow/parameters.cpp

@@ -88,6 +88,7 @@ bool SurfaceDiffusion::finished() const
 StepRecord SurfaceDiffusion::step()
 {
   const Stopwatch watch;
+  const double cpu_start = process_cpu_seconds();
   const long next_step = step_ + 1;
   const TimeStepState controller_before = controller_.state();
   std::vector<std::string> events;
@@ -168,6 +169,7 @@ StepRecord SurfaceDiffusion::step()
   record.rejections = rejections;
   record.event = join_events(events);
   record.times.total = watch.seconds();
+  record.times.cpu = process_cpu_seconds() - cpu_start;
   return record;
 }
 
@@ -234,8 +236,8 @@ void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
   RetriangulationSchedule& schedule = p_.retriangulation;
   if (!schedule.enabled)
     return;
-  if (!(schedule.pipeline.target_edge_length > 0))
-    schedule.pipeline.target_edge_length = mean_edge_length(mesh_);
+  if (!(schedule.pipeline.edge_length > 0))
+    schedule.pipeline.edge_length = mean_edge_length(mesh_);
   retriangulate_ = make_retriangulation_hook(schedule);
 }
 

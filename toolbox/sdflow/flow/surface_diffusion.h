@@ -49,6 +49,7 @@ struct StepTimes {
   RetriangulationResult::Seconds pipeline; //!< the re-triangulation pipeline's stages, when it ran
   double volume_restoration = 0; //!< components given back their volume after re-triangulating
   double total = 0;          //!< the whole step
+  double cpu = 0;            //!< CPU seconds of the whole step, all threads (process_cpu_seconds)
 };
 
 //! One accepted step.

@@ -738,4 +738,14 @@ void check_geometry(const Mesh& mesh, std::string_view what, double zero_area_to
   }
 }
 
+const char* severity_name(Severity severity)
+{
+  switch (severity) {
+  case Severity::info: return "info";
+  case Severity::warning: return "warning";
+  case Severity::error: return "error";
+  }
+  return "?";
+}
+
 } // namespace sdflow

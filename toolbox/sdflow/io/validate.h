@@ -30,6 +30,9 @@ namespace sdflow {
 
 enum class Severity { info, warning, error };
 
+//! The severity's name as reports print it: "info", "warning" or "error".
+const char* severity_name(Severity severity);
+
 //! One validation finding: a stable code (documented above) and a human message.
 struct Finding {
   Severity severity = Severity::info;

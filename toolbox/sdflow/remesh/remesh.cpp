@@ -126,7 +126,7 @@ public:
       renumber();
       logger().debug("remesh iteration {}: {} vertices, {} faces", iteration + 1, mesh_.n_vertices(), mesh_.n_faces());
     }
-    statistics_.target_edge_length = ell_;
+    statistics_.edge_length = ell_;
     return statistics_;
   }
 
@@ -664,9 +664,9 @@ RemeshResult isotropic_remesh(const Mesh& input, const RemeshOptions& options)
 {
   if (input.n_faces() == 0)
     throw InvalidMesh("remesh: the mesh has no triangles");
-  if (!(options.target_edge_length >= 0) || !std::isfinite(options.target_edge_length))
+  if (!(options.edge_length >= 0) || !std::isfinite(options.edge_length))
     throw InvalidParameter(fmt::format("remesh: target edge length {} must be positive (or 0 for the mean edge length)",
-                                       options.target_edge_length));
+                                       options.edge_length));
   if (options.iterations < 0 || options.relaxation_steps < 0)
     throw InvalidParameter(fmt::format("remesh: iterations ({}) and relaxation steps ({}) must not be negative",
                                        options.iterations, options.relaxation_steps));
@@ -676,7 +676,7 @@ RemeshResult isotropic_remesh(const Mesh& input, const RemeshOptions& options)
   RemeshResult result;
   result.mesh = input;
   sort_spatially(result.mesh);
-  const double ell = options.target_edge_length > 0 ? options.target_edge_length : mean_edge_length(result.mesh);
+  const double ell = options.edge_length > 0 ? options.edge_length : mean_edge_length(result.mesh);
   if (!(ell > 0))
     throw InvalidMesh("remesh: every edge has zero length, so no target edge length can be derived");
 

@@ -35,7 +35,7 @@ enum class BoundaryMode {
 
 struct RemeshOptions {
   //! ℓ, the target edge length; 0 takes the input's mean edge length.
-  double target_edge_length = 0;
+  double edge_length = 0;
   //! Split / collapse / flip / relax / project rounds.
   int iterations = 10;
   //! Tangential relaxation sweeps (each followed by projection) per iteration.
@@ -68,7 +68,7 @@ struct RemeshStatistics {
   long collapses = 0;
   long flips = 0;
   long relaxation_reverts = 0; //!< vertex moves undone because they would have inverted a triangle
-  double target_edge_length = 0; //!< the ℓ used (uniform part)
+  double edge_length = 0; //!< the ℓ used (uniform part)
 };
 
 struct RemeshResult {

@@ -29,9 +29,9 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 
 void validate_retriangulation_options(const RetriangulationOptions& o)
 {
-  if (!(o.target_edge_length >= 0) || !std::isfinite(o.target_edge_length))
+  if (!(o.edge_length >= 0) || !std::isfinite(o.edge_length))
     throw InvalidParameter(fmt::format("re-triangulation: target edge length must be ≥ 0 (0: automatic), got {}",
-                                       o.target_edge_length));
+                                       o.edge_length));
   if (o.remesh_iterations < 0)
     throw InvalidParameter(
         fmt::format("re-triangulation: remesh iterations must be ≥ 0, got {}", o.remesh_iterations));
@@ -172,10 +172,10 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
   int count = 0;
   face_component_ids(input, &count);
   r.components_before = count;
-  r.target_edge_length = options.target_edge_length > 0 ? options.target_edge_length : mean_edge_length(input);
+  r.edge_length = options.edge_length > 0 ? options.edge_length : mean_edge_length(input);
 
   const ComponentOptions debris{.min_faces = options.min_component_faces,
-                                .min_thickness = options.min_component_thickness * r.target_edge_length};
+                                .min_thickness = options.min_component_thickness * r.edge_length};
   Mesh mesh = input;
   auto start = Clock::now();
   r.merged_components = merge_intersecting_components(mesh);
@@ -184,7 +184,7 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
   if (options.remesh_iterations > 0) {
     start = Clock::now();
     RemeshOptions remesh;
-    remesh.target_edge_length = r.target_edge_length;
+    remesh.edge_length = r.edge_length;
     remesh.iterations = options.remesh_iterations;
     mesh.garbage_collection();
     // Where sheets cross, their normals describe no smooth surface: project onto the flat triangles.
@@ -192,7 +192,7 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
         options.curved_projection || options.edges_per_radius > 0 ? self_intersections(mesh) : std::vector<FacePair>{};
     remesh.curved_projection = options.curved_projection && crossings.empty();
     if (options.edges_per_radius > 0)
-      remesh.sizing = adapted_sizing(mesh, crossings, options, r.target_edge_length);
+      remesh.sizing = adapted_sizing(mesh, crossings, options, r.edge_length);
     RemeshResult remeshed = isotropic_remesh(mesh, remesh);
     mesh = std::move(remeshed.mesh);
     r.remesh = remeshed.statistics;

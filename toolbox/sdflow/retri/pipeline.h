@@ -25,7 +25,7 @@ namespace sdflow {
 
 struct RetriangulationOptions {
   //! ℓ, the target edge length of stage 1; 0 takes the input's mean edge length.
-  double target_edge_length = 0;
+  double edge_length = 0;
   //! Rounds of stage 1; 0 skips it.
   int remesh_iterations = 3;
   //! Stage 1 adapts ℓ to the curvature (remesh.h, radius_targets): this many edges per radius of
@@ -59,7 +59,7 @@ struct RetriangulationOptions {
 //! What each stage did, and how long it took (seconds of wall time).
 struct RetriangulationResult {
   Mesh mesh; //!< valid, closed components oriented outward, garbage-collected
-  double target_edge_length = 0;
+  double edge_length = 0;
   int merged_components = 0;    //!< stage 0: components joined into others
   RemeshStatistics remesh;      //!< stage 1
   int intersecting_pairs = 0;   //!< stage 2

@@ -154,7 +154,7 @@ MesherResult mesh_implicit_surface(const ImplicitSurface& input, const MesherOpt
                  mesh.n_vertices(), mesh.n_faces());
 
   RemeshOptions remesh{
-      .target_edge_length = ell,
+      .edge_length = ell,
       .iterations = options.iterations,
       .project = [&](const Eigen::Vector3d& p) { return project_to_level_set(surface, p, projection); },
       .project_boundary = [&](const Eigen::Vector3d& p) { return project_to_boundary_curve(surface, p, projection); },
@@ -165,7 +165,7 @@ MesherResult mesh_implicit_surface(const ImplicitSurface& input, const MesherOpt
   if (!surface.clipped())
     remesh.project_boundary = remesh.project; // no boundary exists; never called
   for (int round = 0;; ++round) {
-    remesh.target_edge_length = ell;
+    remesh.edge_length = ell;
     remesh.iterations = round == 0 ? options.iterations : std::max(3, options.iterations / 2);
     auto remeshed = isotropic_remesh(mesh, remesh);
     mesh = std::move(remeshed.mesh);

@@ -1,0 +1,26 @@
+#pragma once
+//! \file blas_threads.h
+//! \brief How many threads the BLAS under CHOLMOD's supernodal factorisation uses (docs/design.md §10).
+//! A second BLAS thread pays only on large factorisations; below that it spins (OpenBLAS workers
+//! busy-wait with sched_yield between calls) and doubles the CPU for no gain. The policy: one
+//! thread below `BlasThreadPolicy::single_thread_below` unknowns, all hardware threads above, and
+//! one thread again for the triangular solves and CG, which are memory-bound.
+//! Environment overrides: SDFLOW_BLAS_THREADS=n fixes n threads for every factorisation;
+//! OPENBLAS_NUM_THREADS (or OMP_NUM_THREADS) caps the count, as OpenBLAS itself does at start-up.
+
+namespace sdflow {
+
+struct BlasThreadPolicy {
+  //! Factorisations of fewer unknowns (vertices) run on one thread. Measured crossover on a
+  //! 2-core machine: bench/bench_blas_threads.cpp.
+  long single_thread_below = 400000;
+};
+
+//! The thread count for a factorisation of `unknowns` unknowns under `policy` and the environment.
+int blas_threads_for(long unknowns, const BlasThreadPolicy& policy = {});
+
+//! Sets the BLAS's thread count if the loaded BLAS can be told (OpenBLAS's openblas_set_num_threads,
+//! looked up at run time so that any BLAS links); returns false when it cannot.
+bool set_blas_threads(int threads);
+
+} // namespace sdflow
