@@ -121,7 +121,7 @@ TEST(Pipeline, a_bubble_that_reaches_a_sheet_opens_into_it_and_the_sheet_keeps_i
   // with a boundary pokes through it. Stage 0 opens the bubble into the sheet: one component, the
   // sheet's one boundary loop, the bubble's bottom a dimple of the sheet.
   const Mesh sheet = analytic::disk(30, 3.0), bubble = analytic::icosphere(4, 1.0, {0.03, 0.02, -0.95});
-  const RetriangulationResult r = retriangulate(analytic::disjoint_union(sheet, bubble), {.target_edge_length = 0.1});
+  const RetriangulationResult r = retriangulate(analytic::disjoint_union(sheet, bubble), {.edge_length = 0.1});
   EXPECT_EQ(r.components_before, 2);
   EXPECT_EQ(r.merged_components, 1);
   const auto topo = component_topology(r.mesh);
