@@ -54,6 +54,7 @@ int main(int argc, char** argv)
   sdflow::cli::add_run_verb(app);
   sdflow::cli::add_shape_verb(app);
   sdflow::cli::add_stats_verb(app);
+  sdflow::cli::add_repair_verb(app);
   sdflow::cli::add_intersections_verb(app);
   sdflow::cli::add_components_verb(app);
   sdflow::cli::add_union_verb(app);

@@ -5,6 +5,7 @@
 #include "verbs.h"
 
 #include "sdflow/io/io.h"
+#include "sdflow/io/repair.h"
 #include "sdflow/retri/components.h"
 
 #include <fmt/format.h>
@@ -32,7 +33,7 @@ std::filesystem::path numbered(const std::filesystem::path& output, std::size_t 
 
 void run(const ComponentsArguments& args)
 {
-  const Mesh mesh = read_mesh(args.mesh).mesh;
+  const Mesh mesh = read_mesh_or_repair(args.mesh).mesh;
   const ComponentSelection selection = keep_components(mesh, args.options);
   std::cout << fmt::format("{}: {} component(s); keeping {}, dropping {}\n", args.mesh, selection.faces.size(),
                            selection.kept.size(), selection.dropped.size());

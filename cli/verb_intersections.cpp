@@ -1,11 +1,14 @@
 //! `sdflow intersections MESH [OTHER] [--json] [-o OUT]`: the intersecting face pairs of a surface
 //! (or between two surfaces), decided exactly (spatial/intersect.h); with -o, the surface without
-//! them (retri/remove_intersections.h). Exit code 0 whether or not pairs are found.
+//! them (retri/remove_intersections.h). Exit code 0 whether or not pairs are found. A file that is
+//! not a valid mesh is searched as the faces it lists (io/repair.h, triangle_soup), or repaired first
+//! for -o and for two surfaces.
 
 #include "verbs.h"
 
 #include "sdflow/errors.h"
 #include "sdflow/io/io.h"
+#include "sdflow/io/repair.h"
 #include "sdflow/retri/remove_intersections.h"
 #include "sdflow/spatial/intersect.h"
 
@@ -39,17 +42,25 @@ void run(const IntersectionsArguments& args)
   if (!args.other.empty() && !args.output.empty())
     throw InvalidParameter("intersections: -o removes the intersecting faces of one surface; it cannot be used "
                            "with a second surface");
-  const Mesh mesh = read_mesh(args.mesh).mesh;
+  // The pairs of one surface are those of the faces the file lists, valid mesh or not; the other
+  // uses need a surface, repaired when the file is damaged (io/repair.h).
+  std::size_t faces = 0;
   std::vector<FacePair> pairs;
   std::optional<RemovalResult> removal;
   if (!args.other.empty()) {
-    pairs = surface_intersections(mesh, read_mesh(args.other).mesh);
+    const Mesh mesh = read_mesh_or_repair(args.mesh).mesh;
+    faces = mesh.n_faces();
+    pairs = surface_intersections(mesh, read_mesh_or_repair(args.other).mesh);
   } else if (!args.output.empty()) {
+    const Mesh mesh = read_mesh_or_repair(args.mesh).mesh;
+    faces = mesh.n_faces();
     removal = remove_self_intersections(mesh);
     pairs = removal->intersecting_pairs;
     write_mesh(removal->mesh, args.output);
   } else {
-    pairs = self_intersections(mesh);
+    const TriangleSoup soup = triangle_soup(read_polygon_soup(args.mesh), args.mesh);
+    faces = static_cast<std::size_t>(soup.triangles.rows());
+    pairs = self_intersections(soup.positions, soup.triangles);
   }
   int degenerate = 0;
   for (const FacePair& p : pairs)
@@ -57,7 +68,7 @@ void run(const IntersectionsArguments& args)
 
   if (args.json) {
     toml::table root{{"file", args.mesh},
-                     {"faces", static_cast<int64_t>(mesh.n_faces())},
+                     {"faces", static_cast<int64_t>(faces)},
                      {"intersecting_pairs", static_cast<int64_t>(pairs.size())},
                      {"pairs", pair_array(pairs)}};
     if (!args.other.empty())

@@ -4,6 +4,7 @@
 #include "verbs.h"
 
 #include "sdflow/io/io.h"
+#include "sdflow/io/repair.h"
 #include "sdflow/limits.h"
 #include "sdflow/retri/pipeline.h"
 
@@ -88,7 +89,7 @@ void run(const RetriangulateArguments& args)
   format_from_extension(args.output); // refuse an unknown format before the work
   const SizeLimits limits{.force = args.force};
   check_count(args.options.remesh_iterations, limits.max_iterations, "--remesh-iterations", limits);
-  const BuiltMesh input = read_mesh(args.input);
+  const BuiltMesh input = read_mesh_or_repair(args.input);
   check_remeshed_size(input.mesh, args.options.edge_length,
                       fmt::format("retriangulate --edge-length {}", args.options.edge_length), limits);
   const RetriangulationResult result = retriangulate(input.mesh, args.options);

@@ -8,6 +8,7 @@
 //! SIGINT / SIGTERM stop the run after the current step with a checkpoint (exit 130 / 143).
 
 #include "exit_status.h"
+#include "repair_hint.h"
 #include "verbs.h"
 
 #include "sdflow/errors.h"
@@ -243,7 +244,7 @@ void run(const RunArguments& a)
     if (resuming) {
       result = resume_simulation(options);
     } else {
-      BuiltMesh built = read_mesh(p.input);
+      BuiltMesh built = p.repair ? read_mesh_or_repair(p.input) : read_mesh_or_suggest_repair(p.input);
       for (const auto& f : built.findings)
         logger().warn("{}: {}", p.input.string(), f.message);
       if (p.retriangulation.enabled)

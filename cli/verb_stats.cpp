@@ -1,6 +1,7 @@
 //! `sdflow stats MESH [--json]`: validation findings, topology, area, volume (divergence theorem and
 //! TetGen), mean curvature deviation and mesh quality. JSON keys are documented in README.md.
 
+#include "repair_hint.h"
 #include "verbs.h"
 
 #include "sdflow/check/statistics.h"
@@ -134,7 +135,7 @@ void add_stats_verb(CLI::App& app)
   verb->add_flag("--json", args->json, "Print a JSON object (keys documented in README.md)");
   verb->add_flag("--no-tetgen", args->no_tetgen, "Skip the TetGen volume cross-check");
   verb->callback([args] {
-    BuiltMesh built = read_mesh(args->mesh);
+    BuiltMesh built = read_mesh_or_suggest_repair(args->mesh);
     const MeshStatistics s = mesh_statistics(built.mesh, {.tetgen_check = !args->no_tetgen});
     if (s.self_intersecting_pairs > 0)
       built.findings.push_back(

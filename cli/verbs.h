@@ -17,6 +17,7 @@ void add_retriangulate_verb(CLI::App& app);
 void add_run_verb(CLI::App& app);
 void add_shape_verb(CLI::App& app);
 void add_stats_verb(CLI::App& app);
+void add_repair_verb(CLI::App& app);
 void add_intersections_verb(CLI::App& app);
 void add_components_verb(CLI::App& app);
 void add_axisymmetric_verb(CLI::App& app);

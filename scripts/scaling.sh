@@ -73,7 +73,7 @@ fi
 python3 - "$results" <<'EOF'
 import csv, math, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
-print("| flow | vertices | step, wall (median) | step, CPU (median) | factorisation (first step) | solve (median) | peak memory | exponent of step CPU | exponent of memory |")
+print("| flow | vertices | step, wall (median) | step, CPU (median) | factorisation, wall (largest) | solve, wall (median) | peak memory | exponent of step CPU | exponent of memory |")
 print("|---|---|---|---|---|---|---|---|---|")
 for kind in ("plain", "retriangulating"):
     previous = None

@@ -9,6 +9,7 @@
 #include "sdflow/flow/simulation.h"
 #include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/io/io.h"
+#include "sdflow/io/repair.h"
 #include "sdflow/limits.h"
 #include "sdflow/log.h"
 
@@ -274,7 +275,7 @@ void bind_flow(py::module_& m)
         BuiltMesh built;
         if (V.is_none()) {
           ToolboxLock lock;
-          built = read_mesh(p.input);
+          built = p.repair ? read_mesh_or_repair(p.input) : read_mesh(p.input);
           for (const auto& f : built.findings)
             logger().warn("{}: {}", p.input.string(), f.message);
         } else {

@@ -85,6 +85,12 @@ std::vector<ParameterEntry> build_schema()
     e.written = [](const RunParameters& p) { return !p.input.empty(); };
   }
   {
+    auto& e = add(entry("repair", "--repair", ParameterType::boolean,
+                        "Repair the input when it is not a valid mesh, as `sdflow repair` does (duplicate vertices, "
+                        "degenerate and repeated faces, non-manifold edges and vertices, orientation), before the run"));
+    bind<bool>(e, &RunParameters::repair);
+  }
+  {
     auto& e = add(entry("out", "--out", ParameterType::path, "The run directory (must not hold a run yet)"));
     bind<std::filesystem::path>(e, &RunParameters::output_dir);
     e.written = [](const RunParameters& p) { return !p.output_dir.empty(); };

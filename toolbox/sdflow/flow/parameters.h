@@ -30,6 +30,8 @@ namespace sdflow {
 
 struct RunParameters {
   std::filesystem::path input;       //!< the initial mesh
+  //! Repair the input when validation refuses it for problems repair fixes (io/repair.h).
+  bool repair = false;
   std::filesystem::path output_dir;  //!< the run directory
   long steps = 0;                    //!< step limit, 0 for none
   double end_time = std::numeric_limits<double>::infinity(); //!< time limit

@@ -4,6 +4,7 @@
 #include "sdflow/flow/checkpoint.h"
 #include "sdflow/flow/run_lock.h"
 #include "sdflow/io/io.h"
+#include "sdflow/io/repair.h"
 #include "sdflow/io/vtk.h"
 #include "sdflow/log.h"
 #include "sdflow/stopwatch.h"
@@ -114,7 +115,7 @@ public:
     logger().warn("{}: no checkpoint yet (the run was stopped before its first one): starting again at step 0 "
                   "from {}", dir_.string(), source.string());
     prepare_directory();
-    return read_mesh(source).mesh;
+    return source == p.input && p.repair ? read_mesh_or_repair(source).mesh : read_mesh(source).mesh;
   }
 
   //! Step 0: the resolved parameters, the first metrics row, snapshot and checkpoint.

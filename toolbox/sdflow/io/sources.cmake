@@ -7,5 +7,6 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/io/stl.cpp
   sdflow/io/vtk.cpp
   sdflow/io/point_cloud.cpp
+  sdflow/io/repair.cpp
   sdflow/io/triangulate_polygon.cpp
   sdflow/io/validate.cpp)

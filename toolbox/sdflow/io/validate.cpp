@@ -106,14 +106,6 @@ private:
 
 bool is_finite(const Eigen::Vector3d& p) { return p.allFinite(); }
 
-//! True when the triangle's area is below `tolerance` times its longest edge squared.
-bool has_zero_area(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, double tolerance)
-{
-  const double area = 0.5 * (b - a).cross(c - a).norm();
-  const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
-  return area <= tolerance * longest;
-}
-
 //! Hash of a point's coordinates, with -0 taken as +0 so that equal coordinates hash equally.
 struct PointHash {
   std::size_t operator()(const Eigen::Vector3d& p) const
@@ -674,6 +666,13 @@ void log_findings(const std::vector<Finding>& findings)
 }
 
 } // namespace
+
+bool has_zero_area(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, double tolerance)
+{
+  const double area = 0.5 * (b - a).cross(c - a).norm();
+  const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  return area <= tolerance * longest;
+}
 
 BuiltMesh build_mesh(const PolygonSoup& soup, std::string_view source, const BuildOptions& options)
 {

@@ -71,6 +71,10 @@ struct BuiltMesh {
   std::vector<Finding> findings;
 };
 
+//! True when triangle abc's area is at most `tolerance` times its longest edge squared: the test
+//! of `zero-area-face` (BuildOptions::zero_area_tolerance).
+bool has_zero_area(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, double tolerance);
+
 //! Validate `soup` and build the mesh; `source` names it in messages (usually the file path).
 //! Throws InvalidMesh when any error-level finding exists, with all of them in the message.
 BuiltMesh build_mesh(const PolygonSoup& soup, std::string_view source, const BuildOptions& options = {});

@@ -2,5 +2,6 @@
 target_sources(sdflow_toolbox PRIVATE
   sdflow/retri/components.cpp
   sdflow/retri/remove_intersections.cpp
+  sdflow/retri/resolve_intersections.cpp
   sdflow/retri/surface_union.cpp
   sdflow/retri/pipeline.cpp)

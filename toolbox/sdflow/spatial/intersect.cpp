@@ -452,10 +452,11 @@ bool faces_intersect(const Mesh& mesh, Mesh::FaceHandle f, Mesh::FaceHandle g)
   return tester.faces(0, 1);
 }
 
-std::vector<FacePair> self_intersections(const Mesh& mesh, const IntersectionOptions& options)
+namespace {
+
+//! The intersecting pairs of the triangles of `tree` (the rule of intersect.h), sorted.
+std::vector<FacePair> tree_self_intersections(const Bvh& tree, const IntersectionOptions& options)
 {
-  exact::prepare_exact_predicates();
-  const Bvh tree(mesh);
   const FaceTester tester(tree, options.execution);
   std::vector<FacePair> pairs;
   for (int t = 0; t < tree.triangle_count(); ++t)
@@ -473,6 +474,21 @@ std::vector<FacePair> self_intersections(const Mesh& mesh, const IntersectionOpt
   }, pairs);
   std::sort(pairs.begin(), pairs.end());
   return pairs;
+}
+
+} // namespace
+
+std::vector<FacePair> self_intersections(const Mesh& mesh, const IntersectionOptions& options)
+{
+  exact::prepare_exact_predicates();
+  return tree_self_intersections(Bvh(mesh), options);
+}
+
+std::vector<FacePair> self_intersections(const VertexVectors& positions, const FaceIndices& triangles,
+                                         const IntersectionOptions& options)
+{
+  exact::prepare_exact_predicates();
+  return tree_self_intersections(Bvh(positions, triangles), options);
 }
 
 std::vector<FacePair> surface_intersections(const Mesh& a, const Mesh& b, const IntersectionOptions& options)

@@ -56,6 +56,13 @@ bool faces_intersect(const Mesh& mesh, Mesh::FaceHandle f, Mesh::FaceHandle g);
 //! The mesh must carry no deleted faces (garbage-collect first).
 std::vector<FacePair> self_intersections(const Mesh& mesh, const IntersectionOptions& options = {});
 
+//! The same for triangles given as rows of vertex indices into `positions`, in any arrangement: a
+//! polygon soup's triangles, with non-manifold edges, repeated faces or collapsed corners (a
+//! triangle with a repeated index is degenerate). Faces are the rows' indices. Throws InvalidMesh
+//! for an index out of range or a coordinate that is not finite.
+std::vector<FacePair> self_intersections(const VertexVectors& positions, const FaceIndices& triangles,
+                                         const IntersectionOptions& options = {});
+
 //! All pairs (face of a, face of b) whose closed triangles have a point in common, sorted. Faces
 //! of different meshes share no vertex. Throws InvalidMesh naming a degenerate face of either mesh.
 std::vector<FacePair> surface_intersections(const Mesh& a, const Mesh& b, const IntersectionOptions& options = {});

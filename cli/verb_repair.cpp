@@ -1,0 +1,128 @@
+//! `sdflow repair IN -o OUT [--merge-tolerance F] [--remove-self-intersections] [--json]`: a
+//! damaged mesh made valid (io/repair.h), each repair reported by the code of the finding it fixes;
+//! with --remove-self-intersections, a surface that still crosses itself is re-triangulated
+//! (retri/pipeline.h). JSON keys are documented in README.md.
+
+#include "verbs.h"
+
+#include "sdflow/io/io.h"
+#include "sdflow/io/repair.h"
+#include "sdflow/retri/resolve_intersections.h"
+#include "sdflow/spatial/intersect.h"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace sdflow::cli {
+namespace {
+
+struct RepairArguments {
+  std::string input;
+  std::string output;
+  RepairOptions options;
+  bool remove_self_intersections = false;
+  bool json = false;
+};
+
+//! What the verb did, for either report.
+struct RepairReport {
+  std::size_t input_vertices = 0, input_faces = 0;
+  RepairResult repaired;
+  std::optional<ResolveResult> resolved;
+  std::size_t intersecting_pairs = 0; //!< of the surface written
+};
+
+const Mesh& written_mesh(const RepairReport& r)
+{
+  return r.resolved ? r.resolved->mesh : r.repaired.mesh;
+}
+
+void report_json(const RepairArguments& args, const RepairReport& r)
+{
+  toml::array repairs;
+  for (const Repair& repair : r.repaired.repairs)
+    repairs.push_back(toml::table{{"code", repair.code}, {"count", static_cast<int64_t>(repair.count)},
+                                  {"message", repair.message}});
+  toml::array findings;
+  for (const Finding& f : r.repaired.findings)
+    findings.push_back(toml::table{{"severity", severity_name(f.severity)}, {"code", f.code}, {"message", f.message}});
+  const Mesh& mesh = written_mesh(r);
+  toml::table root{{"input", args.input},
+                   {"output", args.output},
+                   {"input_vertices", static_cast<int64_t>(r.input_vertices)},
+                   {"input_faces", static_cast<int64_t>(r.input_faces)},
+                   {"vertices", static_cast<int64_t>(mesh.n_vertices())},
+                   {"faces", static_cast<int64_t>(mesh.n_faces())},
+                   {"repairs", std::move(repairs)},
+                   {"findings", std::move(findings)},
+                   {"retriangulation_passes", static_cast<int64_t>(r.resolved ? r.resolved->summaries.size() : 0)},
+                   {"self_intersecting_pairs", static_cast<int64_t>(r.intersecting_pairs)}};
+  std::cout << toml::json_formatter{root} << '\n';
+}
+
+void report_text(const RepairArguments& args, const RepairReport& r)
+{
+  const Mesh& mesh = written_mesh(r);
+  std::cout << fmt::format("{}: {} vertices, {} faces -> {} vertices, {} faces\n", args.input, r.input_vertices,
+                           r.input_faces, mesh.n_vertices(), mesh.n_faces());
+  if (r.repaired.repairs.empty())
+    std::cout << "  nothing to repair\n";
+  for (const Repair& repair : r.repaired.repairs)
+    std::cout << fmt::format("  [{}] {}\n", repair.code, repair.message);
+  for (const Finding& f : r.repaired.findings)
+    std::cout << fmt::format("  {}: [{}] {}\n", severity_name(f.severity), f.code, f.message);
+  if (r.resolved)
+    for (std::size_t pass = 0; pass < r.resolved->summaries.size(); ++pass)
+      std::cout << fmt::format("  [self-intersection] re-triangulation {}: {}\n", pass + 1, r.resolved->summaries[pass]);
+  if (r.intersecting_pairs > 0)
+    std::cout << fmt::format("  warning: [self-intersection] {} pair(s) of faces intersect{}\n", r.intersecting_pairs,
+                             args.remove_self_intersections ? "" : " (--remove-self-intersections re-triangulates them away)");
+  std::cout << fmt::format("  wrote {}\n", args.output);
+}
+
+void run(const RepairArguments& args)
+{
+  format_from_extension(args.output); // refuse an unknown format before the work
+  const PolygonSoup soup = read_polygon_soup(args.input);
+  RepairReport report{.input_vertices = soup.points.size(), .input_faces = soup.polygons.size(),
+                      .repaired = repair_soup(soup, args.input, args.options)};
+  report.intersecting_pairs = self_intersections(report.repaired.mesh).size();
+  if (args.remove_self_intersections && report.intersecting_pairs > 0) {
+    report.resolved = resolve_self_intersections(report.repaired.mesh);
+    report.intersecting_pairs = report.resolved->pairs_after;
+  }
+  write_mesh(written_mesh(report), args.output);
+  if (args.json)
+    report_json(args, report);
+  else
+    report_text(args, report);
+}
+
+} // namespace
+
+void add_repair_verb(CLI::App& app)
+{
+  auto args = std::make_shared<RepairArguments>();
+  CLI::App* verb = app.add_subcommand(
+      "repair", "Make a damaged mesh valid: merge duplicate vertices, drop degenerate and repeated faces, split "
+                "non-manifold edges and vertices, orient consistently and outward, drop isolated vertices");
+  verb->add_option("input", args->input, "Input mesh (OFF, OBJ, PLY, STL)")->required();
+  verb->add_option("-o,--output", args->output, "Output mesh")->required();
+  verb->add_option("--merge-tolerance", args->options.merge_tolerance,
+                   "Merge vertices closer than this fraction of the bounding-box diagonal, at most 0.1 "
+                   "(default 0: only identical ones)")
+      ->type_name("F")
+      ->check(CLI::Range(0.0, 0.1).description(""));
+  verb->add_flag("--remove-self-intersections", args->remove_self_intersections,
+                 "Re-triangulate a surface that crosses itself until it does not (the pipeline of `sdflow "
+                 "retriangulate` with its defaults, at most 5 passes)");
+  verb->add_flag("--json", args->json, "Print a JSON object: the repairs by code with their counts (README)");
+  verb->callback([args] { run(*args); });
+}
+
+} // namespace sdflow::cli

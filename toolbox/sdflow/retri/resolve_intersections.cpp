@@ -1,0 +1,27 @@
+#include "sdflow/retri/resolve_intersections.h"
+
+#include "sdflow/errors.h"
+#include "sdflow/spatial/intersect.h"
+
+#include <fmt/format.h>
+
+namespace sdflow {
+
+ResolveResult resolve_self_intersections(const Mesh& mesh, const ResolveOptions& options)
+{
+  if (options.max_passes < 1)
+    throw InvalidParameter(fmt::format("resolve_self_intersections: max_passes must be ≥ 1, got {}",
+                                       options.max_passes));
+  validate_retriangulation_options(options.retriangulation);
+  ResolveResult result{.mesh = mesh};
+  result.pairs_before = result.pairs_after = self_intersections(mesh).size();
+  for (int pass = 0; pass < options.max_passes && result.pairs_after > 0; ++pass) {
+    RetriangulationResult r = retriangulate(result.mesh, options.retriangulation);
+    result.summaries.push_back(retriangulation_summary(r));
+    result.mesh = std::move(r.mesh);
+    result.pairs_after = self_intersections(result.mesh).size();
+  }
+  return result;
+}
+
+} // namespace sdflow
