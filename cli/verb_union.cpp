@@ -1,4 +1,4 @@
-//! `sdflow union A B -o OUT [--json]`: the boundary of the union of two closed surfaces (Appendix B).
+//! `sdflow union A B -o OUT [--json]`: the boundary of the union of two surfaces (Appendix B).
 
 #include "common_options.h"
 #include "json_report.h"
@@ -56,9 +56,10 @@ void run(const UnionArguments& args)
 void add_union_verb(CLI::App& app)
 {
   auto args = std::make_shared<UnionArguments>();
-  CLI::App* verb = app.add_subcommand("union", "Join two intersecting closed surfaces into the boundary of their union");
-  verb->add_option("first", args->first, "First closed surface")->required();
-  verb->add_option("second", args->second, "Second closed surface")->required();
+  CLI::App* verb = app.add_subcommand(
+      "union", "Join two intersecting surfaces into the boundary of their union (a surface with a boundary keeps it)");
+  verb->add_option("first", args->first, "First surface (its inside: the side its normals point away from)")->required();
+  verb->add_option("second", args->second, "Second surface")->required();
   add_output_option(*verb, args->output, "Output mesh file")->required();
   add_encoding_flags(*verb, args->encoding);
   add_json_flag(*verb, args->json);

@@ -173,7 +173,7 @@ def retriangulate(V, F, *, edge_length=0.0, iterations=3, edges_per_radius=4.0, 
                   curved_projection=True, always_rebuild=False, neighbours=18, fill_holes=True,
                   max_hole_length=0.0, min_component_faces=16, min_component_thickness=0.01, force=False):
     """The whole re-triangulation of docs/design.md §3 (retri/pipeline.h), as `sdflow retriangulate`:
-    union of intersecting components, remeshing, removal of intersecting faces, jet normals,
+    merge of intersecting components, remeshing, removal of intersecting faces, jet normals,
     reconstruction, hole filling, debris. edge_length 0: the input's mean. info has the keys of
     `sdflow retriangulate --json`."""
     V, F, info = _sdflow.retriangulate(V, F, edge_length, iterations, edges_per_radius, min_edge_fraction,
@@ -229,6 +229,6 @@ def components(V, F, *, min_faces=1, keep_largest=0, min_thickness=0.0, split=Fa
 
 
 def union(V1, F1, V2, F2):
-    """The boundary of the union of two closed surfaces (stage 0)."""
+    """The boundary of the union of two surfaces (a surface with a boundary keeps it)."""
     V, F, info = _sdflow.union(V1, F1, V2, F2)
     return MeshResult(V, F, info)

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -111,6 +112,26 @@ TEST(Pipeline, intersecting_components_are_joined_into_the_boundary_of_their_uni
   const double d = 1.2, lens = std::numbers::pi * (4 + d) * (2 - d) * (2 - d) / 12;
   const double exact = 2 * 4 * std::numbers::pi / 3 - lens;
   EXPECT_NEAR(enclosed_volume(r.mesh), exact, 0.01 * exact);
+  EXPECT_EQ(checks::self_intersecting_pairs(r.mesh), 0);
+}
+
+TEST(Pipeline, a_bubble_that_reaches_a_sheet_opens_into_it_and_the_sheet_keeps_its_boundary)
+{
+  // The merge of the three spheres on a plane (Appendix B), small: a closed bubble below a sheet
+  // with a boundary pokes through it. Stage 0 opens the bubble into the sheet: one component, the
+  // sheet's one boundary loop, the bubble's bottom a dimple of the sheet.
+  const Mesh sheet = analytic::disk(30, 3.0), bubble = analytic::icosphere(4, 1.0, {0.03, 0.02, -0.95});
+  const RetriangulationResult r = retriangulate(analytic::disjoint_union(sheet, bubble), {.edge_length = 0.1});
+  EXPECT_EQ(r.components_before, 2);
+  EXPECT_EQ(r.merged_components, 1);
+  const auto topo = component_topology(r.mesh);
+  ASSERT_EQ(topo.size(), 1u);
+  EXPECT_EQ(topo[0].boundary_loops, 1);
+  EXPECT_EQ(topo[0].genus, 0);
+  double lowest = 0;
+  for (const auto v : r.mesh.vertices())
+    lowest = std::min(lowest, r.mesh.point(v)[2]);
+  EXPECT_LT(lowest, -1.85);
   EXPECT_EQ(checks::self_intersecting_pairs(r.mesh), 0);
 }
 

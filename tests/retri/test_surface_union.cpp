@@ -1,14 +1,18 @@
 //! Appendix B: the union of two intersecting closed surfaces.
 #include "sdflow/check/tetgen_volume.h"
+#include "sdflow/errors.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/retri/surface_union.h"
 #include "sdflow/spatial/intersect.h"
 #include "support/analytic_meshes.h"
+#include "support/mesh_checks.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numbers>
+#include <string>
 
 namespace sdflow {
 namespace {
@@ -70,6 +74,151 @@ TEST(SurfaceUnion, disjoint_surfaces_stay_separate_and_nested_ones_keep_the_oute
   EXPECT_EQ(component_topology(nested.mesh).size(), 1u);
   EXPECT_EQ(nested.removed_faces_b, static_cast<int>(inner.n_faces()));
   EXPECT_NEAR(enclosed_volume(nested.mesh), enclosed_volume(a), 1e-12);
+}
+
+//! Volume of the intersection of two balls of radii R and r whose centres are d apart
+//! (|R - r| < d < R + r).
+double ball_intersection_volume(double R, double r, double d)
+{
+  return pi * (R + r - d) * (R + r - d) * (d * d + 2 * d * r - 3 * r * r + 2 * d * R + 6 * r * R - 3 * R * R) /
+         (12 * d);
+}
+
+//! The mesh with every triangle's orientation reversed.
+Mesh reversed(const Mesh& mesh)
+{
+  FaceIndices t = face_indices(mesh);
+  t.col(1).swap(t.col(2));
+  return make_mesh(vertex_positions(mesh), t);
+}
+
+//! Volume of the unit ball below the plane z = 0 when its centre is at height h - 1 (a cap of
+//! height h above the plane).
+double unit_ball_below_plane(double h) { return 4.0 / 3 * pi - pi * h * h * (3 - h) / 3; }
+
+//! Σ p0 · (p1 × p2) / 6 over the faces: for a surface whose boundary lies in the plane z = 0, the
+//! signed volume between it and that plane.
+double cone_volume_from_origin(const Mesh& mesh)
+{
+  double volume = 0;
+  for (auto f : mesh.faces()) {
+    const TriangleCorners t = triangle_corners(mesh, f);
+    volume += t.point[0].dot(t.point[1].cross(t.point[2])) / 6;
+  }
+  return volume;
+}
+
+//! Positions of a mesh's boundary vertices, sorted.
+std::vector<std::array<double, 3>> boundary_points(const Mesh& mesh)
+{
+  std::vector<std::array<double, 3>> points;
+  for (auto v : mesh.vertices())
+    if (v.is_boundary())
+      points.push_back({mesh.point(v)[0], mesh.point(v)[1], mesh.point(v)[2]});
+  std::sort(points.begin(), points.end());
+  return points;
+}
+
+TEST(SurfaceUnion, bubble_reaching_a_sheet_opens_into_a_dimple_and_the_sheet_keeps_its_boundary)
+{
+  // The three spheres on a plane, small: a closed bubble (unit sphere) below a sheet with a
+  // boundary (a disk of radius 3 in z = 0) pokes through it by h. The bubble's inside joins the
+  // sheet's far side: the sheet loses its patch over the bubble, the bubble its cap above the sheet.
+  const Mesh up = analytic::disk(30, 3.0);
+  for (const bool normals_up : {true, false})
+    for (const double h : {0.1, 0.03}) {
+      SCOPED_TRACE(testing::Message() << "sheet normals " << (normals_up ? "up" : "down") << ", h = " << h);
+      const Mesh sheet = normals_up ? up : reversed(up);
+      const Mesh bubble = analytic::icosphere(4, 1.0, Eigen::Vector3d(0.03, 0.02, h - 1));
+      const UnionResult u = merge_touching_surfaces(sheet, bubble);
+      const auto topo = component_topology(u.mesh);
+      ASSERT_EQ(topo.size(), 1u);
+      EXPECT_EQ(topo[0].boundary_loops, 1);
+      EXPECT_EQ(topo[0].genus, 0);
+      EXPECT_EQ(u.joined_loops, 1);
+      EXPECT_TRUE(checks::is_two_manifold(u.mesh));
+      EXPECT_TRUE(self_intersections(u.mesh).empty());
+      EXPECT_EQ(boundary_points(u.mesh), boundary_points(sheet));
+      // The dimple: the bubble's bottom is kept, nothing of it above the sheet.
+      double lowest = 0, highest = -1;
+      for (auto v : u.mesh.vertices()) {
+        lowest = std::min(lowest, u.mesh.point(v)[2]);
+        highest = std::max(highest, u.mesh.point(v)[2]);
+      }
+      EXPECT_LT(lowest, h - 1.95);
+      EXPECT_LE(highest, 0.0);
+      // The sheet keeps its orientation, and the dimple's floor faces the same way (into the
+      // bubble, which is now part of the space on the sheet's normal side).
+      const double side = normals_up ? 1 : -1;
+      for (auto f : u.mesh.faces()) {
+        const Eigen::Vector3d c = to_eigen(u.mesh.calc_face_centroid(f));
+        if (c.head<2>().norm() > 2.5 || c.z() < h - 1.9) {
+          EXPECT_GT(side * u.mesh.calc_face_normal(f)[2], 0.9) << "face at " << c.transpose();
+        }
+      }
+      // The space between the sheet and its old plane is the bubble's part below the plane (the
+      // mesh is inscribed in the sphere: up to 1% less), and the thin wedge between sheet and bubble
+      // that the joint, about an edge wide, opens (up to 3% more).
+      const double expected = unit_ball_below_plane(h), joined = -side * cone_volume_from_origin(u.mesh);
+      EXPECT_GT(joined, 0.99 * expected);
+      EXPECT_LT(joined, 1.03 * expected);
+    }
+}
+
+TEST(SurfaceUnion, sheet_keeps_its_boundary_in_a_plain_union_too)
+{
+  // surface_union takes the sheet's inside as it is oriented: with normals down, its inside is the
+  // space above it, and the union with a bubble below is the sheet with the bubble's bottom hung
+  // below it, as merge_touching_surfaces makes it; with normals up the bubble's cap is kept.
+  const Mesh up = analytic::disk(30, 3.0), bubble = analytic::icosphere(4, 1.0, Eigen::Vector3d(0.03, 0.02, -0.9));
+  const UnionResult down = surface_union(reversed(up), bubble), cap = surface_union(up, bubble);
+  for (const UnionResult* u : {&down, &cap}) {
+    const auto topo = component_topology(u->mesh);
+    ASSERT_EQ(topo.size(), 1u);
+    EXPECT_EQ(topo[0].boundary_loops, 1);
+    EXPECT_EQ(boundary_points(u->mesh), boundary_points(up));
+    EXPECT_TRUE(self_intersections(u->mesh).empty());
+  }
+  EXPECT_NEAR(cone_volume_from_origin(down.mesh), unit_ball_below_plane(0.1), 0.01 * unit_ball_below_plane(0.1));
+  EXPECT_NEAR(cone_volume_from_origin(cap.mesh), pi * 0.1 * 0.1 * 2.9 / 3, 0.05 * pi * 0.1 * 0.1 * 2.9 / 3);
+}
+
+TEST(SurfaceUnion, cavity_reaching_the_wall_of_its_body_opens_through_it)
+{
+  // A spherical cavity (radius 0.5, oriented outward like every closed component of a run) inside
+  // a ball of radius 2, poking 0.1 through its wall: merged, the body loses the cavity's volume
+  // inside it and stays one closed surface of genus 0, a pit in its wall.
+  const Mesh body = analytic::icosphere(5, 2.0), cavity = analytic::icosphere(4, 0.5, Eigen::Vector3d(0.02, 0.01, 1.6));
+  for (const bool body_first : {true, false}) {
+    SCOPED_TRACE(body_first);
+    const UnionResult u = body_first ? merge_touching_surfaces(body, cavity) : merge_touching_surfaces(cavity, body);
+    const auto topo = component_topology(u.mesh);
+    ASSERT_EQ(topo.size(), 1u);
+    EXPECT_TRUE(topo[0].closed());
+    EXPECT_EQ(topo[0].genus, 0);
+    EXPECT_TRUE(self_intersections(u.mesh).empty());
+    // The meshes are inscribed polyhedra: the exact lens scaled as the cavity's mesh (2%).
+    const double pit = ball_intersection_volume(2.0, 0.5, std::hypot(0.02, 0.01, 1.6)) * enclosed_volume(cavity) /
+                       (4.0 / 3 * pi * 0.125);
+    // The result is oriented as the first surface: outward with the body first, inward with the
+    // cavity first (the pipeline orients closed components outward afterwards). The joint, about an
+    // edge wide, also opens the thin wedge of the wall next to the contact (up to 5% of the pit).
+    const double left = (body_first ? 1 : -1) * enclosed_volume(u.mesh);
+    EXPECT_LT(left, enclosed_volume(body) - 0.98 * pit);
+    EXPECT_GT(left, enclosed_volume(body) - 1.05 * pit);
+  }
+}
+
+TEST(SurfaceUnion, overlap_reaching_a_sheet_boundary_is_refused)
+{
+  // The bubble sits on the sheet's edge: the sheet's boundary would have to be cut.
+  const Mesh sheet = analytic::disk(20, 1.0), bubble = analytic::icosphere(3, 0.5, Eigen::Vector3d(1.0, 0, -0.4));
+  try {
+    merge_touching_surfaces(sheet, bubble);
+    ADD_FAILURE() << "the union was accepted";
+  } catch (const InvalidMesh& e) {
+    EXPECT_NE(std::string(e.what()).find("reaches the boundary of the first surface"), std::string::npos) << e.what();
+  }
 }
 
 } // namespace

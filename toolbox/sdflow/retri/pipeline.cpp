@@ -69,8 +69,9 @@ double automatic_hole_bound(const Mesh& remeshed)
   return 0.5 * *std::min_element(loops.begin(), loops.end());
 }
 
-//! Stage 0 (Appendix B): replace every set of mutually intersecting components by the boundary of
-//! their union. Returns the number of components merged away.
+//! Stage 0 (Appendix B): replace every set of mutually intersecting components by the surface they
+//! merge into (merge_touching_surfaces: bodies join, a bubble opens through the wall or sheet it
+//! reached). Returns the number of components merged away.
 int merge_intersecting_components(Mesh& mesh)
 {
   std::vector<Mesh> parts = split_components(mesh);
@@ -84,7 +85,7 @@ int merge_intersecting_components(Mesh& mesh)
       for (std::size_t j = i + 1; j < parts.size() && !changed; ++j) {
         if (surface_intersections(parts[i], parts[j]).empty())
           continue;
-        parts[i] = surface_union(parts[i], parts[j]).mesh;
+        parts[i] = merge_touching_surfaces(parts[i], parts[j]).mesh;
         parts.erase(parts.begin() + static_cast<std::ptrdiff_t>(j));
         ++merged;
         changed = true;

@@ -1,7 +1,8 @@
 #pragma once
 //! \file pipeline.h
 //! \brief The re-triangulation of paper §3.2.1 (with Appendix B), composed from the toolbox:
-//! 0. components that intersect each other are joined into the boundary of their union (surface_union.h);
+//! 0. components that intersect each other are merged: bodies into the boundary of their union, a
+//!    bubble opened through the wall or sheet it reached (surface_union.h, merge_touching_surfaces);
 //! 1. isotropic remeshing to the target edge length ℓ, finer where the curvature is large (remesh/remesh.h);
 //! 2. the self-intersecting faces are removed, then the vertices left without a face (remove_intersections.h);
 //! 3. jet normals oriented by a minimum spanning tree; inconsistently oriented points are dropped (reconstruct/point_normals.h);

@@ -62,12 +62,18 @@ public:
     }
   }
 
-  //! True when q lies inside the closed surface.
-  bool inside(const Eigen::Vector3d& q) const
+  struct Side {
+    bool inside = false;
+    double distance = std::numeric_limits<double>::infinity();
+    int face = -1; //!< the face of the closest point
+  };
+
+  //! Whether q lies inside the surface, and its distance to it.
+  Side side(const Eigen::Vector3d& q) const
   {
     const ClosestPoint cp = bvh_.closest_point(q);
     if (cp.face < 0)
-      return false;
+      return {};
     const Mesh::FaceHandle f(cp.face);
     constexpr double on_element = 1e-10;
     int zeros = 0, nonzero = -1;
@@ -95,7 +101,7 @@ public:
         }
       }
     }
-    return (q - cp.point).dot(normal) < 0;
+    return {.inside = (q - cp.point).dot(normal) < 0, .distance = std::sqrt(cp.squared_distance), .face = cp.face};
   }
 
 private:
@@ -216,36 +222,128 @@ Mesh compact(const VertexVectors& x, const std::vector<std::array<int, 3>>& face
   return make_mesh(y, t);
 }
 
-} // namespace
+//! Vertex property: the vertex lay on a boundary loop of the input surface.
+const char* const kInputBoundary = "sdflow:union:input_boundary";
 
-UnionResult surface_union(const Mesh& a, const Mesh& b)
+//! The boundary loops of `kept` (`input` less the removed faces) that removing faces opened; the
+//! loops of the input's own boundary are left out. Throws InvalidMesh when the removal reached an
+//! input boundary, which leaves a loop that is part old boundary and part new.
+std::vector<Loop> opened_loops(const Mesh& kept, OpenMesh::VPropHandleT<bool> input_boundary, int offset,
+                               const char* which)
+{
+  std::vector<Loop> opened;
+  for (Loop& loop : loops_of(kept, offset)) {
+    std::size_t on_input_boundary = 0;
+    for (const int v : loop.vertices)
+      on_input_boundary += kept.property(input_boundary, Mesh::VertexHandle(v - offset));
+    if (on_input_boundary == loop.vertices.size())
+      continue;
+    if (on_input_boundary > 0)
+      throw InvalidMesh(fmt::format("surface union: the overlap reaches the boundary of the {} surface ({} of the {} "
+                                    "vertices around the cut lie on it): its edge would have to be cut",
+                                    which, on_input_boundary, loop.vertices.size()));
+    opened.push_back(std::move(loop));
+  }
+  return opened;
+}
+
+//! `mesh` less the faces flagged in `remove` (and those remove_faces adds), garbage-collected, its
+//! vertices marked by whether they lay on the input's boundary. Returns the faces removed.
+int keep_faces(Mesh& mesh, const std::vector<bool>& remove, OpenMesh::VPropHandleT<bool>& input_boundary)
+{
+  mesh.add_property(input_boundary, kInputBoundary);
+  for (auto v : mesh.vertices())
+    mesh.property(input_boundary, v) = v.is_boundary();
+  const int removed = remove_faces(mesh, remove);
+  mesh.garbage_collection();
+  return removed;
+}
+
+//! Per face of one surface, seen from the other: crossing it, inside it (by the centroid;
+//! SideOracle), and closer to it than the longer of the longest edges of the face and of the
+//! other's face nearest to it (the same reach from both sides, so that the holes match).
+struct FacesAgainst {
+  std::vector<bool> crossing, inside, near;
+};
+
+std::vector<double> longest_edges(const Mesh& mesh)
+{
+  std::vector<double> longest(mesh.n_faces(), 0.0);
+  for (auto f : mesh.faces())
+    for (auto e : f.edges())
+      longest[f.idx()] = std::max(longest[f.idx()], mesh.calc_edge_length(e));
+  return longest;
+}
+
+FacesAgainst faces_against(const Mesh& surface, const std::vector<double>& longest, const SideOracle& other,
+                           const std::vector<double>& other_longest)
+{
+  FacesAgainst r{.crossing = std::vector<bool>(surface.n_faces(), false),
+                 .inside = std::vector<bool>(surface.n_faces(), false),
+                 .near = std::vector<bool>(surface.n_faces(), false)};
+  for (auto f : surface.faces()) {
+    const SideOracle::Side side = other.side(to_eigen(surface.calc_face_centroid(f)));
+    r.inside[f.idx()] = side.inside;
+    r.near[f.idx()] = side.face >= 0 && side.distance < std::max(longest[f.idx()], other_longest[side.face]);
+  }
+  return r;
+}
+
+//! Which faces of each surface cross the other, lie inside it or come close to it.
+struct Overlap {
+  FacesAgainst a, b;
+};
+
+Overlap overlap_of(const Mesh& a, const Mesh& b)
+{
+  const SideOracle oracle_a(a), oracle_b(b);
+  const std::vector<double> longest_a = longest_edges(a), longest_b = longest_edges(b);
+  Overlap o{.a = faces_against(a, longest_a, oracle_b, longest_b), .b = faces_against(b, longest_b, oracle_a, longest_a)};
+  for (const FacePair& p : surface_intersections(a, b)) {
+    o.a.crossing[p.first] = true;
+    o.b.crossing[p.second] = true;
+  }
+  return o;
+}
+
+//! The faces to remove: those crossing the other surface, those on the other's inside (its
+//! complement when `other_reversed`), and with `near_too` those closer to it than their longest edge.
+std::vector<bool> faces_to_remove(const FacesAgainst& faces, bool other_reversed, bool near_too)
+{
+  std::vector<bool> remove(faces.crossing.size());
+  for (std::size_t f = 0; f < remove.size(); ++f)
+    remove[f] = faces.crossing[f] || faces.inside[f] != other_reversed || (near_too && faces.near[f]);
+  return remove;
+}
+
+//! The mesh with every triangle's orientation reversed.
+Mesh reversed(const Mesh& mesh)
+{
+  FaceIndices t = face_indices(mesh);
+  t.col(1).swap(t.col(2));
+  return make_mesh(vertex_positions(mesh), t);
+}
+
+//! True when most of `surface`'s area that does not cross the other surface lies on the other's
+//! inside.
+bool mostly_inside(const Mesh& surface, const FacesAgainst& faces)
+{
+  double inside = 0, outside = 0;
+  for (auto f : surface.faces())
+    if (!faces.crossing[f.idx()])
+      (faces.inside[f.idx()] ? inside : outside) += surface.calc_face_area(f);
+  return inside > outside;
+}
+
+//! The union's construction once the faces to remove are known: removal, then one band for each
+//! pair of facing loops that the removal opened.
+UnionResult join(const Mesh& a, const Mesh& b, const std::vector<bool>& remove_a, const std::vector<bool>& remove_b)
 {
   UnionResult result;
-  // A surface united with itself is itself; the general path would find every face both inside
-  // and on the other surface and remove them all.
-  if (same_triangles(a, b)) {
-    result.mesh = a;
-    result.mesh.garbage_collection();
-    return result;
-  }
-  const std::vector<FacePair> crossing = surface_intersections(a, b);
-  const SideOracle inside_a(a), inside_b(b);
-
-  std::vector<bool> remove_a(a.n_faces(), false), remove_b(b.n_faces(), false);
-  for (const FacePair& p : crossing) {
-    remove_a[p.first] = true;
-    remove_b[p.second] = true;
-  }
-  for (auto f : a.faces())
-    remove_a[f.idx()] = remove_a[f.idx()] || inside_b.inside(to_eigen(a.calc_face_centroid(f)));
-  for (auto f : b.faces())
-    remove_b[f.idx()] = remove_b[f.idx()] || inside_a.inside(to_eigen(b.calc_face_centroid(f)));
-
   Mesh kept_a = a, kept_b = b;
-  result.removed_faces_a = remove_faces(kept_a, remove_a);
-  result.removed_faces_b = remove_faces(kept_b, remove_b);
-  kept_a.garbage_collection();
-  kept_b.garbage_collection();
+  OpenMesh::VPropHandleT<bool> boundary_a, boundary_b;
+  result.removed_faces_a = keep_faces(kept_a, remove_a, boundary_a);
+  result.removed_faces_b = keep_faces(kept_b, remove_b, boundary_b);
 
   const int offset = static_cast<int>(kept_a.n_vertices());
   VertexVectors x(kept_a.n_vertices() + kept_b.n_vertices(), 3);
@@ -253,7 +351,8 @@ UnionResult surface_union(const Mesh& a, const Mesh& b)
   append(kept_a, x, faces, 0);
   append(kept_b, x, faces, offset);
 
-  const std::vector<Loop> loops_a = loops_of(kept_a, 0), loops_b = loops_of(kept_b, offset);
+  const std::vector<Loop> loops_a = opened_loops(kept_a, boundary_a, 0, "first"),
+                          loops_b = opened_loops(kept_b, boundary_b, offset, "second");
   if (loops_a.size() != loops_b.size())
     throw InvalidMesh(fmt::format("surface union: removing the overlap left {} boundary loop(s) on the first surface "
                                   "and {} on the second; they cannot be paired (refine the meshes near the contact)",
@@ -282,6 +381,44 @@ UnionResult surface_union(const Mesh& a, const Mesh& b)
   }
   logger().debug("surface union: removed {} + {} faces, joined {} loop pair(s)", result.removed_faces_a,
                  result.removed_faces_b, result.joined_loops);
+  return result;
+}
+
+//! A surface united with itself is itself; the general path would find every face both inside
+//! and on the other surface and remove them all.
+UnionResult itself(const Mesh& a)
+{
+  UnionResult result;
+  result.mesh = a;
+  result.mesh.garbage_collection();
+  return result;
+}
+
+} // namespace
+
+UnionResult surface_union(const Mesh& a, const Mesh& b)
+{
+  if (same_triangles(a, b))
+    return itself(a);
+  const Overlap o = overlap_of(a, b);
+  return join(a, b, faces_to_remove(o.a, false, false), faces_to_remove(o.b, false, false));
+}
+
+UnionResult merge_touching_surfaces(const Mesh& a, const Mesh& b)
+{
+  if (same_triangles(a, b))
+    return itself(a);
+  const Overlap o = overlap_of(a, b);
+  // Each surface's inside must be the side away from the other, the region that joins.
+  const bool reverse_a = mostly_inside(b, o.b);
+  const bool reverse_b = mostly_inside(a, o.a);
+  // Where surfaces that just touched close in on each other the two sides of the joint would meet
+  // at a cusp, whose faces the next steps push through each other: the faces within an edge of
+  // the other surface go too, so that the joint starts about an edge wide.
+  UnionResult result = join(reverse_a ? reversed(a) : a, reverse_b ? reversed(b) : b,
+                            faces_to_remove(o.a, reverse_b, true), faces_to_remove(o.b, reverse_a, true));
+  if (reverse_a)
+    result.mesh = reversed(result.mesh);
   return result;
 }
 
