@@ -11,8 +11,8 @@
 namespace sdflow {
 
 struct BlasThreadPolicy {
-  //! Factorisations of fewer unknowns (vertices) run on one thread. Measured crossover on a
-  //! 2-core machine: bench/bench_blas_threads.cpp.
+  //! Factorisations of fewer unknowns (vertices) run on one thread (docs/design.md §10 says what
+  //! this value rests on; bench/bench_blas_threads.cpp measures the crossover).
   long single_thread_below = 400000;
 };
 
