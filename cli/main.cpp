@@ -5,21 +5,21 @@
 //! unstable run); 4 environment failure (disk or quota full, file size limit, read-only file
 //! system); 130 / 143 a run stopped by SIGINT / SIGTERM after writing a checkpoint.
 
-#include "exit_status.h"
+#include "failure.h"
+#include "help_formatter.h"
 #include "numbers.h"
+#include "common_options.h"
 #include "verbs.h"
 
-#include "sdflow/errors.h"
 #include "sdflow/log.h"
 
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
-#include <cerrno>
 #include <cstdio>
-#include <filesystem>
-#include <iostream>
-#include <new>
+#include <exception>
+#include <memory>
+#include <unistd.h>
 
 namespace {
 
@@ -27,7 +27,9 @@ void install_stderr_logger(bool verbose, bool quiet)
 {
   auto sink = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
   auto logger = std::make_shared<spdlog::logger>("sdflow", sink);
-  logger->set_pattern("%^%l%$: %v");
+  // On a terminal a log line first clears the progress line it may interrupt (run's bar,
+  // WorkProgress); the progress is drawn again on its next tick.
+  logger->set_pattern(::isatty(::fileno(stderr)) ? "\r\033[K%^%l%$: %v" : "%^%l%$: %v");
   logger->set_level(quiet ? spdlog::level::err : verbose ? spdlog::level::debug : spdlog::level::info);
   sdflow::set_logger(logger);
 }
@@ -37,11 +39,12 @@ void install_stderr_logger(bool verbose, bool quiet)
 int main(int argc, char** argv)
 {
   CLI::App app{"sdflow: surface diffusion flow (V_N = -ΔH) on triangulated surfaces"};
+  app.formatter(std::make_shared<sdflow::cli::HelpFormatter>());
   app.require_subcommand(1);
   app.set_version_flag("--version", "sdflow 0.1.0");
   bool verbose = false, quiet = false;
   app.add_flag("-v,--verbose", verbose, "Log debugging detail");
-  app.add_flag("-q,--quiet", quiet, "Log errors only");
+  app.add_flag("-q,--quiet", quiet, "Log errors only, no progress");
   app.parse_complete_callback([&] { install_stderr_logger(verbose, quiet); });
 
   sdflow::cli::add_fill_holes_verb(app);
@@ -59,36 +62,14 @@ int main(int argc, char** argv)
   sdflow::cli::add_components_verb(app);
   sdflow::cli::add_union_verb(app);
   sdflow::cli::add_axisymmetric_verb(app);
+  for (CLI::App* verb : app.get_subcommands([](CLI::App*) { return true; }))
+    sdflow::cli::add_verbosity_flags(*verb, verbose, quiet);
   sdflow::cli::require_plain_numbers(app);
 
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  } catch (const sdflow::cli::ExitStatus& e) {
-    return e.code;
-  } catch (const sdflow::SolverFailure& e) {
-    std::cerr << "sdflow: error: " << e.what() << '\n';
-    return 3;
-  } catch (const sdflow::EnvironmentFailure& e) {
-    std::cerr << "sdflow: environment failure: " << e.what() << '\n';
-    return 4;
-  } catch (const sdflow::Error& e) {
-    std::cerr << "sdflow: error: " << e.what() << '\n';
-    return 2;
-  } catch (const std::filesystem::filesystem_error& e) {
-    // A path the request named cannot be used (permissions, a file where a directory should be).
-    const int error = e.code().value();
-    const bool environment = error == ENOSPC || error == EDQUOT || error == EFBIG || error == EROFS || error == EIO;
-    std::cerr << "sdflow: " << (environment ? "environment failure: " : "error: ") << e.what() << '\n';
-    return environment ? 4 : 2;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "sdflow: out of memory (std::bad_alloc): the request needs more memory than this machine gives "
-                 "it; try a coarser resolution\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "sdflow: unexpected error: " << e.what() << '\n';
-    return 1;
+  } catch (...) {
+    return sdflow::cli::report_failure(app, std::current_exception());
   }
   return 0;
 }

@@ -1,10 +1,13 @@
 //! `sdflow axisymmetric`: the exact kinetics of surfaces of revolution, computed in 1-D by the
 //! axisymmetric solver (toolbox/sdflow/axisymmetric/): event times, bodies, drift, time series.
 //!   sdflow axisymmetric torus|capsule|dumbbell|sphere-mode|profile [shape options]
-//!                       [--t-end T] [--max-displacement D] [--max-edge H] [--edges-per-radius N]
-//!                       [--stop-at-first-event] [--csv OUT.csv] [--json]
+//!                       [--end-time T] [--max-displacement D] [--max-edge H] [--edges-per-radius N]
+//!                       [--stop-at-first-event] [-o SERIES.csv] [--json]
 
+#include "common_options.h"
+#include "json_report.h"
 #include "verbs.h"
+#include "work_progress.h"
 
 #include "sdflow/axisymmetric/evolution.h"
 #include "sdflow/axisymmetric/initial_curves.h"
@@ -70,7 +73,7 @@ void run(AxisymmetricArguments a)
 {
   a.options.end_time = std::isfinite(a.end_time) ? a.end_time : default_end_time(a);
   if (!std::isfinite(a.options.end_time))
-    throw InvalidParameter("axisymmetric profile: give --t-end");
+    throw InvalidParameter("axisymmetric profile: give --end-time");
   a.options.continue_after_event = !a.first_event_only;
   const axisymmetric::GeneratingCurve start = start_curve(a);
   std::ostringstream series;
@@ -83,7 +86,10 @@ void run(AxisymmetricArguments a)
     series << fmt::format("{},{},{},{},{},{}\n", s.time, s.area, s.volume,
                           std::isfinite(s.neck_radius) ? s.neck_radius : -1.0, s.bodies, s.steps);
   };
+  WorkProgress progress("axisymmetric");
+  progress.stage(fmt::format("evolving the {} to t = {:.6g}", a.shape, a.options.end_time));
   const axisymmetric::EvolutionResult r = axisymmetric::evolve(start, a.options);
+  progress.finish();
   if (!a.csv.empty())
     write_atomically(a.csv, [&](std::ostream& out) { out << series.str(); });
   const double volume_change = (r.last.volume - r.initial_volume) / r.initial_volume;
@@ -98,7 +104,7 @@ void run(AxisymmetricArguments a)
     if (!r.events.empty())
       root.insert("event_time", r.events.front().extrapolated_time);
     root.insert("events", std::move(events));
-    std::cout << toml::json_formatter{root} << '\n';
+    print_json(std::move(root));
     return;
   }
   for (const auto& e : r.events)
@@ -118,7 +124,7 @@ void add_axisymmetric_verb(CLI::App& app)
   CLI::App* verb = app.add_subcommand(
       "axisymmetric", "Surface diffusion of a surface of revolution, in 1-D (a reference for the 3-D flow): event "
                       "times of pinch-offs and seals, bodies, volume drift");
-  verb->add_option("shape", a->shape, "torus, capsule, dumbbell, sphere-mode or profile")
+  verb->add_option("shape", a->shape, "The surface of revolution: a catalogue shape or a profile file's")
       ->required()
       ->check(CLI::IsMember({"torus", "capsule", "dumbbell", "sphere-mode", "profile"}));
   verb->add_option("file", a->profile, "For profile: the generating curve, one \"r z\" point a line");
@@ -134,7 +140,7 @@ void add_axisymmetric_verb(CLI::App& app)
       ->capture_default_str();
   verb->add_option("--degree", a->degree, "sphere-mode: l (2 or 3)")->capture_default_str();
   verb->add_option("--amplitude", a->amplitude, "sphere-mode: ε of 1 + ε P_l(cos θ)")->capture_default_str();
-  verb->add_option("--t-end", a->end_time, "End time (default: past the shape's events)")
+  verb->add_option("--end-time,--t-end", a->end_time, "End time (default: past the shape's events; --t-end: its older name)")
       ->check(CLI::PositiveNumber);
   verb->add_option("--max-displacement", a->options.max_displacement,
                    "Time accuracy: largest node motion a step, relative to the radius of curvature")
@@ -147,8 +153,9 @@ void add_axisymmetric_verb(CLI::App& app)
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   verb->add_flag("--stop-at-first-event", a->first_event_only, "Stop at the first pinch-off or seal");
-  verb->add_option("--csv", a->csv, "Write the time series (every tenth step) to this CSV file");
-  verb->add_flag("--json", a->json, "Print the result as JSON (event_time is the first event's t*)");
+  verb->add_option(std::string(output_names) + ",--csv", a->csv,
+                   "Write the time series (every tenth step) to this CSV file (--csv: its older name)");
+  add_json_flag(*verb, a->json, "event_time is the first event's t*; keys documented in README.md");
   verb->callback([a] { run(*a); });
 }
 

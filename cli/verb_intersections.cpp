@@ -4,6 +4,8 @@
 //! not a valid mesh is searched as the faces it lists (io/repair.h, triangle_soup), or repaired first
 //! for -o and for two surfaces.
 
+#include "common_options.h"
+#include "json_report.h"
 #include "verbs.h"
 
 #include "sdflow/errors.h"
@@ -26,6 +28,7 @@ struct IntersectionsArguments {
   std::string mesh;
   std::string other;
   std::string output;
+  Encoding encoding = Encoding::binary;
   bool json = false;
 };
 
@@ -56,7 +59,7 @@ void run(const IntersectionsArguments& args)
     faces = mesh.n_faces();
     removal = remove_self_intersections(mesh);
     pairs = removal->intersecting_pairs;
-    write_mesh(removal->mesh, args.output);
+    write_mesh(removal->mesh, args.output, {.encoding = args.encoding});
   } else {
     const TriangleSoup soup = triangle_soup(read_polygon_soup(args.mesh), args.mesh);
     faces = static_cast<std::size_t>(soup.triangles.rows());
@@ -81,7 +84,7 @@ void run(const IntersectionsArguments& args)
       root.insert("removed_vertices", static_cast<int64_t>(removal->removed_vertices.size()));
       root.insert("pinched_vertices", static_cast<int64_t>(removal->pinched_vertices.size()));
     }
-    std::cout << toml::json_formatter{root} << '\n';
+    print_json(std::move(root));
     return;
   }
   if (args.other.empty())
@@ -107,9 +110,10 @@ void add_intersections_verb(CLI::App& app)
     "intersections", "List the intersecting face pairs of a surface (exact), or between two surfaces; -o removes them");
   verb->add_option("mesh", args->mesh, "Mesh file (OFF, OBJ, PLY, STL)")->required();
   verb->add_option("other", args->other, "Second mesh: list the pairs between the two surfaces instead");
-  verb->add_option("-o,--output", args->output,
-                   "Write the surface without its intersecting faces and the vertices they leave alone");
-  verb->add_flag("--json", args->json, "Print a JSON object: file, faces, intersecting_pairs, pairs, ...");
+  add_output_option(*verb, args->output,
+                    "Write the surface without its intersecting faces and the vertices they leave alone");
+  add_encoding_flags(*verb, args->encoding);
+  add_json_flag(*verb, args->json);
   verb->callback([args] { run(*args); });
 }
 

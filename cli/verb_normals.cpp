@@ -1,13 +1,20 @@
-//! `sdflow normals MESH_OR_POINTS -o OUT.ply [--k 18]`: oriented point normals by jet fitting and
-//! minimum-spanning-tree orientation; points whose orientation is inconsistent are removed.
+//! `sdflow normals MESH_OR_POINTS -o OUT.ply [--neighbours 18] [--json]`: oriented point normals by
+//! jet fitting and minimum-spanning-tree orientation; points whose orientation is inconsistent are
+//! removed.
 
+#include "common_options.h"
+#include "json_report.h"
 #include "verbs.h"
+#include "work_progress.h"
 
 #include "sdflow/io/point_cloud.h"
-#include "sdflow/log.h"
 #include "sdflow/reconstruct/point_normals.h"
 
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
 #include <cmath>
+#include <iostream>
 #include <memory>
 #include <string>
 
@@ -19,8 +26,32 @@ struct NormalsArguments {
   std::string output;
   PointNormalsOptions options;
   double agreement_degrees = 0;
-  bool ascii = false;
+  Encoding encoding = Encoding::binary;
+  bool json = false;
 };
+
+void run(NormalsArguments& args)
+{
+  args.options.orientation.agreement_angle = args.agreement_degrees * M_PI / 180;
+  WorkProgress progress("normals");
+  progress.stage("reading " + args.input);
+  const PointCloud input = read_point_cloud(args.input);
+  progress.stage(fmt::format("fitting and orienting the normals of {} points", input.points.rows()));
+  const OrientedPoints oriented = oriented_point_normals(input.points, args.options);
+  progress.stage("writing " + args.output);
+  write_point_cloud({oriented.points, oriented.normals}, args.output, args.encoding);
+  progress.finish();
+  if (args.json) {
+    print_json(toml::table{{"input", args.input},
+                           {"output", args.output},
+                           {"input_points", static_cast<int64_t>(input.points.rows())},
+                           {"points", static_cast<int64_t>(oriented.points.rows())},
+                           {"removed", static_cast<int64_t>(oriented.removed.size())}});
+    return;
+  }
+  std::cout << fmt::format("{}: {} points with oriented normals, {} removed as inconsistently oriented; wrote {}\n",
+                           args.input, oriented.points.rows(), oriented.removed.size(), args.output);
+}
 
 } // namespace
 
@@ -32,8 +63,9 @@ void add_normals_verb(CLI::App& app)
       "normals", "Estimate oriented point normals (jet fitting, MST orientation) and write a PLY point cloud");
   verb->add_option("input", args->input, "Mesh or point file (OFF, OBJ, PLY, STL): its vertices are the points")
       ->required();
-  verb->add_option("-o,--output", args->output, "Output point cloud (.ply with x y z nx ny nz)")->required();
-  verb->add_option("--k", args->options.neighbours, "Neighbourhood size, the point itself included")
+  add_output_option(*verb, args->output, "Output point cloud (.ply with x y z nx ny nz)")->required();
+  verb->add_option("--neighbours,--k", args->options.neighbours,
+                   "k, the neighbourhood size, the point itself included (6 to 1000; --k: its older name)")
       ->capture_default_str()
       ->check(CLI::Range(6, 1000));
   verb->add_option("--agreement-angle", args->agreement_degrees,
@@ -42,16 +74,9 @@ void add_normals_verb(CLI::App& app)
   verb->add_option("--min-agreement", args->options.orientation.min_agreement,
                    "Fraction of agreeing neighbours below which a point is removed")
       ->capture_default_str();
-  verb->add_flag("--ascii", args->ascii, "Write ascii PLY instead of binary");
-  verb->callback([args] {
-    args->options.orientation.agreement_angle = args->agreement_degrees * M_PI / 180;
-    const PointCloud input = read_point_cloud(args->input);
-    const OrientedPoints oriented = oriented_point_normals(input.points, args->options);
-    write_point_cloud({oriented.points, oriented.normals}, args->output,
-                      args->ascii ? Encoding::ascii : Encoding::binary);
-    logger().info("{}: {} points with oriented normals written to {}; {} removed as inconsistently oriented",
-                  args->input, oriented.points.rows(), args->output, oriented.removed.size());
-  });
+  add_encoding_flags(*verb, args->encoding);
+  add_json_flag(*verb, args->json);
+  verb->callback([args] { run(*args); });
 }
 
 } // namespace sdflow::cli

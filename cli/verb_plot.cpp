@@ -3,7 +3,9 @@
 //! time, with topology events (remeshed, surgery, split, merged) marked by vertical lines; τ; and
 //! the wall time by stage (timings.csv) summed over the steps.
 
+#include "common_options.h"
 #include "gnuplot.h"
+#include "json_report.h"
 #include "verbs.h"
 
 #include "sdflow/errors.h"
@@ -11,6 +13,8 @@
 #include "sdflow/io/io.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <toml++/toml.h>
 
 #include <fstream>
 #include <iostream>
@@ -23,6 +27,7 @@ namespace {
 struct PlotArguments {
   std::string run_dir;
   std::string out;
+  bool json = false;
 };
 
 struct Event {
@@ -122,9 +127,24 @@ void plot(const PlotArguments& a)
   } catch (const std::runtime_error& e) {
     throw IoError(fmt::format("{}: {}", script_file.string(), e.what()));
   }
-  std::cout << fmt::format("{} rows, {} events: {}, {}, {}{}\n", rows, events.size(), (out / "area_volume.png").string(),
-                           (out / "curvature_deviation.png").string(), (out / "time_step.png").string(),
-                           with_timings ? ", " + (out / "timings.png").string() : "");
+  std::vector<std::string> pictures = {(out / "area_volume.png").string(), (out / "curvature_deviation.png").string(),
+                                       (out / "time_step.png").string()};
+  if (with_timings)
+    pictures.push_back((out / "timings.png").string());
+  if (a.json) {
+    toml::array files, event_list;
+    for (const auto& p : pictures)
+      files.push_back(p);
+    for (const auto& e : events)
+      event_list.push_back(toml::table{{"time", e.time}, {"event", e.name}});
+    print_json(toml::table{{"input", a.run_dir},
+                           {"output", out.string()},
+                           {"rows", static_cast<int64_t>(rows)},
+                           {"events", std::move(event_list)},
+                           {"pictures", std::move(files)}});
+    return;
+  }
+  std::cout << fmt::format("{} rows, {} events: {}\n", rows, events.size(), fmt::join(pictures, ", "));
 }
 
 } // namespace
@@ -134,7 +154,8 @@ void add_plot_verb(CLI::App& app)
   auto args = std::make_shared<PlotArguments>();
   CLI::App* verb = app.add_subcommand("plot", "PNG figures (gnuplot) of a run's area, volume, curvature deviation, τ and wall time by stage");
   verb->add_option("dir", args->run_dir, "Run directory (holding metrics.csv)")->required()->check(CLI::ExistingDirectory);
-  verb->add_option("--out", args->out, "Folder for the PNGs (default DIR/plots)");
+  add_output_option(*verb, args->out, "Folder for the PNGs (default DIR/plots)");
+  add_json_flag(*verb, args->json);
   verb->callback([args] { plot(*args); });
 }
 

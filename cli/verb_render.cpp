@@ -2,8 +2,11 @@
 //! [--title TEXT]`: a shaded picture of a triangulated surface drawn by gnuplot (pngcairo), each
 //! triangle coloured by the mean of its vertices' mean curvature H (eq. 9 with the normals of eq. 8).
 
+#include "common_options.h"
 #include "gnuplot.h"
+#include "json_report.h"
 #include "verbs.h"
+#include "work_progress.h"
 
 #include "sdflow/errors.h"
 #include "sdflow/geometry/curvature.h"
@@ -12,6 +15,7 @@
 #include "sdflow/log.h"
 
 #include <fmt/format.h>
+#include <toml++/toml.h>
 
 #include <algorithm>
 #include <cctype>
@@ -36,6 +40,7 @@ struct RenderArguments {
   std::vector<int> size{800, 600};
   std::string colouring = "curvature"; //!< curvature | none
   std::string title;
+  bool json = false;
 };
 
 //! The colour range covers the 1st to 99th percentile of the triangles' H, so that a few extreme
@@ -208,11 +213,16 @@ std::string gnuplot_script(const RenderArguments& a, const fs::path& data, const
     // font, about 70 pixels) and 'H' above it; the surface keeps the rest of the picture.
     const double width = a.size[0], box_width = std::max(10.0, 0.025 * width);
     const double box_left = 1 - (70 + box_width + 6) / width;
-    s += fmt::format("set palette defined {}\nset cbrange [{:.17g}:{:.17g}]\nset cbtics {}\n"
-                     "set size {:.4f},1\nset colorbox vertical user origin screen {:.4f},0.2 size screen {:.4f},0.6\n"
-                     "set label 'H' at screen {:.4f},0.84 center\n",
-                     viridis, range.first, range.second, colour_tics(range.first, range.second), box_left - 0.02,
-                     box_left, box_width / width, box_left + 0.5 * box_width / width);
+    s += fmt::format("set palette defined {}\nset cbrange [{:.17g}:{:.17g}]\n", viridis, range.first, range.second);
+    // A picture too narrow for the strip (under about 180 pixels) keeps the colours without the scale.
+    if (box_left < 0.5)
+      s += "unset colorbox\n";
+    else
+      s += fmt::format("set cbtics {}\nset size {:.4f},1\n"
+                       "set colorbox vertical user origin screen {:.4f},0.2 size screen {:.4f},0.6\n"
+                       "set label 'H' at screen {:.4f},0.84 center\n",
+                       colour_tics(range.first, range.second), box_left - 0.02, box_left, box_width / width,
+                       box_left + 0.5 * box_width / width);
   } else {
     s += fmt::format("set palette defined (0 {0}, 1 {0})\nset cbrange [0:1]\nunset colorbox\n", plain_colour);
   }
@@ -223,15 +233,20 @@ std::string gnuplot_script(const RenderArguments& a, const fs::path& data, const
 void render(RenderArguments a)
 {
   check_arguments(a);
+  WorkProgress progress("render");
+  progress.stage("reading " + a.input);
   const BuiltMesh input = read_mesh(a.input);
   const Mesh& mesh = input.mesh;
   const bool by_curvature = a.colouring == "curvature";
+  if (by_curvature)
+    progress.stage("mean curvature");
   const std::vector<double> colour = triangle_colours(mesh, by_curvature);
   const auto range = by_curvature ? colour_range(mesh, colour) : std::pair{0.0, 1.0};
 
   const TemporaryDirectory work;
   const fs::path data = work.path() / "triangles.dat", picture = work.path() / "picture.png";
   const fs::path script = work.path() / "render.gnuplot", log = work.path() / "gnuplot.log";
+  progress.stage(fmt::format("writing {} triangles for gnuplot", mesh.n_faces()));
   write_triangles(mesh, colour, data);
   {
     std::ofstream out(script, std::ios::binary);
@@ -239,7 +254,9 @@ void render(RenderArguments a)
     if (!out)
       throw IoError(fmt::format("{}: cannot write the gnuplot script", script.string()));
   }
+  progress.stage(fmt::format("gnuplot drawing {} triangles", mesh.n_faces()));
   run_gnuplot(script, log);
+  progress.finish();
   const std::string png = read_whole_file(picture);
   if (png.empty())
     throw std::runtime_error(fmt::format("gnuplot wrote no picture: {}", read_whole_file(log)));
@@ -247,6 +264,20 @@ void render(RenderArguments a)
     logger().debug("gnuplot: {}", warnings);
   write_atomically(a.output, [&](std::ostream& s) { s.write(png.data(), static_cast<std::streamsize>(png.size())); });
 
+  if (a.json) {
+    toml::table root{{"input", a.input},
+                     {"output", a.output},
+                     {"vertices", static_cast<int64_t>(mesh.n_vertices())},
+                     {"faces", static_cast<int64_t>(mesh.n_faces())},
+                     {"width", a.size[0]},
+                     {"height", a.size[1]},
+                     {"view", toml::array{a.view[0], a.view[1]}},
+                     {"colour", a.colouring}};
+    if (by_curvature)
+      root.insert("curvature_range", toml::array{range.first, range.second});
+    print_json(std::move(root));
+    return;
+  }
   std::cout << fmt::format("{}: {} vertices, {} triangles -> {} ({}x{} pixels, view {},{}", a.input, mesh.n_vertices(),
                            mesh.n_faces(), a.output, a.size[0], a.size[1], a.view[0], a.view[1]);
   if (by_curvature)
@@ -262,21 +293,22 @@ void add_render_verb(CLI::App& app)
   CLI::App* verb =
       app.add_subcommand("render", "A shaded PNG picture of a surface (gnuplot), coloured by mean curvature");
   verb->add_option("input", args->input, "Mesh (OFF, OBJ, PLY, STL)")->required();
-  verb->add_option("-o,--output", args->output, "Picture to write (.png)")->required();
+  add_output_option(*verb, args->output, "Picture to write (.png)")->required();
   verb->add_option("--view", args->view, "View angles in degrees, rotation about x then z (gnuplot's set view)")
       ->delimiter(',')
       ->expected(2)
-      ->capture_default_str();
+      ->option_text("ROT_X,ROT_Z (default: 60,30)");
   verb->add_option("--size", args->size, "Picture width and height in pixels")
       ->delimiter(',')
       ->expected(2)
-      ->capture_default_str();
+      ->option_text("W,H (default: 800,600)");
   verb->add_option("--colour", args->colouring,
                    "curvature: each triangle by the mean of its vertices' H (eq. 9; the scale spans H's 1st to "
                    "99th percentile); none: one colour")
       ->check(CLI::IsMember({"curvature", "none"}))
       ->capture_default_str();
   verb->add_option("--title", args->title, "Title above the picture");
+  add_json_flag(*verb, args->json);
   verb->callback([args] { render(*args); });
 }
 

@@ -3,7 +3,9 @@
 //! with --remove-self-intersections, a surface that still crosses itself is re-triangulated
 //! (retri/pipeline.h). JSON keys are documented in README.md.
 
+#include "common_options.h"
 #include "verbs.h"
+#include "work_progress.h"
 
 #include "sdflow/io/io.h"
 #include "sdflow/io/repair.h"
@@ -27,6 +29,7 @@ struct RepairArguments {
   RepairOptions options;
   bool remove_self_intersections = false;
   bool json = false;
+  Encoding encoding = Encoding::binary;
 };
 
 //! What the verb did, for either report.
@@ -88,15 +91,22 @@ void report_text(const RepairArguments& args, const RepairReport& r)
 void run(const RepairArguments& args)
 {
   format_from_extension(args.output); // refuse an unknown format before the work
+  WorkProgress progress("repair");
+  progress.stage("reading " + args.input);
   const PolygonSoup soup = read_polygon_soup(args.input);
+  progress.stage(fmt::format("repairing {} faces", soup.polygons.size()));
   RepairReport report{.input_vertices = soup.points.size(), .input_faces = soup.polygons.size(),
                       .repaired = repair_soup(soup, args.input, args.options)};
+  progress.stage("looking for self-intersections");
   report.intersecting_pairs = self_intersections(report.repaired.mesh).size();
   if (args.remove_self_intersections && report.intersecting_pairs > 0) {
+    progress.stage(fmt::format("re-triangulating {} intersecting pairs away", report.intersecting_pairs));
     report.resolved = resolve_self_intersections(report.repaired.mesh);
     report.intersecting_pairs = report.resolved->pairs_after;
   }
-  write_mesh(written_mesh(report), args.output);
+  progress.stage("writing " + args.output);
+  write_mesh(written_mesh(report), args.output, {.encoding = args.encoding});
+  progress.finish();
   if (args.json)
     report_json(args, report);
   else
@@ -112,7 +122,8 @@ void add_repair_verb(CLI::App& app)
       "repair", "Make a damaged mesh valid: merge duplicate vertices, drop degenerate and repeated faces, split "
                 "non-manifold edges and vertices, orient consistently and outward, drop isolated vertices");
   verb->add_option("input", args->input, "Input mesh (OFF, OBJ, PLY, STL)")->required();
-  verb->add_option("-o,--output", args->output, "Output mesh")->required();
+  add_output_option(*verb, args->output, "Output mesh")->required();
+  add_encoding_flags(*verb, args->encoding);
   verb->add_option("--merge-tolerance", args->options.merge_tolerance,
                    "Merge vertices closer than this fraction of the bounding-box diagonal, at most 0.1 "
                    "(default 0: only identical ones)")
@@ -121,7 +132,7 @@ void add_repair_verb(CLI::App& app)
   verb->add_flag("--remove-self-intersections", args->remove_self_intersections,
                  "Re-triangulate a surface that crosses itself until it does not (the pipeline of `sdflow "
                  "retriangulate` with its defaults, at most 5 passes)");
-  verb->add_flag("--json", args->json, "Print a JSON object: the repairs by code with their counts (README)");
+  add_json_flag(*verb, args->json, "the repairs by code with their counts: keys in README");
   verb->callback([args] { run(*args); });
 }
 

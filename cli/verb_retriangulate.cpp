@@ -1,7 +1,10 @@
 //! `sdflow retriangulate IN -o OUT [--edge-length L] [...] [--json]`: the whole re-triangulation of
 //! paper §3.2.1 with Appendix B (retri/pipeline.h), as a run applies it between steps.
 
+#include "common_options.h"
+#include "json_report.h"
 #include "verbs.h"
+#include "work_progress.h"
 
 #include "sdflow/io/io.h"
 #include "sdflow/io/repair.h"
@@ -22,6 +25,7 @@ struct RetriangulateArguments {
   std::string input;
   std::string output;
   RetriangulationOptions options;
+  Encoding encoding = Encoding::binary;
   bool json = false;
   bool force = false;
 };
@@ -55,7 +59,7 @@ void report_json(const RetriangulateArguments& args, const BuiltMesh& input, con
                    {"components_after", r.components_after},
                    {"dropped_components", r.dropped_components},
                    {"seconds", stages}};
-  std::cout << toml::json_formatter{root} << '\n';
+  print_json(std::move(root));
 }
 
 void report_text(const RetriangulateArguments& args, const BuiltMesh& input, const RetriangulationResult& r)
@@ -92,8 +96,12 @@ void run(const RetriangulateArguments& args)
   const BuiltMesh input = read_mesh_or_repair(args.input);
   check_remeshed_size(input.mesh, args.options.edge_length,
                       fmt::format("retriangulate --edge-length {}", args.options.edge_length), limits);
+  WorkProgress progress("retriangulate");
+  progress.stage(fmt::format("re-triangulating {} faces", input.mesh.n_faces()));
   const RetriangulationResult result = retriangulate(input.mesh, args.options);
-  write_mesh(result.mesh, args.output, {.encoding = Encoding::binary});
+  progress.stage("writing " + args.output);
+  write_mesh(result.mesh, args.output, {.encoding = args.encoding});
+  progress.finish();
   if (args.json)
     report_json(args, input, result);
   else
@@ -110,11 +118,11 @@ void add_retriangulate_verb(CLI::App& app)
       "retriangulate", "The re-triangulation pipeline of paper §3.2.1: remesh, remove self-intersections, jet + MST "
                        "normals, advancing-front reconstruction, hole filling, components");
   verb->add_option("input", args->input, "Input mesh (OFF, OBJ, PLY, STL)")->required();
-  verb->add_option("-o,--output", args->output, "Output mesh")->required();
+  add_output_option(*verb, args->output, "Output mesh")->required();
   verb->add_option("--edge-length", o.edge_length, "Target edge length (default: the input's mean)")
       ->check(CLI::PositiveNumber);
   verb->add_option("--remesh-iterations,--iterations", o.remesh_iterations,
-                   "Remeshing iterations (0: no remeshing; --iterations is its older name)")
+                   "Remeshing iterations (0: no remeshing; --iterations: its older name)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   verb->add_option("--edges-per-radius", o.edges_per_radius,
@@ -123,10 +131,11 @@ void add_retriangulate_verb(CLI::App& app)
       ->check(CLI::NonNegativeNumber);
   verb->add_flag("--always-rebuild", o.always_rebuild,
                  "Rebuild from the points even when nothing intersects (stages 3-5 always)");
-  verb->add_option("--neighbours", o.normals.neighbours, "k nearest neighbours of the jet normals")
+  verb->add_option("--neighbours", o.normals.neighbours, "k, the nearest neighbours of the jet normals (6 to 1000)")
       ->capture_default_str()
       ->check(CLI::Range(6, 1000));
-  verb->add_flag("!--no-fill-holes", o.fill_holes, "Leave the holes the rebuild leaves open");
+  verb->add_flag("--fill-holes,!--no-fill-holes", o.fill_holes,
+                 "Fill the holes the rebuild leaves (the default), or leave them open");
   verb->add_option("--max-hole-length", o.max_hole_length,
                    "Fill only holes shorter than this (default: every hole of a closed surface, else those shorter "
                    "than its shortest boundary loop)")
@@ -139,7 +148,8 @@ void add_retriangulate_verb(CLI::App& app)
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   verb->add_flag("--force", args->force, "Skip the plausibility limits (size of the result, iterations)");
-  verb->add_flag("--json", args->json, "Print a JSON object with what each stage did (documented in README)");
+  add_encoding_flags(*verb, args->encoding);
+  add_json_flag(*verb, args->json, "what each stage did, keys documented in README.md");
   verb->callback([args] { run(*args); });
 }
 

@@ -7,7 +7,9 @@
 //! The flags, their checks and the resume rules come from the schema (flow/parameter_schema.h).
 //! SIGINT / SIGTERM stop the run after the current step with a checkpoint (exit 130 / 143).
 
+#include "common_options.h"
 #include "exit_status.h"
+#include "json_report.h"
 #include "repair_hint.h"
 #include "verbs.h"
 
@@ -20,6 +22,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <toml++/toml.h>
 
 #include <chrono>
 #include <cmath>
@@ -77,15 +80,19 @@ struct SchemaFlag {
 
 struct RunArguments {
   std::string scenario, resume;
-  bool quiet = false, force = false, help_scenario = false, help_meshlab = false;
+  bool force = false, help_scenario = false, help_meshlab = false, json = false;
   CLI::Option* resume_option = nullptr;
   std::deque<SchemaFlag> flags; // one per schema entry, in the schema's order (a deque: stable addresses)
 };
 
-//! Progress on stderr: a bar rewritten in place on a terminal, a plain line every 10 s otherwise.
+//! Progress on stderr: a bar rewritten in place on a terminal, a plain line every 10 s otherwise;
+//! none under -q (the log level above info).
 class Progress {
 public:
-  Progress(const RunParameters& p, bool quiet) : p_(p), quiet_(quiet), tty_(::isatty(::fileno(stderr)) != 0) {}
+  explicit Progress(const RunParameters& p)
+      : p_(p), quiet_(!logger().should_log(spdlog::level::info)), tty_(::isatty(::fileno(stderr)) != 0)
+  {
+  }
 
   void operator()(const StepRecord& r)
   {
@@ -235,7 +242,7 @@ void run(const RunArguments& a)
   const SizeLimits limits{.force = a.force};
   check_count(p.steps, limits.max_steps, "--steps", limits);
 
-  Progress progress(p, a.quiet);
+  Progress progress(p);
   install_stop_handlers();
   SimulationOptions options{.parameters = p, .progress = std::ref(progress),
                             .stop_requested = [] { return stop_signal != 0; }};
@@ -259,17 +266,31 @@ void run(const RunArguments& a)
     throw;
   }
   progress.finish();
+  const int signal = result.interrupted ? static_cast<int>(stop_signal) : 0;
+  const char* signal_name = signal == SIGTERM ? "SIGTERM" : signal == SIGINT ? "SIGINT" : "a signal";
+  if (a.json) {
+    toml::table root{{"output", p.output_dir.string()},
+                     {"steps", static_cast<int64_t>(result.steps)},
+                     {"time", result.time},
+                     {"vertices", static_cast<int64_t>(result.mesh.n_vertices())},
+                     {"faces", static_cast<int64_t>(result.mesh.n_faces())},
+                     {"rejected_trials", static_cast<int64_t>(result.rejected_trials)},
+                     {"factorisations", static_cast<int64_t>(result.factorisations)},
+                     {"interrupted", result.interrupted}};
+    if (result.interrupted)
+      root.insert("signal", signal_name);
+    print_json(std::move(root));
+  }
   if (result.interrupted) {
-    const int signal = stop_signal;
     std::cerr << fmt::format("sdflow: {} received: stopped after step {} (t = {:.6g}) with a checkpoint; continue "
                              "with: sdflow run --resume {}\n",
-                             signal == SIGTERM ? "SIGTERM" : signal == SIGINT ? "SIGINT" : "a signal", result.steps,
-                             result.time, p.output_dir.string());
+                             signal_name, result.steps, result.time, p.output_dir.string());
     throw ExitStatus{128 + signal};
   }
-  std::cout << fmt::format("{}: {} steps, t = {:.6g}, {} vertices; {} rejected trials, {} factorisations\n",
-                           p.output_dir.string(), result.steps, result.time, result.mesh.n_vertices(),
-                           result.rejected_trials, result.factorisations);
+  if (!a.json)
+    std::cout << fmt::format("{}: {} steps, t = {:.6g}, {} vertices; {} rejected trials, {} factorisations\n",
+                             p.output_dir.string(), result.steps, result.time, result.mesh.n_vertices(),
+                             result.rejected_trials, result.factorisations);
 }
 
 } // namespace
@@ -366,12 +387,12 @@ void add_run_verb(CLI::App& app)
       ->check(CLI::ExistingFile);
   args->resume_option = verb->add_option("--resume", args->resume, "Continue the run in DIR from its checkpoint")
                             ->check(CLI::ExistingDirectory);
-  verb->add_flag("--quiet", args->quiet, "No progress output");
   verb->add_flag("--force", args->force, "Skip the plausibility limits (steps, size of the re-triangulated surface)");
   verb->add_flag("--help-scenario", args->help_scenario,
                  "Print the table of scenario keys and their flags (markdown, as in README) and exit");
   verb->add_flag("--help-meshlab", args->help_meshlab,
                  "Print the table of the MeshLab filter's parameters and their flags (markdown, as in README) and exit");
+  add_json_flag(*verb, args->json);
   add_schema_flags(*verb, *args);
   verb->callback([args] {
     if (args->help_meshlab) {

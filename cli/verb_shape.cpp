@@ -1,7 +1,10 @@
 //! `sdflow shape NAME [--param value ...] [--edge-length h | --vertices N] -o OUT`: the paper's
 //! initial surfaces (or a formula with --expr) meshed to quality; `sdflow shape --list`.
 
+#include "common_options.h"
+#include "json_report.h"
 #include "verbs.h"
+#include "work_progress.h"
 
 #include "sdflow/errors.h"
 #include "sdflow/geometry/topology.h"
@@ -12,6 +15,7 @@
 #include "sdflow/shapes/mesher.h"
 
 #include <fmt/format.h>
+#include <toml++/toml.h>
 
 #include <iostream>
 #include <map>
@@ -35,12 +39,27 @@ struct ShapeArguments {
   double grid_cell = 0;
   bool force = false;
   std::string output;
+  Encoding encoding = Encoding::binary;
+  bool json = false;
   std::map<std::string, double> values;      //!< every catalogue parameter, by name
   std::map<std::string, CLI::Option*> given; //!< to tell which were given
 };
 
-void print_catalogue()
+void print_catalogue(bool json)
 {
+  if (json) {
+    toml::array shapes;
+    for (const auto& shape : shape_catalogue()) {
+      toml::array parameters;
+      for (const auto& p : shape.parameters)
+        parameters.push_back(
+            toml::table{{"name", p.name}, {"default", p.default_value}, {"description", p.description}});
+      shapes.push_back(
+          toml::table{{"name", shape.name}, {"summary", shape.summary}, {"parameters", std::move(parameters)}});
+    }
+    print_json(toml::table{{"shapes", std::move(shapes)}});
+    return;
+  }
   for (const auto& shape : shape_catalogue()) {
     std::cout << fmt::format("{}: {}\n", shape.name, shape.summary);
     for (const auto& p : shape.parameters)
@@ -81,26 +100,52 @@ ImplicitSurface chosen_surface(const ShapeArguments& args)
 void run(const ShapeArguments& args)
 {
   if (args.list) {
-    print_catalogue();
+    print_catalogue(args.json);
     return;
   }
   if (args.output.empty())
     throw InvalidParameter("no output file: give -o OUT (.off, .obj, .ply or .stl)");
   format_from_extension(args.output); // refuse an unknown format before meshing
   const SizeLimits limits{.force = args.force};
-  check_count(args.iterations, limits.max_iterations, "--iterations", limits);
+  check_count(args.iterations, limits.max_iterations, "--remesh-iterations", limits);
   const ImplicitSurface surface = chosen_surface(args);
   if (args.vertices > 0)
     check_surface_size(args.vertices, fmt::format("shape --vertices {}", args.vertices), limits, false);
   else if (args.edge_length > 0)
     check_surface_size(estimated_vertices_in_box(surface.box, args.edge_length),
                        fmt::format("shape --edge-length {}", args.edge_length), limits, false);
+  WorkProgress progress("shape");
+  progress.stage(args.vertices > 0 ? fmt::format("meshing '{}' to about {} vertices", surface.name, args.vertices)
+                                   : fmt::format("meshing '{}'", surface.name));
   const MesherResult result = mesh_implicit_surface(
       surface, {.edge_length = args.edge_length, .vertices = args.vertices, .iterations = args.iterations,
                 .edges_per_radius = args.edges_per_radius, .grid_cell = args.grid_cell});
-  write_mesh(result.mesh, args.output, {.encoding = Encoding::binary});
+  progress.stage("writing " + args.output);
+  write_mesh(result.mesh, args.output, {.encoding = args.encoding});
+  progress.finish();
 
   const auto& a = result.min_angles;
+  if (args.json) {
+    toml::array components, histogram;
+    for (const auto& c : component_topology(result.mesh))
+      components.push_back(toml::table{
+          {"faces", static_cast<int64_t>(c.faces)}, {"genus", c.genus}, {"boundary_loops", c.boundary_loops}});
+    for (long n : a.histogram)
+      histogram.push_back(static_cast<int64_t>(n));
+    print_json(toml::table{{"shape", surface.name},
+                           {"output", args.output},
+                           {"vertices", static_cast<int64_t>(result.mesh.n_vertices())},
+                           {"faces", static_cast<int64_t>(result.mesh.n_faces())},
+                           {"edge_length", result.edge_length},
+                           {"grid_cell", result.grid_cell},
+                           {"initial_vertices", static_cast<int64_t>(result.initial_vertices)},
+                           {"components", std::move(components)},
+                           {"min_angle_deg", toml::table{{"min", a.min}, {"p01", a.p01}, {"p05", a.p05},
+                                                         {"p25", a.p25}, {"median", a.median}}},
+                           {"min_angle_histogram", std::move(histogram)},
+                           {"max_level_set_distance", result.max_level_set_distance}});
+    return;
+  }
   std::cout << fmt::format("{}: {} vertices, {} faces, edge length {:.6g} (marching grid {:.4g}: {} vertices)\n",
                            surface.name, result.mesh.n_vertices(), result.mesh.n_faces(), result.edge_length,
                            result.grid_cell, result.initial_vertices);
@@ -129,13 +174,17 @@ void add_shape_verb(CLI::App& app)
   auto* length = verb->add_option("--edge-length", args->edge_length, "Target edge length");
   auto* count = verb->add_option("--vertices", args->vertices, "Approximate vertex count (within a few percent)");
   length->excludes(count);
-  verb->add_option("--iterations", args->iterations, "Remeshing iterations")->capture_default_str();
+  verb->add_option("--remesh-iterations,--iterations", args->iterations,
+                   "Remeshing iterations (--iterations: its older name)")
+      ->capture_default_str();
   verb->add_option("--edges-per-radius", args->edges_per_radius,
                    "Then refine to this many edges per radius of curvature where finer than the edge length, "
                    "down to a quarter of it (default 0: uniform)")
       ->check(CLI::NonNegativeNumber);
   verb->add_option("--grid-cell", args->grid_cell, "Marching grid spacing (default: from the edge length and shape)");
-  verb->add_option("-o,--output", args->output, "Output mesh (.off, .obj, .ply, .stl)");
+  add_output_option(*verb, args->output, "Output mesh (.off, .obj, .ply, .stl)");
+  add_encoding_flags(*verb, args->encoding);
+  add_json_flag(*verb, args->json);
   verb->add_flag("--force", args->force, "Skip the plausibility limits (size of the result, iterations)");
   // Every catalogue parameter once; which ones the chosen shape accepts is checked after parsing.
   std::map<std::string, std::set<std::string>> users;

@@ -1,8 +1,11 @@
 //! `sdflow stats MESH [--json]`: validation findings, topology, area, volume (divergence theorem and
 //! TetGen), mean curvature deviation and mesh quality. JSON keys are documented in README.md.
 
+#include "common_options.h"
+#include "json_report.h"
 #include "repair_hint.h"
 #include "verbs.h"
+#include "work_progress.h"
 
 #include "sdflow/check/statistics.h"
 #include "sdflow/io/io.h"
@@ -33,9 +36,7 @@ toml::table histogram(const std::map<int, int>& counts)
 
 toml::table to_json_table(const std::string& file, const BuiltMesh& built, const MeshStatistics& s)
 {
-  toml::array findings;
-  for (const Finding& f : built.findings)
-    findings.push_back(toml::table{{"severity", severity_name(f.severity)}, {"code", f.code}, {"message", f.message}});
+  toml::array findings = findings_json(built.findings);
   toml::array components;
   for (const ComponentStatistics& c : s.components) {
     toml::table t{{"vertices", c.topology.vertices},
@@ -132,11 +133,15 @@ void add_stats_verb(CLI::App& app)
   auto args = std::make_shared<StatsArguments>();
   CLI::App* verb = app.add_subcommand("stats", "Validate a mesh and report topology, area, volume, curvature and quality");
   verb->add_option("mesh", args->mesh, "Mesh file (OFF, OBJ, PLY, STL)")->required();
-  verb->add_flag("--json", args->json, "Print a JSON object (keys documented in README.md)");
+  add_json_flag(*verb, args->json);
   verb->add_flag("--no-tetgen", args->no_tetgen, "Skip the TetGen volume cross-check");
   verb->callback([args] {
+    WorkProgress progress("stats");
+    progress.stage("reading " + args->mesh);
     BuiltMesh built = read_mesh_or_suggest_repair(args->mesh);
+    progress.stage(fmt::format("measuring {} faces", built.mesh.n_faces()));
     const MeshStatistics s = mesh_statistics(built.mesh, {.tetgen_check = !args->no_tetgen});
+    progress.finish();
     if (s.self_intersecting_pairs > 0)
       built.findings.push_back(
           {Severity::warning, "self-intersection",
@@ -144,7 +149,7 @@ void add_stats_verb(CLI::App& app)
                        "each other), so its volume is not that of a solid and which component is a body or a "
                        "cavity is not defined", args->mesh, s.self_intersecting_pairs)});
     if (args->json)
-      std::cout << toml::json_formatter{to_json_table(args->mesh, built, s)} << '\n';
+      print_json(to_json_table(args->mesh, built, s));
     else
       print_text(args->mesh, built, s);
   });

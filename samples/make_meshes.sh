@@ -1,13 +1,27 @@
 #!/usr/bin/env bash
 # Meshes the initial surfaces of the paper's experiments into samples/meshes/ with `sdflow shape`
-# (deterministic: the same files on every machine), skipping those already there.
+# (deterministic: the same files on every machine), skipping those already there. Progress on
+# stderr: which mesh of how many, then sdflow shape's own (the largest takes about half a minute).
 #   samples/make_meshes.sh SDFLOW_BINARY
 set -euo pipefail
+usage() { sed -n '2,5p' "$0" | sed 's/^# \{0,1\}//'; }
+if [[ "${1:-}" == "-h" || "${1:-}" == "--help" ]]; then
+  usage
+  exit 0
+fi
+[[ $# -eq 1 ]] || { usage >&2; exit 2; }
 sdflow=$(realpath "$1")
 cd "$(dirname "$0")/meshes"
+count=4 index=0
 make_mesh() { # file, then the arguments of sdflow shape
   local file=$1; shift
-  [[ -f $file ]] || "$sdflow" shape "$@" -o "$file"
+  index=$((index + 1))
+  if [[ -f $file ]]; then
+    echo "make_meshes.sh: [$index/$count] $file is there" >&2
+  else
+    echo "make_meshes.sh: [$index/$count] $file: sdflow shape $*" >&2
+    "$sdflow" shape "$@" -o "$file"
+  fi
 }
 make_mesh torus_15250.ply torus --vertices 15250
 make_mesh dumbbell.ply dumbbell --edge-length 0.5 --edges-per-radius 4 # the neck resolved from the start

@@ -2,7 +2,8 @@
 # Reproduces the paper's experiments from the scenarios in samples/: builds sdflow, meshes the
 # initial surfaces (samples/make_meshes.sh), runs each scenario into runs/NAME, plots it, and prints
 # one line per run: steps, final time, area and volume change, final curvature deviation, the
-# topology (components/genus, first -> last) and the re-triangulation events.
+# topology (components/genus, first -> last) and the re-triangulation events. Progress on stderr:
+# which scenario of how many, then each run's own progress (sdflow run's bar or a line every 10 s).
 #   samples/reproduce.sh                    every experiment with sdflow's defaults (hours on 2 cores)
 #   samples/reproduce.sh torus dumbbell     only these scenarios
 #   samples/reproduce.sh --paper [NAME...]  the same with the paper's scheme (--preset paper), into
@@ -15,7 +16,7 @@ if [[ "${1:-}" == "--paper" ]]; then
   shift
 fi
 if [[ "${1:-}" == "-h" || "${1:-}" == "--help" ]]; then
-  sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'
   exit 0
 fi
 cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release > /dev/null
@@ -26,11 +27,14 @@ samples/make_meshes.sh "$sdflow"
 names=("$@")
 [[ ${#names[@]} -gt 0 ]] || names=(sphere_accuracy ellipsoid_relax ellipsoid_quarter_beta ellipsoid_explicit torus
                                    dumbbell sintering spheres_on_plane)
+index=0
 for name in "${names[@]}"; do
+  index=$((index + 1))
+  echo "reproduce.sh: [$index/${#names[@]}] $name" >&2
   out=runs/$name$suffix
   rm -rf "$out"
   status=0
-  "$sdflow" run "samples/$name.toml" --out "$out" "${preset[@]}" --quiet || status=$?
+  "$sdflow" run "samples/$name.toml" --out "$out" "${preset[@]}" || status=$?
   [[ $status -eq 0 || $status -eq 3 ]] || exit "$status"   # 3: stopped as unstable (the explicit scheme)
   "$sdflow" plot "$out" > /dev/null
   awk -F, -v name="$name" -v status="$status" '

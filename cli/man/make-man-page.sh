@@ -16,6 +16,11 @@ roff() { sed -e 's/\\/\\\\/g' -e "s/^\\([.']\\)/\\\\\\&\\1/"; }
     "$sdflow" "$verb" --help | sed "s|^Usage: [^ ]*sdflow|Usage: sdflow|" | roff
     echo ".fi"
   done
+  echo "[CONVENTIONS]"
+  echo "Every verb takes -q (errors only, no progress) and -v (debugging detail) before or after its name;"
+  echo "an output is -o, --output or --out; PLY and STL are written binary unless --ascii is given."
+  echo "Results go to stdout; logs, errors and progress to stderr. --json prints the result as one JSON"
+  echo "object on stdout, or on failure {error, message, exit_code, findings}."
   echo "[EXIT STATUS]"
   echo "0 success; 1 out of memory or an unexpected internal error; 2 bad input (unreadable or invalid"
   echo "file, parameter out of range); 128 + N a run stopped by signal N (checkpoint written);"

@@ -181,8 +181,8 @@ TEST(LimitsHardening, absurd_sizes_and_iterations_are_refused_with_the_estimate)
        "too long"},
       {"remesh " + s + " -o " + o + " --edge-length 1e-5", "vertices"},
       {"retriangulate " + s + " -o " + o + " --edge-length 1e-5", "vertices"},
-      {"remesh " + s + " -o " + o + " --edge-length 0.1 --iterations 1000000", "--iterations 1000000"},
-      {"shape sphere --iterations 1000000000 -o " + o, "--iterations"},
+      {"remesh " + s + " -o " + o + " --edge-length 0.1 --remesh-iterations 1000000", "--remesh-iterations 1000000"},
+      {"shape sphere --remesh-iterations 1000000000 -o " + o, "--remesh-iterations"},
       {"shape sphere --vertices 100000000 -o " + o, "vertices"},
       {"shape sphere --edge-length 1e-6 -o " + o, "vertices"},
       {"run --input " + s + " --out " + (dir / "r").string() + " --steps 1000000000000", "--steps"}};
@@ -226,7 +226,7 @@ TEST(NumbersHardening, a_schedule_that_ends_before_the_run_is_reported)
   write_mesh(analytic::icosphere(2), dir / "s.ply");
   test::write_file(dir / "tau.csv", "1,2,1e-4\n");
   const auto r = run_sdflow("run --input " + (dir / "s.ply").string() + " --out " + (dir / "r").string() +
-                            " --schedule " + (dir / "tau.csv").string() + " --steps 4 --quiet");
+                            " --schedule " + (dir / "tau.csv").string() + " --steps 4"); // -q would hide the warning
   EXPECT_EQ(r.exit_code, 0) << r.output;
   expect_mentions(r, "schedule ends at step 2");
   EXPECT_NE(test::read_file(dir / "r/events.log").find("schedule ends at step 2"), std::string::npos);

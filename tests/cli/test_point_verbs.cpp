@@ -65,7 +65,7 @@ TEST(PointVerbs, fill_holes_closes_short_loops_only)
   r = analytic::run_sdflow("fill-holes " + (dir / "holed.off").string() + " -o " + (dir / "open.off").string() +
                            " --max-loop-length 0.1");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("longer than --max-loop-length"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("longer than --max-hole-length"), std::string::npos) << r.output;
   EXPECT_EQ(component_topology(read_mesh(dir / "open.off").mesh)[0].boundary_loops, 1);
 }
 

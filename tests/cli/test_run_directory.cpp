@@ -116,7 +116,7 @@ TEST_F(RunDirectory, killed_before_its_first_checkpoint_resumes_from_step_0)
   const auto refused = analytic::run_sdflow("run --out " + (dir / "early").string() + common);
   EXPECT_EQ(refused.exit_code, 2) << refused.output;
   EXPECT_NE(refused.output.find("--resume"), std::string::npos) << "the refusal says how to continue: " << refused.output;
-  const auto resumed = analytic::run_sdflow("run --resume " + (dir / "early").string() + " --quiet");
+  const auto resumed = analytic::run_sdflow("run --resume " + (dir / "early").string()); // -q would hide the info
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
   EXPECT_NE(resumed.output.find("starting again at step 0"), std::string::npos) << resumed.output;
   EXPECT_EQ(test::read_file(dir / "early/metrics.csv"), expected);

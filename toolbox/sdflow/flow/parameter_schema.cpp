@@ -3,6 +3,7 @@
 #include "sdflow/errors.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -92,6 +93,7 @@ std::vector<ParameterEntry> build_schema()
   }
   {
     auto& e = add(entry("out", "--out", ParameterType::path, "The run directory (must not hold a run yet)"));
+    e.flag_aliases = {"-o", "--output"}; // the output's names on every verb
     bind<std::filesystem::path>(e, &RunParameters::output_dir);
     e.written = [](const RunParameters& p) { return !p.output_dir.empty(); };
   }
@@ -124,7 +126,7 @@ std::vector<ParameterEntry> build_schema()
   // --- Time steps ---
   {
     auto& e = add(entry("time_step", "--time-step", ParameterType::choice,
-                        "`adaptive` (the default; the rule is in flow/time_step.h and `[adaptive]`), `constant` "
+                        "`adaptive` (the default; its rule is set by the `[adaptive]` keys), `constant` "
                         "(needs `tau`) or `schedule` (needs `schedule`); a `tau` or `schedule` implies its mode"));
     e.choices = {"adaptive", "constant", "schedule"};
     e.order = Order::last;
@@ -674,8 +676,8 @@ std::string parameter_table_markdown()
     for (const std::string& alias : e.key_aliases)
       key += " (or `" + alias + "`)";
     std::string flag = "`" + e.flag + "`";
-    for (const std::string& alias : e.flag_aliases)
-      flag += " (or `" + alias + "`)";
+    if (!e.flag_aliases.empty())
+      flag += " (or `" + fmt::format("{}", fmt::join(e.flag_aliases, "`, `")) + "`)";
     for (const auto& shorthand : e.shorthands)
       flag += ", `" + shorthand.flag + "`";
     if (e.type == ParameterType::boolean)

@@ -102,7 +102,7 @@ struct ParameterEntry {
   std::string key;                        //!< scenario key, "section.name" inside a table
   std::vector<std::string> key_aliases;   //!< older keys, still read
   std::string flag;                       //!< `sdflow run` flag, "--name"
-  std::vector<std::string> flag_aliases;  //!< older flags, still accepted
+  std::vector<std::string> flag_aliases;  //!< other names of the flag: older ones, still accepted; `-o`, `--output` for `--out`
   ParameterType type = ParameterType::real;
   std::vector<std::string> choices;       //!< the names of a choice
   ParameterRange range;                   //!< of an integer or real
