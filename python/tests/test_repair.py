@@ -113,12 +113,16 @@ def test_what_no_repair_fixes_raises_the_command_lines_error(cli, tmp_path):
     V, F = flat_tetrahedron()
     path = tmp_path / "flat.off"
     write_off(path, V, F)
-    refused = cli("repair", path, "-o", tmp_path / "out.off", check=False)
+    refused = cli("repair", path, "-o", tmp_path / "out.off", "--json", check=False)
     assert refused.returncode == 2
     with pytest.raises(ValueError) as from_file:
         sdflow.repair(path)
     assert refused.stderr.strip() == f"sdflow: error: {from_file.value}"
     assert isinstance(from_file.value, sdflow.InvalidMesh) and from_file.value.exit_code == 2
+    expected = json.loads(refused.stdout)
+    assert expected["message"] == str(from_file.value) and expected["exit_code"] == from_file.value.exit_code
+    assert [(f.severity, f.code, f.message) for f in from_file.value.findings] == \
+        [(f["severity"], f["code"], f["message"]) for f in expected["findings"]]
     assert [f.code for f in from_file.value.findings] == ["zero-volume-component"]
 
     with pytest.raises(sdflow.InvalidMesh, match="^arrays: ") as from_arrays:
