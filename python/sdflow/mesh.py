@@ -1,5 +1,5 @@
-"""Meshes as numpy arrays: files, validation, repair, statistics, operators and measures, shapes, and the
-re-triangulation pipeline with its stages.
+"""Meshes as numpy arrays: files, validation, repair, statistics, operators and measures, shapes,
+and the re-triangulation pipeline with its stages.
 
 V is an n×3 array of reals (float64 C-contiguous arrays are read in place), F an m×3 array of
 integer vertex indices (int32 or int64). Results are numpy arrays that own the toolbox's result
