@@ -103,6 +103,7 @@ void Sdflow(benchmark::State& state)
     const double cpu_begin = cpu_seconds(RUSAGE_SELF);
     const auto begin = std::chrono::steady_clock::now();
     sdflow::RunParameters p;
+    p.retriangulation.enabled = false;
     p.steps = steps;
     p.time_step.mode = sdflow::TimeStepMode::constant;
     p.time_step.tau = end_time / steps;

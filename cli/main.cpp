@@ -12,7 +12,9 @@
 #include "verbs.h"
 
 #include "sdflow/log.h"
+#include "sdflow/version.h"
 
+#include <fmt/format.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
@@ -41,7 +43,7 @@ int main(int argc, char** argv)
   CLI::App app{"sdflow: surface diffusion flow (V_N = -ΔH) on triangulated surfaces"};
   app.formatter(std::make_shared<sdflow::cli::HelpFormatter>());
   app.require_subcommand(1);
-  app.set_version_flag("--version", "sdflow 0.1.0");
+  app.set_version_flag("--version", fmt::format("sdflow {} (commit {})", sdflow::version(), sdflow::git_commit()));
   bool verbose = false, quiet = false;
   app.add_flag("-v,--verbose", verbose, "Log debugging detail");
   app.add_flag("-q,--quiet", quiet, "Log errors only, no progress");

@@ -53,7 +53,7 @@ void run(const ComponentsArguments& args)
     written.emplace_back(args.output, &selection.mesh);
   }
   for (const auto& [file, part] : written)
-    write_mesh(*part, file, {.encoding = args.encoding});
+    write_mesh(*part, file, {.encoding = args.encoding, .vertex_fields = surface_fields(*part)});
 
   if (args.json) {
     toml::array components, outputs;

@@ -60,7 +60,7 @@ void run(const FillHolesArguments& args)
   progress.stage("filling the boundary loops");
   const FilledHoles result = fill_holes(built.mesh, args.options);
   progress.stage("writing " + args.output);
-  write_mesh(result.mesh, args.output, {.encoding = args.encoding});
+  write_mesh(result.mesh, args.output, {.encoding = args.encoding, .vertex_fields = surface_fields(result.mesh)});
   progress.finish();
   int filled = 0;
   for (const HoleReport& loop : result.loops)

@@ -59,7 +59,8 @@ void run(const IntersectionsArguments& args)
     faces = mesh.n_faces();
     removal = remove_self_intersections(mesh);
     pairs = removal->intersecting_pairs;
-    write_mesh(removal->mesh, args.output, {.encoding = args.encoding});
+    write_mesh(removal->mesh, args.output,
+               {.encoding = args.encoding, .vertex_fields = surface_fields(removal->mesh)});
   } else {
     const TriangleSoup soup = triangle_soup(read_polygon_soup(args.mesh), args.mesh);
     faces = static_cast<std::size_t>(soup.triangles.rows());

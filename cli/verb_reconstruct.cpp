@@ -55,7 +55,7 @@ void run(ReconstructArguments& args)
   progress.stage(fmt::format("reconstructing from {} points", cloud.points.rows()));
   const Reconstruction r = reconstruct_surface(cloud.points, cloud.normals, args.options);
   progress.stage("writing " + args.output);
-  write_mesh(r.mesh, args.output, {.encoding = args.encoding});
+  write_mesh(r.mesh, args.output, {.encoding = args.encoding, .vertex_fields = surface_fields(r.mesh)});
   progress.finish();
   int genus = 0, loops = 0;
   for (const auto& c : component_topology(r.mesh)) {

@@ -55,7 +55,7 @@ void run(const RemeshArguments& args)
                    .iterations = args.iterations,
                    .boundary = args.keep_boundary ? BoundaryMode::keep : BoundaryMode::remesh});
   progress.stage("writing " + args.output);
-  write_mesh(result.mesh, args.output, {.encoding = args.encoding});
+  write_mesh(result.mesh, args.output, {.encoding = args.encoding, .vertex_fields = surface_fields(result.mesh)});
   progress.finish();
   int in_band = 0;
   for (auto e : result.mesh.edges()) {

@@ -105,7 +105,8 @@ void run(const RepairArguments& args)
     report.intersecting_pairs = report.resolved->pairs_after;
   }
   progress.stage("writing " + args.output);
-  write_mesh(written_mesh(report), args.output, {.encoding = args.encoding});
+  const Mesh& repaired = written_mesh(report);
+  write_mesh(repaired, args.output, {.encoding = args.encoding, .vertex_fields = surface_fields(repaired)});
   progress.finish();
   if (args.json)
     report_json(args, report);

@@ -100,7 +100,7 @@ void run(const RetriangulateArguments& args)
   progress.stage(fmt::format("re-triangulating {} faces", input.mesh.n_faces()));
   const RetriangulationResult result = retriangulate(input.mesh, args.options);
   progress.stage("writing " + args.output);
-  write_mesh(result.mesh, args.output, {.encoding = args.encoding});
+  write_mesh(result.mesh, args.output, {.encoding = args.encoding, .vertex_fields = surface_fields(result.mesh)});
   progress.finish();
   if (args.json)
     report_json(args, input, result);

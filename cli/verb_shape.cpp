@@ -121,7 +121,7 @@ void run(const ShapeArguments& args)
       surface, {.edge_length = args.edge_length, .vertices = args.vertices, .iterations = args.iterations,
                 .edges_per_radius = args.edges_per_radius, .grid_cell = args.grid_cell});
   progress.stage("writing " + args.output);
-  write_mesh(result.mesh, args.output, {.encoding = args.encoding});
+  write_mesh(result.mesh, args.output, {.encoding = args.encoding, .vertex_fields = surface_fields(result.mesh)});
   progress.finish();
 
   const auto& a = result.min_angles;

@@ -32,7 +32,7 @@ void run(const UnionArguments& args)
   progress.stage("joining the surfaces");
   const UnionResult u = surface_union(first, second);
   progress.stage("writing " + args.output);
-  write_mesh(u.mesh, args.output, {.encoding = args.encoding});
+  write_mesh(u.mesh, args.output, {.encoding = args.encoding, .vertex_fields = surface_fields(u.mesh)});
   progress.finish();
   if (args.json) {
     print_json(toml::table{{"first", args.first},

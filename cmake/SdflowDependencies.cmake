@@ -8,6 +8,7 @@ find_package(tomlplusplus REQUIRED)      # libtomlplusplus-dev (TOML scenarios, 
 find_package(nanoflann REQUIRED)         # libnanoflann-dev (k nearest neighbours)
 find_package(TBB REQUIRED)               # libtbb-dev
 find_package(muparser REQUIRED)          # libmuparser-dev (user level-set formulas)
+find_package(EXPAT REQUIRED)             # libexpat1-dev (reading .vtp files)
 
 # SuiteSparse (CHOLMOD, SPQR) and TetGen ship no CMake package files in Debian: sdflow::suitesparse
 # and sdflow::tetgen come from a file the installed package uses too. tests/ and bench/ use the

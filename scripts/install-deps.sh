@@ -20,7 +20,7 @@ packages=(
   libsuitesparse-dev libmetis-dev libopenblas-dev
   libtet1.5-dev
   libgtest-dev libgmock-dev libbenchmark-dev libgmp-dev
-  libnanoflann-dev libcli11-dev libtomlplusplus-dev libspdlog-dev libfmt-dev libmuparser-dev libtbb-dev
+  libnanoflann-dev libcli11-dev libtomlplusplus-dev libspdlog-dev libfmt-dev libmuparser-dev libtbb-dev libexpat1-dev
   gnuplot-nox help2man
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-scipy python3-pytest python3-matplotlib
 )

@@ -133,21 +133,24 @@ same-as-cli)
   # MeshLab holds coordinates as floats: both sides start from its float copy of the mesh.
   run_meshlabserver -i "$mesh" -o "$work/input.ply"
   [[ $status -eq 0 && -s "$work/input.ply" ]] || fail "meshlabserver could not convert $mesh"
-  compare_with_cli adaptive "12 true 0.001 0.5 false false false 0.1 0 0 false" --adaptive --beta 0.5
-  compare_with_cli constant "8 false 0.05 0.5 true false false 0.1 0 0 false" --tau 0.05 --beta 0.5 --conserve-volume
+  # Re-triangulation is on by default on both sides; the cases without it say so on both.
+  compare_with_cli adaptive "12 true 0.001 0.5 false false false 0.1 0 0 false" --adaptive --beta 0.5 \
+    --no-retriangulate
+  compare_with_cli constant "8 false 0.05 0.5 true false false 0.1 0 0 false" --tau 0.05 --beta 0.5 --conserve-volume \
+    --no-retriangulate
   # Half the mean edge length (0.61): the first step's surface has edges longer than 2ℓ.
   compare_with_cli retriangulated "4 true 0.001 0.5 false false true 0.3 0 0 false" --adaptive --beta 0.5 \
-    --retriangulate --edge-length 0.3
+    --edge-length 0.3
   expect_changed "$work/retriangulated.meshlab.ply"
   # The constant case with one scheme option changed.
   compare_with_cli normal_integral "8 false 0.05 0.5 true false false 0.1 1 0 false" --tau 0.05 --beta 0.5 \
-    --conserve-volume --curvature normal_integral
+    --conserve-volume --curvature normal_integral --no-retriangulate
   compare_with_cli angle_sum "8 false 0.05 0.5 true false false 0.1 2 0 false" --tau 0.05 --beta 0.5 \
-    --conserve-volume --curvature normal_integral_angle_sum
+    --conserve-volume --curvature normal_integral_angle_sum --no-retriangulate
   compare_with_cli volume_gradient "8 false 0.05 0.5 true false false 0.1 0 1 false" --tau 0.05 --beta 0.5 \
-    --conserve-volume --mass volume_gradient
+    --conserve-volume --mass volume_gradient --no-retriangulate
   compare_with_cli extrapolated "8 false 0.05 0.5 true false false 0.1 0 0 true" --tau 0.05 --beta 0.5 \
-    --conserve-volume --extrapolate
+    --conserve-volume --extrapolate --no-retriangulate
   for name in normal_integral angle_sum volume_gradient extrapolated; do
     expect_different constant "$name"
   done

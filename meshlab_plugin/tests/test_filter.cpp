@@ -91,6 +91,7 @@ protected:
   {
     add_ellipsoid();
     RichParameterList list = parameters(3);
+    list.setValue("Retriangulate", BoolValue(false)); // the same vertices whatever the option
     list.setValue(name, value);
     EXPECT_TRUE(plugin.applyFilter(action(), document, list, nullptr)) << log_text().toStdString();
     std::vector<Point3m> positions;
@@ -193,7 +194,7 @@ TEST_F(FilterTest, default_edge_lengths_are_the_mean_edge_length)
   const double mean = sum / (3.0 * model->cm.fn);
   EXPECT_NEAR(parameters(1).getFloat("EdgeLength"), mean, relative_tolerance * mean);
   EXPECT_NEAR(retriangulation_parameters().getFloat("EdgeLength"), mean, relative_tolerance * mean);
-  EXPECT_FALSE(parameters(1).getBool("Retriangulate"));
+  EXPECT_TRUE(parameters(1).getBool("Retriangulate")); // on by default, as in `sdflow run`
 }
 
 TEST_F(FilterTest, scheme_options_offer_the_command_line_names_and_default_to_the_command_lines)
@@ -357,8 +358,7 @@ TEST_F(FilterTest, flow_with_retriangulation_remeshes_to_the_given_edge_length)
 {
   MeshModel* model = add_sphere();
   const int vertices = model->cm.vn;
-  RichParameterList list = parameters(1);
-  list.setValue("Retriangulate", BoolValue(true));
+  RichParameterList list = parameters(1); // re-triangulation on by default
   list.setValue("EdgeLength", FloatValue(list.getFloat("EdgeLength") / 2));
   ASSERT_TRUE(plugin.applyFilter(action(), document, list, nullptr)) << log_text().toStdString();
   EXPECT_GT(model->cm.vn, 2 * vertices); // about four times: a quarter of the area per triangle

@@ -7,8 +7,8 @@ exactly the scenario keys' (``beta``, ``curvature``, ``t_end``, ``adaptive={...}
 ``retriangulation={...}``, ...). Sections are dicts; ``retriangulation=True``/``False`` is short
 for ``retriangulation={"enabled": ...}``. ``None`` leaves a key at its default.
 
-Layers are read in order, each overriding the keys it has: the Python defaults (re-triangulation
-on), a scenario file, then the keyword arguments.
+Layers are read in order, each overriding the keys it has: the defaults of the parameter schema
+(the command line's; re-triangulation on), a scenario file, then the keyword arguments.
 """
 
 import json
@@ -25,11 +25,6 @@ from . import _sdflow
 #: Keys holding paths: made absolute, since the reader resolves relative paths against the
 #: folder of the file it reads (here a temporary file).
 _PATH_KEYS = {"input", "out", "schedule"}
-
-#: What sdflow.Flow and sdflow.run change from the command line's defaults: re-triangulation is on
-#: (docs/python.md; `sdflow run` turns it on with --retriangulate).
-PYTHON_DEFAULTS = {"retriangulation": {"enabled": True}}
-
 
 def _toml_value(key, value):
     if isinstance(value, (bool, np.bool_)):
@@ -83,32 +78,26 @@ def to_toml(parameters):
     return "\n".join(lines) + "\n", origin
 
 
-def read(parameters, scenario=None, defaults=PYTHON_DEFAULTS):
-    """RunParameters from `defaults`, then the `scenario` file, then `parameters` (keyword arguments).
+def read(parameters, scenario=None):
+    """RunParameters from the schema's defaults, then the `scenario` file, then `parameters`
+    (keyword arguments).
 
     Raises sdflow.InvalidParameter with the reader's message; for a keyword argument the
     location ``file:line:`` is replaced by ``keyword argument NAME:``.
     """
-    layers = []
     with tempfile.TemporaryDirectory(prefix="sdflow-parameters-") as folder:
-        for name, values in (("defaults", defaults), ("kwargs", parameters)):
-            text, origin = to_toml(values or {})
-            path = os.path.join(folder, name + ".toml")
-            with open(path, "w", encoding="utf-8") as out:
-                out.write(text)
-            layers.append((path, origin))
-        files = [layers[0][0]]
-        if scenario is not None:
-            files.append(os.fspath(scenario))
-        files.append(layers[1][0])
+        text, origin = to_toml(parameters or {})
+        path = os.path.join(folder, "kwargs.toml")
+        with open(path, "w", encoding="utf-8") as out:
+            out.write(text)
+        files = [] if scenario is None else [os.fspath(scenario)]
+        files.append(path)
         try:
             return _sdflow.read_parameters(files)
         except _sdflow.Error as e:
-            message = str(e)
-            for path, origin in layers:
-                match = re.match(re.escape(path) + r":(\d+): (.*)", message, re.S)
-                if match:
-                    line = int(match.group(1))
-                    where = origin[line - 1] if 0 < line <= len(origin) else "?"
-                    raise type(e)(f"keyword argument {where}: {match.group(2)}") from None
+            match = re.match(re.escape(path) + r":(\d+): (.*)", str(e), re.S)
+            if match:
+                line = int(match.group(1))
+                where = origin[line - 1] if 0 < line <= len(origin) else "?"
+                raise type(e)(f"keyword argument {where}: {match.group(2)}") from None
             raise

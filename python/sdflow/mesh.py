@@ -39,16 +39,17 @@ class MeshResult(tuple):
 # -- files and validation -------------------------------------------------------------------------
 
 def read(path):
-    """Read a mesh file (OFF, OBJ, PLY ascii/binary, STL ascii/binary), validated and oriented
+    """Read a mesh file (OFF, OBJ, PLY ascii/binary, STL ascii/binary, VTP), validated and oriented
     outward as `sdflow` reads it; `.info["findings"]` lists what validation found and repaired."""
     V, F, findings = _sdflow.read(os.fspath(path))
     return MeshResult(V, F, {"findings": findings})
 
 
 def write(path, V, F, *, binary=False, **vertex_data):
-    """Write V, F atomically in the format of the extension (.off .obj .ply .stl, round-trip
-    precision; binary=True for binary PLY/STL), or .vtp with per-vertex data
-    (``write("s.vtp", V, F, H=H, N=N)``: 1-D arrays or n×k)."""
+    """Write V, F atomically in the format of the extension (.off .obj .ply .stl .vtp, round-trip
+    precision; binary=True for binary PLY/STL), with per-vertex data in .ply and .vtp
+    (``write("s.ply", V, F, H=H, N=N)``: 1-D arrays or n×k; PLY names H `quality` and N `nx ny nz`,
+    the names MeshLab, PyVista and trimesh read)."""
     _sdflow.write(os.fspath(path), V, F, vertex_data, binary)
 
 

@@ -137,35 +137,29 @@ void bind_io(py::module_& m)
       [](const std::filesystem::path& file, const py::handle& V, const py::handle& F, const py::dict& fields,
          bool binary) {
         const Mesh mesh = mesh_from_arrays(V, F);
-        std::string extension = file.extension().string();
-        for (char& c : extension)
-          c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        if (extension == ".vtp") {
-          std::vector<VertexField> vertex_fields;
-          for (auto [name, value] : fields) {
-            py::array_t<double, py::array::c_style | py::array::forcecast> a =
-                py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
-            if (!a || a.ndim() < 1 || a.ndim() > 2)
-              throw InvalidParameter(fmt::format("write {}: vertex data `{}` must be a 1-D or (n, k) array of reals",
-                                                 file.string(), std::string(py::str(name))));
-            const Eigen::Index rows = a.shape(0), cols = a.ndim() == 2 ? a.shape(1) : 1;
-            Eigen::MatrixXd values(rows, cols);
-            for (Eigen::Index r = 0; r < rows; ++r)
-              for (Eigen::Index c = 0; c < cols; ++c)
-                values(r, c) = a.data()[r * cols + c];
-            vertex_fields.push_back({std::string(py::str(name)), std::move(values)});
-          }
-          ToolboxLock release;
-          write_vtp(mesh, vertex_fields, file);
-          return;
+        const MeshFormat format = format_from_extension(file);
+        std::vector<VertexField> vertex_fields;
+        for (auto [name, value] : fields) {
+          py::array_t<double, py::array::c_style | py::array::forcecast> a =
+              py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+          if (!a || a.ndim() < 1 || a.ndim() > 2)
+            throw InvalidParameter(fmt::format("write {}: vertex data `{}` must be a 1-D or (n, k) array of reals",
+                                               file.string(), std::string(py::str(name))));
+          const Eigen::Index rows = a.shape(0), cols = a.ndim() == 2 ? a.shape(1) : 1;
+          Eigen::MatrixXd values(rows, cols);
+          for (Eigen::Index r = 0; r < rows; ++r)
+            for (Eigen::Index c = 0; c < cols; ++c)
+              values(r, c) = a.data()[r * cols + c];
+          vertex_fields.push_back({std::string(py::str(name)), std::move(values)});
         }
-        if (!fields.empty())
-          throw InvalidParameter(fmt::format("write {}: per-vertex data ({}) needs a .vtp file; {} holds positions "
-                                             "and triangles only",
+        if (!vertex_fields.empty() && format != MeshFormat::ply && format != MeshFormat::vtp)
+          throw InvalidParameter(fmt::format("write {}: per-vertex data ({}) needs a .ply or .vtp file; {} holds "
+                                             "positions and triangles only",
                                              file.string(), std::string(py::str(py::list(fields.attr("keys")()))),
-                                             extension.empty() ? "this format" : extension));
+                                             file.extension().string()));
         ToolboxLock release;
-        write_mesh(mesh, file, {.encoding = binary ? Encoding::binary : Encoding::ascii});
+        write_mesh(mesh, file, {.encoding = binary ? Encoding::binary : Encoding::ascii,
+                                .vertex_fields = std::move(vertex_fields)});
       },
       py::arg("path"), py::arg("V"), py::arg("F"), py::arg("fields"), py::arg("binary"));
 

@@ -164,10 +164,10 @@ def test_the_gil_is_released_while_stepping(meshes):
 
 def test_numerical_failure_is_a_numerical_error_with_the_command_lines_message(cli, meshes, tmp_path):
     scenario = tmp_path / "unstable.toml"
-    scenario.write_text("beta = 0\ntau = 0.5\nsteps = 20\n")
+    scenario.write_text("beta = 0\ntau = 0.5\nsteps = 20\n[retriangulation]\nenabled = false\n")
     result = cli("run", scenario, "--input", meshes["ellipsoid"], "--out", tmp_path / "cli", check=False)
     assert result.returncode == 3
-    flow = sdflow.Flow(*sdflow.read(meshes["ellipsoid"]), scenario=scenario, retriangulation=False)
+    flow = sdflow.Flow(*sdflow.read(meshes["ellipsoid"]), scenario=scenario)
     with pytest.raises(sdflow.NumericalError) as e:
         flow.advance()
     assert e.value.exit_code == 3 and isinstance(e.value, RuntimeError) and sdflow.SolverFailure is sdflow.NumericalError

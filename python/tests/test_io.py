@@ -1,5 +1,6 @@
 """Files, validation and statistics: round trips, finding codes, `stats` equal to `stats --json`."""
 
+import base64
 import json
 import os
 import xml.etree.ElementTree as ElementTree
@@ -44,16 +45,46 @@ def test_vtp_carries_vertex_data(torus, tmp_path):
     H = sdflow.mean_curvature(V, F)
     N = sdflow.normals(V, F)
     sdflow.write(tmp_path / "s.vtp", V, F, H=H, N=N)
+    # Well-formed XML; each array base64 in the appended data: a UInt64 byte count, then doubles.
     root = ElementTree.parse(tmp_path / "s.vtp").getroot()
     arrays = {a.get("Name"): a for a in root.iter("DataArray") if a.get("Name")}
     assert arrays["H"].get("NumberOfComponents") == "1" and arrays["N"].get("NumberOfComponents") == "3"
-    np.testing.assert_allclose(np.array(arrays["H"].text.split(), float), H, rtol=1e-9)
+    appended = root.find("AppendedData").text.strip()[1:]
+
+    def values(name):
+        offset = int(arrays[name].get("offset"))
+        head = base64.b64decode(appended[offset:offset + 12])
+        count = int(np.frombuffer(head[:8], "<u8")[0])
+        data = base64.b64decode(appended[offset:offset + 4 * ((8 + count + 2) // 3)])
+        return np.frombuffer(data[8:8 + count], "<f8")
+
+    np.testing.assert_array_equal(values("H"), H)
+    np.testing.assert_array_equal(values("N").reshape(-1, 3), N)
+    np.testing.assert_array_equal(values("Points").reshape(-1, 3), V)
+    back = sdflow.read(tmp_path / "s.vtp")
+    np.testing.assert_array_equal(back.V, V)
 
 
-def test_vertex_data_needs_vtp(torus, tmp_path):
+def test_ply_carries_vertex_data_as_quality_and_normals(torus, tmp_path):
     V, F = torus
-    with pytest.raises(sdflow.InvalidParameter, match="needs a .vtp file"):
-        sdflow.write(tmp_path / "s.ply", V, F, H=np.zeros(len(V)))
+    H = sdflow.mean_curvature(V, F)
+    N = sdflow.normals(V, F)
+    sdflow.write(tmp_path / "s.ply", V, F, H=H, N=N)
+    with open(tmp_path / "s.ply") as f:
+        header = f.read().split("end_header")[0]
+        f.seek(0)
+        lines = f.read().splitlines()
+    assert "property double quality" in header and "property double nx" in header
+    first = lines.index("end_header") + 1
+    rows = np.array([[float(x) for x in line.split()] for line in lines[first:first + len(V)]])
+    np.testing.assert_array_equal(rows[:, 3], H)
+    np.testing.assert_array_equal(rows[:, 4:7], N)
+
+
+def test_vertex_data_needs_ply_or_vtp(torus, tmp_path):
+    V, F = torus
+    with pytest.raises(sdflow.InvalidParameter, match="needs a .ply or .vtp file"):
+        sdflow.write(tmp_path / "s.off", V, F, H=np.zeros(len(V)))
 
 
 def test_read_reports_orientation_flip(torus, tmp_path):

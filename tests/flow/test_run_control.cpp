@@ -21,6 +21,7 @@ RunParameters parameters(const fs::path& out)
   p.output_dir = out;
   p.steps = 12;
   p.checkpoint_every = 5;
+  p.retriangulation.enabled = false;
   return p;
 }
 

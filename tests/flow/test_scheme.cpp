@@ -34,6 +34,7 @@ Mesh evolve(const Mesh& mesh, double tau, int steps, const SchemeOptions& scheme
             const SolverOptions& solver_options = {})
 {
   RunParameters p;
+  p.retriangulation.enabled = false;
   p.steps = steps;
   p.time_step.mode = TimeStepMode::constant;
   p.time_step.tau = tau;

@@ -52,6 +52,7 @@ RunParameters constant_tau(const fs::path& out, double tau, long steps, double b
   p.time_step.mode = TimeStepMode::constant;
   p.time_step.tau = tau;
   p.scheme.beta = beta;
+  p.retriangulation.enabled = false;
   return p;
 }
 
@@ -155,6 +156,7 @@ TEST(Simulation, adaptive_tau_grows_from_a_safe_start)
 {
   test::TempDir dir;
   RunParameters p;
+  p.retriangulation.enabled = false;
   p.output_dir = dir / "run";
   p.steps = 30;
   run_simulation(analytic::ellipsoid(3, 5, 4, 3), {.parameters = p});
@@ -175,6 +177,7 @@ TEST(Simulation, resumed_run_reproduces_the_uninterrupted_metrics_bit_for_bit)
     test::TempDir dir;
     const Mesh start = analytic::ellipsoid(3, 5, 4, 3);
     RunParameters p;
+    p.retriangulation.enabled = false;
     p.steps = 14;
     p.checkpoint_every = 4;
     p.snapshot_every = 5;
@@ -301,6 +304,7 @@ TEST(Simulation, a_smaller_error_tolerance_gives_a_smaller_error)
   const auto final_area = [&](double tolerance, const char* name, long* steps = nullptr) {
     test::TempDir dir;
     RunParameters p;
+    p.retriangulation.enabled = false;
     p.output_dir = dir / name;
     p.end_time = 2;
     p.scheme.extrapolate = true;

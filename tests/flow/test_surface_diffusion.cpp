@@ -8,6 +8,7 @@
 #include "sdflow/io/io.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/mesher.h"
+#include "sdflow/spatial/intersect.h"
 #include "support/analytic_meshes.h"
 
 #include <fmt/format.h>
@@ -37,6 +38,7 @@ RunParameters adaptive_run(long steps)
 {
   RunParameters p;
   p.steps = steps;
+  p.retriangulation.enabled = false;
   return p;
 }
 
@@ -104,9 +106,33 @@ TEST(SurfaceDiffusion, a_restored_state_continues_bit_for_bit)
   }
 }
 
+TEST(SurfaceDiffusion, without_retriangulation_a_step_into_a_self_intersection_stops_the_flow_before_it)
+{
+  // A torus whose hole (radius 0.25) seals within t ≈ 0.013: without re-triangulation its surface
+  // would cross itself and go on; the flow stops on the step that would do it, naming the option.
+  const Mesh torus = mesh_implicit_surface(torus_shape({.major = 1, .minor = 0.75}), {.vertices = 800}).mesh;
+  RunParameters p;
+  p.retriangulation.enabled = false;
+  p.end_time = 1;
+  SurfaceDiffusion flow(torus, p);
+  std::string message;
+  try {
+    while (!flow.finished())
+      flow.step();
+  } catch (const SolverFailure& e) {
+    message = e.what();
+  }
+  ASSERT_FALSE(message.empty()) << "reached t = " << flow.time() << " without a self-intersection";
+  EXPECT_NE(message.find(fmt::format("step {} ", flow.steps() + 1)), std::string::npos) << message;
+  EXPECT_NE(message.find("run with --retriangulate"), std::string::npos) << message;
+  EXPECT_TRUE(self_intersections(flow.mesh()).empty()) << "the flow keeps the last surface that did not cross itself";
+  EXPECT_LT(flow.time(), 0.1);
+}
+
 TEST(SurfaceDiffusion, needs_no_stop_condition_but_a_run_does)
 {
   RunParameters p; // no steps, no end time
+  p.retriangulation.enabled = false;
   SurfaceDiffusion flow(analytic::icosphere(2), p);
   EXPECT_FALSE(flow.finished());
   const StepRecord first = flow.step();
@@ -145,6 +171,7 @@ TEST(SurfaceDiffusion, a_table_step_that_fails_is_covered_by_adaptive_steps_and_
   // table that asks for it used to stop there (exit 3); its failed step is now covered by adaptive
   // steps, which take exactly the table's time, and the table's small τ then takes over again.
   RunParameters p;
+  p.retriangulation.enabled = false;
   p.scheme.beta = 0;
   p.time_step.mode = TimeStepMode::schedule;
   p.time_step.schedule = TauSchedule({{1, 2, 0.3}, {3, 1000, 0.0005}});

@@ -7,4 +7,6 @@ target_sources(sdflow_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/test_point_cloud.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_round_trip.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_validate.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_vertex_fields.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_vtp.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_write_atomically.cpp)

@@ -99,7 +99,8 @@ TEST_P(RoundTrip, keeps_points_bit_exact_and_faces)
 INSTANTIATE_TEST_SUITE_P(EveryFormat, RoundTrip,
                          testing::Values(Case{"off", Encoding::ascii}, Case{"obj", Encoding::ascii},
                                          Case{"ply", Encoding::ascii}, Case{"ply", Encoding::binary},
-                                         Case{"stl", Encoding::ascii}, Case{"stl", Encoding::binary}),
+                                         Case{"stl", Encoding::ascii}, Case{"stl", Encoding::binary},
+                                         Case{"vtp", Encoding::binary}),
                          [](const testing::TestParamInfo<Case>& info) {
                            return info.param.extension + (info.param.encoding == Encoding::binary ? "_binary" : "_ascii");
                          });
@@ -114,7 +115,7 @@ TEST(RoundTrip, extreme_doubles_survive_text_formats)
                             .finished(),
                         (FaceIndices(1, 3) << 0, 1, 2).finished());
   test::TempDir dir;
-  for (const std::string extension : {"off", "obj", "ply"}) {
+  for (const std::string extension : {"off", "obj", "ply", "vtp"}) {
     SCOPED_TRACE(extension);
     const auto file = dir / ("extreme." + extension);
     write_mesh(mesh, file);
@@ -135,6 +136,7 @@ TEST(RoundTrip, format_follows_extension_case_insensitively)
   EXPECT_EQ(format_from_extension("b.Obj"), MeshFormat::obj);
   EXPECT_EQ(format_from_extension("c.ply"), MeshFormat::ply);
   EXPECT_EQ(format_from_extension("d.StL"), MeshFormat::stl);
+  EXPECT_EQ(format_from_extension("e.VTP"), MeshFormat::vtp);
   EXPECT_THROW(format_from_extension("e.vtk"), IoError);
   EXPECT_THROW(format_from_extension("noextension"), IoError);
 }

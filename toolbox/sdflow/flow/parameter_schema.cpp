@@ -80,7 +80,7 @@ std::vector<ParameterEntry> build_schema()
     e.written = [](const RunParameters&) { return false; }; // run.toml holds what it resolved to
   }
   {
-    auto& e = add(entry("input", "--input", ParameterType::path, "The initial mesh (OFF, OBJ, PLY, STL)"));
+    auto& e = add(entry("input", "--input", ParameterType::path, "The initial mesh (OFF, OBJ, PLY, STL, VTP)"));
     e.existing_file = true;
     bind<std::filesystem::path>(e, &RunParameters::input);
     e.written = [](const RunParameters& p) { return !p.input.empty(); };
@@ -359,12 +359,13 @@ std::vector<ParameterEntry> build_schema()
   {
     auto& e = add(entry("retriangulation.enabled", "--retriangulate", ParameterType::boolean,
                         "Re-triangulate between steps when the surface intersects itself or its triangles degrade "
-                        "(paper §3.2.1)"));
+                        "(paper §3.2.1); off, a step that makes the surface intersect itself stops the run (exit 3)"));
     e.meshlab = {.name = "Retriangulate", .label = "Re-triangulate",
                  .help = "Re-triangulate between steps when the surface intersects itself (a pinch-off, a hole "
                          "closing, bodies touching) or its triangles degrade (an angle below 15°, an edge outside "
                          "[ℓ/2, 2ℓ]), by the pipeline of <i>Surface diffusion: re-triangulate</i>. The number of "
-                         "vertices then changes."};
+                         "vertices then changes. On by default, as in sdflow run; off, the filter fails at the first "
+                         "step that makes the surface intersect itself."};
     bind<bool>(e, &RunParameters::retriangulation, &RS::enabled);
   }
   {
@@ -715,6 +716,8 @@ std::string meshlab_parameter_table_markdown()
     std::string flag = "`" + e.flag + "`";
     for (const auto& shorthand : e.shorthands)
       flag += ", `" + shorthand.flag + "`";
+    if (e.type == ParameterType::boolean)
+      flag += ", `--no-" + e.flag.substr(2) + "`";
     s += fmt::format("| {} (`{}`) | {} | {} |\n", e.meshlab.label, e.meshlab.name, cell, flag);
   }
   return s;

@@ -2,6 +2,7 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/flow/parameter_schema.h"
+#include "sdflow/version.h"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -13,6 +14,9 @@
 
 namespace sdflow {
 namespace {
+
+//! The table of run.toml that records the sdflow which wrote it (version and git commit).
+constexpr const char* written_by_table = "written_by";
 
 [[noreturn]] void bad(const std::filesystem::path& file, const toml::node& node, const std::string& what)
 {
@@ -141,6 +145,8 @@ std::vector<GivenKey> given_keys(const std::filesystem::path& file, const toml::
   };
   for (const auto& [key_view, node] : table) {
     const std::string key(key_view.str());
+    if (key == written_by_table && node.is_table())
+      continue; // what wrote a run.toml: not a parameter
     if (sections.count(key)) {
       const toml::table* t = node.as_table();
       if (!t)
@@ -287,6 +293,9 @@ std::string run_parameters_toml(const RunParameters& p)
       s += fmt::format("# {} read from {}\n", e.name(), schedule->file.string());
     s += fmt::format("{} = {}\n", e.name(), toml_text(value));
   }
+  s += fmt::format("\n[{}]   # the sdflow that wrote this file (not parameters: ignored when read)\n"
+                   "sdflow_version = {}\nsdflow_commit = {}\n",
+                   written_by_table, toml_text(std::string(version())), toml_text(std::string(git_commit())));
   return s;
 }
 

@@ -71,7 +71,7 @@ VertexMass vertex_mass(const std::string& name);
 void apply_preset(const std::string& name, RunParameters& parameters);
 
 //! Read a scenario or run.toml into `parameters`, overwriting only the keys present (a `preset`
-//! first, then the other keys, `time_step` last). Older key names are read too (`t_end`). Relative
+//! first, then the other keys, `time_step` last; run.toml's `[written_by]` table is skipped). Older key names are read too (`t_end`). Relative
 //! paths are resolved against the file's folder. Throws IoError (file, line) on a syntax error,
 //! InvalidParameter (file, line, key) on an unknown key (with the closest known one), a key given
 //! twice under two names, or a value of the wrong type or outside its range.
@@ -86,7 +86,8 @@ void validate_flow_parameters(const RunParameters& parameters);
 void validate_run_parameters(const RunParameters& parameters);
 
 //! The fully resolved parameters as TOML, under the canonical keys (the schedule inline, absolute
-//! paths, an infinite limit as `inf`).
+//! paths, an infinite limit as `inf`), and a table `[written_by]` with the writer's
+//! `sdflow_version` and `sdflow_commit` (version.h), which read_run_parameters skips.
 std::string run_parameters_toml(const RunParameters& parameters);
 
 } // namespace sdflow

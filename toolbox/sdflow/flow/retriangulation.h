@@ -19,7 +19,9 @@ namespace sdflow {
 //! with r = `edge_ratio` and ℓ the local target of the pipeline's curvature-adapted sizing, and more
 //! than the last re-triangulation left behind), or every time with `always` (the paper's practice).
 struct RetriangulationSchedule {
-  bool enabled = false;
+  //! On by default: re-triangulation is what carries the method through topology changes. Off, a
+  //! flow stops at the first self-intersection (intersection_guard.h).
+  bool enabled = true;
   long every = 1;             //!< look at the surface after every k-th step (≥ 1)
   double min_angle_deg = 15;  //!< re-triangulate when a triangle's smallest angle is below this
   double edge_ratio = 2;      //!< ... or an edge is longer than r·ℓ or shorter than ℓ/r (r > 1)

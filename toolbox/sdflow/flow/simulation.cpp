@@ -220,9 +220,10 @@ private:
   {
     const std::string name = fmt::format("step_{:06d}", flow.steps());
     const FlowOperators& op = flow.operators();
-    write_mesh(flow.mesh(), dir_ / "snapshots" / (name + ".ply"), {.encoding = Encoding::binary});
-    write_vtp(flow.mesh(), {{"H", op.curvature}, {"N", op.normals}, {"w", flow.velocity()}},
-              dir_ / "snapshots" / (name + ".vtp"));
+    // H and N (PLY: quality, nx ny nz) are those the next step uses; w is the last step's.
+    const std::vector<VertexField> fields = {{"H", op.curvature}, {"N", op.normals}, {"w", flow.velocity()}};
+    write_mesh(flow.mesh(), dir_ / "snapshots" / (name + ".ply"), {.encoding = Encoding::binary, .vertex_fields = fields});
+    write_vtp(flow.mesh(), fields, dir_ / "snapshots" / (name + ".vtp"));
     const std::filesystem::path file = std::filesystem::path("snapshots") / (name + ".vtp");
     if (snapshots_.empty() || snapshots_.back().file != file)
       snapshots_.push_back({flow.time(), file});

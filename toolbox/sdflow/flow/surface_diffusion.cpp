@@ -145,9 +145,22 @@ StepRecord SurfaceDiffusion::step()
   if (rejections > 0)
     events.insert(events.begin(), "rejected");
 
+  VertexVectors accepted; // the last accepted surface, kept while the guard looks at the new one
+  if (guard_)
+    accepted = vertex_positions(mesh_);
   set_vertex_positions(mesh_, trial.positions);
   if (p_.conserve_volume)
     set_vertex_positions(mesh_, restore_volumes(mesh_, volumes).positions);
+  if (guard_) {
+    const Stopwatch check;
+    try {
+      guard_->check(mesh_, next_step, time_ + tau);
+    } catch (const SolverFailure&) {
+      set_vertex_positions(mesh_, accepted);
+      throw;
+    }
+    record.times.retriangulation_check += check.seconds();
+  }
   step_ = next_step;
   time_ += tau;
   if ((fell_back || controller_before.fallback_left > 0) && !controller_.adaptive())
@@ -226,7 +239,8 @@ void SurfaceDiffusion::renew_connectivity()
   cache_.emplace(mesh_);
 }
 
-//! The hook: the caller's, or the one of the parameters' schedule with its ℓ fixed now.
+//! The hook: the caller's, or the one of the parameters' schedule with its ℓ fixed now; without
+//! either, the guard that stops the flow at a self-intersection (intersection_guard.h).
 void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
 {
   if (hook) {
@@ -234,8 +248,10 @@ void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
     return;
   }
   RetriangulationSchedule& schedule = p_.retriangulation;
-  if (!schedule.enabled)
+  if (!schedule.enabled) {
+    guard_.emplace(mesh_);
     return;
+  }
   if (!(schedule.pipeline.edge_length > 0))
     schedule.pipeline.edge_length = mean_edge_length(mesh_);
   retriangulate_ = make_retriangulation_hook(schedule);

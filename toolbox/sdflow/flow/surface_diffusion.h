@@ -6,9 +6,8 @@
 //! and the MeshLab plugin and tests step it directly.
 //!
 //! ```cpp
-//! RunParameters p;                          // sdflow's defaults: adaptive τ, cotangent H
-//! p.end_time = 0.5;
-//! p.retriangulation.enabled = true;
+//! RunParameters p;                          // sdflow's defaults: adaptive τ, cotangent H,
+//! p.end_time = 0.5;                         // re-triangulation on
 //! SurfaceDiffusion flow(mesh, p);
 //! while (!flow.finished())
 //!   flow.step();
@@ -16,6 +15,7 @@
 //! ```
 
 #include "sdflow/flow/flow_state.h"
+#include "sdflow/flow/intersection_guard.h"
 #include "sdflow/flow/parameters.h"
 #include "sdflow/flow/retriangulation.h"
 #include "sdflow/flow/scheme.h"
@@ -78,8 +78,9 @@ struct FlowMetrics {
 class SurfaceDiffusion {
 public:
   //! Start from `initial` (a valid mesh, closed components oriented outward). Without a hook, the
-  //! flow makes one from `parameters.retriangulation` when it is enabled, fixing its ℓ (0: the
-  //! initial mean edge length) in parameters(). Throws InvalidParameter on parameters out of range
+  //! flow makes one from `parameters.retriangulation` when it is enabled (the default), fixing its ℓ
+  //! (0: the initial mean edge length) in parameters(); when it is off, it stops at the first step
+  //! that makes the surface intersect itself (intersection_guard.h). Throws InvalidParameter on parameters out of range
   //! (validate_flow_parameters; a stop condition is not needed), InvalidMesh on a mesh the scheme
   //! cannot use.
   SurfaceDiffusion(const Mesh& initial, RunParameters parameters, RetriangulationHook retriangulate = {});
@@ -90,8 +91,9 @@ public:
 
   //! Take one accepted step: trials until the time-step rule accepts one (a step that no τ makes
   //! acceptable is retried once after a forced re-triangulation), then the re-triangulation hook.
-  //! Never past `end_time`. Throws SolverFailure when the flow cannot go on stably (the surface is
-  //! that of the last accepted step).
+  //! Never past `end_time`. Throws SolverFailure when the flow cannot go on stably, or, without
+  //! re-triangulation, when the step makes the surface intersect itself (the surface is that of
+  //! the last accepted step).
   StepRecord step();
 
   //! The step limit or end time is reached, or (with stop_at_topology_change) the topology changed.
@@ -138,6 +140,7 @@ private:
 
   RunParameters p_;
   RetriangulationHook retriangulate_;
+  std::optional<SelfIntersectionGuard> guard_; // without a hook: stops the flow at a self-intersection
   FlowSolver solver_, half_solver_; // the half steps of extrapolated steps keep a factor of their own
   TimeStepController controller_;
   Mesh mesh_;

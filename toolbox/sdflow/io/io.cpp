@@ -71,7 +71,9 @@ MeshFormat format_from_extension(const std::filesystem::path& file)
     return MeshFormat::ply;
   if (extension == ".stl")
     return MeshFormat::stl;
-  throw IoError(fmt::format("{}: unknown mesh format '{}' (expected .off, .obj, .ply or .stl)", file.string(),
+  if (extension == ".vtp")
+    return MeshFormat::vtp;
+  throw IoError(fmt::format("{}: unknown mesh format '{}' (expected .off, .obj, .ply, .stl or .vtp)", file.string(),
                             file.extension().string()));
 }
 
@@ -85,6 +87,7 @@ PolygonSoup read_polygon_soup(const std::filesystem::path& file)
   case MeshFormat::obj: return detail::read_obj(text, file);
   case MeshFormat::ply: return detail::read_ply(text, file);
   case MeshFormat::stl: return detail::read_stl(text, file);
+  case MeshFormat::vtp: return detail::read_vtp(text, file);
   }
   throw IoError(fmt::format("{}: unhandled mesh format", file.string()));
 }
@@ -103,12 +106,14 @@ void write_mesh(const Mesh& mesh, const std::filesystem::path& file, const Write
 {
   const MeshFormat format = format_from_extension(file);
   const bool binary = options.encoding == Encoding::binary;
+  check_vertex_fields(options.vertex_fields, mesh.n_vertices(), file);
   write_atomically(file, [&](std::ostream& out) {
     switch (format) {
     case MeshFormat::off: detail::write_off(mesh, out); break;
     case MeshFormat::obj: detail::write_obj(mesh, out); break;
-    case MeshFormat::ply: detail::write_ply(mesh, out, binary); break;
+    case MeshFormat::ply: detail::write_ply(mesh, out, binary, options.vertex_fields); break;
     case MeshFormat::stl: detail::write_stl(mesh, out, binary); break;
+    case MeshFormat::vtp: detail::write_vtp(mesh, options.vertex_fields, out); break;
     }
   });
 }

@@ -1,6 +1,7 @@
 #pragma once
 //! \file io.h
-//! \brief Reading and writing meshes: OFF, OBJ, PLY (ascii and binary), STL (ascii and binary).
+//! \brief Reading and writing meshes: OFF, OBJ, PLY (ascii and binary), STL (ascii and binary),
+//! VTK XML PolyData (.vtp: ascii, base64 and raw appended data; written base64 appended).
 //!
 //! Readers are sdflow's own, so every parse error names the file and line (OpenMesh's readers
 //! skip bad faces with a console message). Every writer is atomic: it writes a temporary file
@@ -8,15 +9,17 @@
 
 #include "sdflow/io/soup.h"
 #include "sdflow/io/validate.h"
+#include "sdflow/io/vertex_field.h"
 #include "sdflow/mesh.h"
 
 #include <filesystem>
 #include <functional>
 #include <iosfwd>
+#include <vector>
 
 namespace sdflow {
 
-enum class MeshFormat { off, obj, ply, stl };
+enum class MeshFormat { off, obj, ply, stl, vtp };
 
 //! The format named by a file's extension (case-insensitive); throws IoError for any other.
 MeshFormat format_from_extension(const std::filesystem::path& file);
@@ -30,14 +33,20 @@ BuiltMesh read_mesh(const std::filesystem::path& file, const BuildOptions& optio
 enum class Encoding { ascii, binary };
 
 struct WriteOptions {
-  //! Binary is honoured by PLY (little endian) and STL; OFF and OBJ are always ascii.
+  //! Binary is honoured by PLY (little endian) and STL; OFF and OBJ are always ascii, VTP always
+  //! binary (base64 appended data).
   Encoding encoding = Encoding::ascii;
+  //! Per-vertex data (#V rows, the mesh's vertex indices), written by PLY and VTP, which have a
+  //! place for it (the other formats leave it out): PLY names `H` `quality` and `N` `nx ny nz`
+  //! (vertex_field.h); `surface_fields(mesh)` gives H and N. Doubles, every bit kept.
+  std::vector<VertexField> vertex_fields;
 };
 
 //! Write a mesh in the format of the file's extension, atomically, with round-trip precision:
-//! text coordinates as `{:.17g}`, binary PLY as doubles. Binary STL can only hold floats, so it
-//! rounds coordinates to single precision (the format's limit). Deleted elements are skipped and
-//! the remaining vertices numbered in order.
+//! text coordinates as `{:.17g}`, binary PLY and VTP as doubles. Binary STL can only hold floats, so
+//! it rounds coordinates to single precision (the format's limit). Deleted elements are skipped and
+//! the remaining vertices numbered in order. Throws InvalidParameter for fields that do not fit
+//! the mesh (check_vertex_fields).
 void write_mesh(const Mesh& mesh, const std::filesystem::path& file, const WriteOptions& options = {});
 
 //! Run `write` on a stream to a temporary file beside `file`, then rename it onto `file`.

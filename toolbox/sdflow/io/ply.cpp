@@ -1,10 +1,13 @@
 //! Stanford PLY (Turk 1994): a text header declaring elements and their scalar or list properties,
 //! then the data in ascii (one element per line), binary_little_endian or binary_big_endian.
 //! Points come from the x, y, z properties of "vertex" (any scalar type), normals from its nx, ny,
-//! nz when all three are declared (other properties skipped),
+//! nz when all three are declared, its other scalar properties as per-vertex fields under their
+//! names (`quality`, `w`; lists skipped),
 //! polygons from the "vertex_indices" (or "vertex_index") list of "face"; other elements skipped.
 
 #include "sdflow/io/detail/formats.h"
+
+#include "sdflow/errors.h"
 
 #include <fmt/format.h>
 
@@ -151,6 +154,7 @@ struct Roles {
   int vertex_element = -1;
   std::array<int, 3> xyz = {-1, -1, -1};
   std::array<int, 3> normal = {-1, -1, -1}; //!< all -1 unless nx, ny and nz are all declared
+  std::vector<int> field_of;                //!< per vertex property: its field in the soup, or -1
   int face_element = -1;
   int face_list = -1;
 };
@@ -177,6 +181,15 @@ Roles find_roles(const Header& header, const std::filesystem::path& file)
           fail(file, 0, fmt::format("the 'vertex' element has no scalar property '{}'", axes[k]));
       if (std::count(roles.normal.begin(), roles.normal.end(), -1) != 0)
         roles.normal = {-1, -1, -1};
+      roles.field_of.assign(element.properties.size(), -1);
+      int fields = 0;
+      for (std::size_t p = 0; p < element.properties.size(); ++p) {
+        const int index = static_cast<int>(p);
+        const bool geometry = std::count(roles.xyz.begin(), roles.xyz.end(), index) != 0 ||
+                              std::count(roles.normal.begin(), roles.normal.end(), index) != 0;
+        if (!element.properties[p].list && !geometry)
+          roles.field_of[p] = fields++;
+      }
     } else if (element.name == "face" && roles.face_element < 0) {
       roles.face_element = static_cast<int>(e);
       for (std::size_t p = 0; p < element.properties.size(); ++p)
@@ -379,6 +392,13 @@ PolygonSoup read_data(const Header& header, const Roles& roles, Values& values)
 {
   PolygonSoup soup;
   const std::filesystem::path& file = values.file();
+  std::vector<std::vector<double>> fields;
+  if (roles.vertex_element >= 0)
+    for (std::size_t p = 0; p < roles.field_of.size(); ++p)
+      if (roles.field_of[p] >= 0) {
+        soup.vertex_fields.push_back({header.elements[roles.vertex_element].properties[p].name, {}});
+        fields.emplace_back();
+      }
   for (std::size_t e = 0; e < header.elements.size(); ++e) {
     const Element& element = header.elements[e];
     const bool is_vertex = static_cast<int>(e) == roles.vertex_element;
@@ -391,13 +411,16 @@ PolygonSoup read_data(const Header& header, const Roles& roles, Values& values)
         const Property& property = element.properties[p];
         if (!property.list) {
           const double v = values.value(property.type, property.name);
-          if (is_vertex)
+          if (is_vertex) {
             for (int k = 0; k < 3; ++k) {
               if (roles.xyz[k] == static_cast<int>(p))
                 point[k] = v;
               if (roles.normal[k] == static_cast<int>(p))
                 normal[k] = v;
             }
+            if (roles.field_of[p] >= 0)
+              fields[roles.field_of[p]].push_back(v);
+          }
           continue;
         }
         const long long length =
@@ -432,7 +455,20 @@ PolygonSoup read_data(const Header& header, const Roles& roles, Values& values)
     }
   }
   values.finish();
+  for (std::size_t f = 0; f < fields.size(); ++f)
+    soup.vertex_fields[f].values = Eigen::Map<const Eigen::VectorXd>(fields[f].data(), static_cast<Eigen::Index>(fields[f].size()));
   return soup;
+}
+
+//! The PLY vertex properties of a field: H → quality and N → nx ny nz (the names MeshLab, VTK and
+//! trimesh read), another scalar → its name, another vector → NAME_x NAME_y NAME_z.
+std::vector<std::string> ply_property_names(const VertexField& field)
+{
+  if (field.values.cols() == 1)
+    return {field.name == "H" ? "quality" : field.name};
+  if (field.name == "N")
+    return {"nx", "ny", "nz"};
+  return {field.name + "_x", field.name + "_y", field.name + "_z"};
 }
 
 } // namespace
@@ -451,15 +487,24 @@ PolygonSoup read_ply(std::string_view bytes, const std::filesystem::path& file)
   return read_data(header, roles, values);
 }
 
-void write_ply(const Mesh& mesh, std::ostream& out, bool binary)
+void write_ply(const Mesh& mesh, std::ostream& out, bool binary, const std::vector<VertexField>& fields)
 {
   const Numbering number = number_elements(mesh);
-  // Doubles keep every coordinate bit; int indices cover any mesh sdflow can hold.
+  std::vector<std::string> names = {"x", "y", "z"};
+  for (const VertexField& field : fields)
+    for (std::string& name : ply_property_names(field)) {
+      if (std::find(names.begin(), names.end(), name) != names.end())
+        throw InvalidParameter(fmt::format("write_ply: per-vertex field `{}` would be the PLY property `{}` twice",
+                                           field.name, name));
+      names.push_back(std::move(name));
+    }
+  // Doubles keep every coordinate and field bit; int indices cover any mesh sdflow can hold.
   out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii") << " 1.0\n"
       << "comment written by sdflow\n"
-      << "element vertex " << number.vertices << "\n"
-      << "property double x\nproperty double y\nproperty double z\n"
-      << "element face " << number.faces << "\n"
+      << "element vertex " << number.vertices << "\n";
+  for (const std::string& name : names)
+    out << "property double " << name << '\n';
+  out << "element face " << number.faces << "\n"
       << "property list uchar int vertex_indices\n"
       << "end_header\n";
   for (auto v : mesh.vertices()) {
@@ -468,7 +513,17 @@ void write_ply(const Mesh& mesh, std::ostream& out, bool binary)
       for (int k = 0; k < 3; ++k)
         store_little_endian<double>(out, p[k]);
     else
-      out << format_point(p) << '\n';
+      out << format_point(p);
+    for (const VertexField& field : fields)
+      for (Eigen::Index c = 0; c < field.values.cols(); ++c) {
+        const double value = field.values(v.idx(), c);
+        if (binary)
+          store_little_endian<double>(out, value);
+        else
+          out << ' ' << fmt::format("{:.17g}", value);
+      }
+    if (!binary)
+      out << '\n';
   }
   for (auto f : mesh.faces()) {
     if (binary) {

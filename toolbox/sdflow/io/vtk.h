@@ -2,10 +2,10 @@
 //! \file vtk.h
 //! \brief ParaView output: VTK XML PolyData (.vtp) surfaces with per-vertex fields, and .pvd
 //! collections that make a time series of them. Written atomically (io.h `write_atomically`).
+//! `read_polygon_soup` and `read_mesh` (io.h) read .vtp files back.
 
+#include "sdflow/io/vertex_field.h"
 #include "sdflow/mesh.h"
-
-#include <Eigen/Core>
 
 #include <filesystem>
 #include <string>
@@ -13,14 +13,10 @@
 
 namespace sdflow {
 
-//! A per-vertex field: #V rows, 1 (scalar) or 3 (vector) columns.
-struct VertexField {
-  std::string name;
-  Eigen::MatrixXd values;
-};
-
-//! Write `mesh` as an ascii VTK XML PolyData file with the given per-vertex fields.
-//! Throws InvalidParameter if a field's row count is not #V or its name is empty or has quotes.
+//! Write `mesh` as a VTK XML PolyData file (version 1.0, UInt64 headers) with the given per-vertex
+//! fields as point data, every array binary in base64 appended data: doubles, every bit kept, in a
+//! file that stays well-formed XML (ParaView, PyVista and meshio read it). Throws
+//! InvalidParameter for fields that do not fit (check_vertex_fields).
 void write_vtp(const Mesh& mesh, const std::vector<VertexField>& fields, const std::filesystem::path& file);
 
 //! One dataset of a time series: the file, relative to the .pvd, and its time.

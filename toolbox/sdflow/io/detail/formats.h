@@ -25,6 +25,7 @@ PolygonSoup read_off(std::string_view bytes, const std::filesystem::path& file);
 PolygonSoup read_obj(std::string_view bytes, const std::filesystem::path& file);
 PolygonSoup read_ply(std::string_view bytes, const std::filesystem::path& file);
 PolygonSoup read_stl(std::string_view bytes, const std::filesystem::path& file);
+PolygonSoup read_vtp(std::string_view bytes, const std::filesystem::path& file);
 
 //! The file without a leading UTF-8 byte order mark (EF BB BF), which editors on Windows put in
 //! text files: every text format accepts it. A binary STL's 80-byte header is free text, so
@@ -34,8 +35,10 @@ std::string_view without_byte_order_mark(std::string_view bytes, MeshFormat form
 // Writers stream the mesh's non-deleted vertices (renumbered in order) and faces.
 void write_off(const Mesh& mesh, std::ostream& out);
 void write_obj(const Mesh& mesh, std::ostream& out);
-void write_ply(const Mesh& mesh, std::ostream& out, bool binary);
+// `fields` are checked (check_vertex_fields) by the caller.
+void write_ply(const Mesh& mesh, std::ostream& out, bool binary, const std::vector<VertexField>& fields);
 void write_stl(const Mesh& mesh, std::ostream& out, bool binary);
+void write_vtp(const Mesh& mesh, const std::vector<VertexField>& fields, std::ostream& out);
 
 //! Throw IoError "file:line: what" (line 0: "file: what", for binary files and whole-file errors).
 [[noreturn]] void fail(const std::filesystem::path& file, std::size_t line, std::string_view what);
