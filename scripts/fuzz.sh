@@ -24,7 +24,7 @@ while (($#)); do
 done
 
 dir=build/fuzz
-harnesses=(read_off read_obj read_ply read_stl read_vtp validate scenario schedule checkpoint)
+harnesses=(read_off read_obj read_ply read_stl read_vtp validate repair scenario schedule checkpoint)
 if [[ -n $only ]]; then harnesses=("$only"); fi
 if ((build)); then
   scripts/install-deps.sh --fuzz

@@ -17,7 +17,7 @@ from .flow import (Event, Fallback, Flow, Merged, Rejected, Remeshed, RunResult,
 from .mesh import (CurvatureDeviation, MeshResult, area, component_volumes, components, cotangent_laplacian,
                    curvature_deviation, fill_holes, intersections, laplace_beltrami, largest_principal_curvature,
                    mass_matrix, mean_curvature, mean_edge_length, normals, point_normals, read, reconstruct,
-                   remesh, remove_intersections, retriangulate, shape, shapes, stats, union, validate,
+                   remesh, remove_intersections, repair, retriangulate, shape, shapes, stats, union, validate,
                    vertex_areas, volume, write)
 
 #: The toolbox's name for NumericalError (errors.h).

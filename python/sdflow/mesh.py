@@ -1,5 +1,5 @@
-"""Meshes as numpy arrays: files, validation, statistics, operators and measures, shapes, and the
-re-triangulation pipeline with its stages.
+"""Meshes as numpy arrays: files, validation, repair, statistics, operators and measures, shapes,
+and the re-triangulation pipeline with its stages.
 
 V is an n×3 array of reals (float64 C-contiguous arrays are read in place), F an m×3 array of
 integer vertex indices (int32 or int64). Results are numpy arrays that own the toolbox's result
@@ -67,6 +67,25 @@ def stats(V, F=None, *, tetgen=True):
     if F is None and isinstance(V, (str, os.PathLike)):
         return _sdflow.stats_file(os.fspath(V), tetgen)
     return _sdflow.stats_arrays(V, F, tetgen)
+
+
+def repair(V, F=None, *, merge_tolerance=0.0, remove_self_intersections=False):
+    """Make a mesh that validation refuses valid, as `sdflow repair` does, for V, F or a mesh file
+    (its path as V; a file may hold polygons, which are triangulated): duplicate vertices merged
+    (merge_tolerance: also those closer than this fraction of the bounding-box diagonal, at most
+    0.1), degenerate and repeated faces dropped, non-manifold edges and vertices split, faces
+    oriented consistently and closed components outward, isolated vertices dropped;
+    remove_self_intersections=True then re-triangulates a surface that crosses itself (at most 5
+    passes). Returns a MeshResult whose info has the keys of `sdflow repair --json` but `output`
+    (`input` for a file only): `repairs` lists {code, count, message} by the code of the finding
+    each fixes, `findings` what the repaired mesh still has (e.g. has-boundary). What no repair
+    fixes (an index out of range, a non-finite coordinate, no face, a closed component that
+    bounds nothing) raises sdflow.InvalidMesh, a ValueError, with the command line's message."""
+    if F is None and isinstance(V, (str, os.PathLike)):
+        V, F, info = _sdflow.repair_file(os.fspath(V), float(merge_tolerance), bool(remove_self_intersections))
+    else:
+        V, F, info = _sdflow.repair_arrays(V, F, float(merge_tolerance), bool(remove_self_intersections))
+    return MeshResult(V, F, info)
 
 
 # -- operators and measures -------------------------------------------------------------------------

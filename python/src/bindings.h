@@ -10,6 +10,7 @@ namespace py = pybind11;
 
 void bind_errors(py::module_& m);   //!< the exception classes and the translation of the toolbox's
 void bind_io(py::module_& m);       //!< read, write, validate, stats
+void bind_repair(py::module_& m);   //!< repair of a file or of arrays, as `sdflow repair`
 void bind_geometry(py::module_& m); //!< normals, curvatures, Laplacian, areas, measures
 void bind_flow(py::module_& m);     //!< parameters, the flow in memory, runs
 void bind_shapes(py::module_& m);   //!< the catalogue and formulas, meshed

@@ -14,6 +14,7 @@ PYBIND11_MODULE(_sdflow, m)
   m.doc() = "sdflow's C++ toolbox (surface diffusion flow on triangle meshes); use the package `sdflow`.";
   sdflow::python::bind_errors(m);
   sdflow::python::bind_io(m);
+  sdflow::python::bind_repair(m);
   sdflow::python::bind_geometry(m);
   sdflow::python::bind_flow(m);
   sdflow::python::bind_shapes(m);

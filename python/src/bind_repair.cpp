@@ -1,0 +1,98 @@
+//! Repair (io/repair.h) of a mesh file or of V, F: the repaired mesh and what `sdflow repair --json`
+//! reports, key for key (cli/verb_repair.cpp), with the same messages and errors.
+
+#include "arrays.h"
+#include "bindings.h"
+
+#include "sdflow/io/io.h"
+#include "sdflow/io/repair.h"
+#include "sdflow/retri/resolve_intersections.h"
+#include "sdflow/spatial/intersect.h"
+
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <optional>
+#include <string>
+
+namespace sdflow::python {
+namespace {
+
+//! Repair `soup` (named `source` in messages), then, when asked and needed, re-triangulate away
+//! its self-intersections, as `sdflow repair [--remove-self-intersections]` does; returns
+//! (V, F, info) with the keys of `sdflow repair --json` but `output` (`input` for a file only).
+py::tuple repair_to_python(const PolygonSoup& soup, const std::string& source, bool is_file, double merge_tolerance,
+                           bool remove_self_intersections)
+{
+  RepairResult repaired;
+  std::optional<ResolveResult> resolved;
+  std::size_t intersecting_pairs = 0;
+  {
+    ToolboxLock release;
+    repaired = repair_soup(soup, source, {.merge_tolerance = merge_tolerance});
+    intersecting_pairs = self_intersections(repaired.mesh).size();
+    if (remove_self_intersections && intersecting_pairs > 0) {
+      resolved = resolve_self_intersections(repaired.mesh);
+      intersecting_pairs = resolved->pairs_after;
+    }
+  }
+  const Mesh& mesh = resolved ? resolved->mesh : repaired.mesh;
+  py::list repairs;
+  for (const Repair& r : repaired.repairs) {
+    py::dict d;
+    d["code"] = r.code;
+    d["count"] = r.count;
+    d["message"] = r.message;
+    repairs.append(d);
+  }
+  py::list findings;
+  for (const Finding& f : repaired.findings) {
+    py::dict d;
+    d["severity"] = severity_name(f.severity);
+    d["code"] = f.code;
+    d["message"] = f.message;
+    findings.append(d);
+  }
+  py::dict info;
+  if (is_file)
+    info["input"] = source;
+  info["input_vertices"] = soup.points.size();
+  info["input_faces"] = soup.polygons.size();
+  info["vertices"] = mesh.n_vertices();
+  info["faces"] = mesh.n_faces();
+  info["repairs"] = repairs;
+  info["findings"] = findings;
+  info["retriangulation_passes"] = resolved ? resolved->summaries.size() : 0;
+  info["self_intersecting_pairs"] = intersecting_pairs;
+  py::tuple vf = mesh_to_numpy(mesh);
+  return py::make_tuple(vf[0], vf[1], info);
+}
+
+} // namespace
+
+void bind_repair(py::module_& m)
+{
+  m.def(
+      "repair_file",
+      [](const std::filesystem::path& file, double merge_tolerance, bool remove_self_intersections) {
+        PolygonSoup soup;
+        {
+          ToolboxLock release;
+          soup = read_polygon_soup(file);
+        }
+        return repair_to_python(soup, file.string(), true, merge_tolerance, remove_self_intersections);
+      },
+      py::arg("path"), py::arg("merge_tolerance"), py::arg("remove_self_intersections"));
+  m.def(
+      "repair_arrays",
+      [](const py::handle& V, const py::handle& F, double merge_tolerance, bool remove_self_intersections) {
+        return repair_to_python(soup_from_arrays(V, F), "arrays", false, merge_tolerance, remove_self_intersections);
+      },
+      py::arg("V"), py::arg("F"), py::arg("merge_tolerance"), py::arg("remove_self_intersections"));
+  m.def("repair_defaults", [] {
+    const RepairOptions o;
+    return py::dict(py::arg("merge_tolerance") = o.merge_tolerance);
+  });
+}
+
+} // namespace sdflow::python
