@@ -31,8 +31,9 @@ TEST(BlasThreads, one_thread_below_the_crossover_and_the_cap_above)
   EXPECT_EQ(blas_threads_for(999, policy), 1);
   const int above = blas_threads_for(1000, policy);
   EXPECT_GE(above, 1);
-  if (std::getenv("OPENBLAS_NUM_THREADS") == nullptr && std::getenv("OMP_NUM_THREADS") == nullptr)
+  if (std::getenv("OPENBLAS_NUM_THREADS") == nullptr && std::getenv("OMP_NUM_THREADS") == nullptr) {
     EXPECT_EQ(above, static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+  }
 }
 
 TEST(BlasThreads, the_loaded_openblas_is_told_and_solves_leave_it_on_one_thread)

@@ -331,8 +331,9 @@ TEST(ParameterSchema, readme_meshlab_table_is_the_schemas)
   EXPECT_EQ(readme.substr(from + begin.size(), to - from - begin.size()), table)
       << "README's MeshLab table differs from the schema: paste `sdflow run --help-meshlab` between the markers";
   for (const ParameterEntry& e : parameter_schema())
-    if (!e.meshlab.name.empty())
+    if (!e.meshlab.name.empty()) {
       EXPECT_NE(table.find("(`" + e.meshlab.name + "`)"), std::string::npos) << e.meshlab.name;
+    }
 }
 
 } // namespace
