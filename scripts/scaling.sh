@@ -21,7 +21,7 @@ while (($#)); do
     --sizes) sizes=$2; shift 2 ;;
     --steps) steps=$2; shift 2 ;;
     --tables-only) tables_only=1; shift ;;
-    -h|--help) sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) awk 'NR > 1 && /^#/ {sub(/^# ?/, ""); print; next} NR > 1 {exit}' "$0"; exit 0 ;;
     *) echo "scaling.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
