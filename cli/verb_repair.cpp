@@ -122,7 +122,7 @@ void add_repair_verb(CLI::App& app)
   CLI::App* verb = app.add_subcommand(
       "repair", "Make a damaged mesh valid: merge duplicate vertices, drop degenerate and repeated faces, split "
                 "non-manifold edges and vertices, orient consistently and outward, drop isolated vertices");
-  verb->add_option("input", args->input, "Input mesh (OFF, OBJ, PLY, STL)")->required();
+  verb->add_option("input", args->input, fmt::format("Input mesh ({})", mesh_formats))->required();
   add_output_option(*verb, args->output, "Output mesh")->required();
   add_encoding_flags(*verb, args->encoding);
   verb->add_option("--merge-tolerance", args->options.merge_tolerance,
