@@ -104,11 +104,11 @@ TEST(RetriangulatingRun, resumed_run_repeats_the_same_surgery)
   test::TempDir dir;
   const Mesh start = dumbbell();
   constexpr double no_end = std::numeric_limits<double>::infinity();
-  run_simulation(start, {.parameters = retriangulating_run(dir / "whole", no_end, 160)});
+  run_simulation(start, {.parameters = retriangulating_run(dir / "whole", no_end, 200)});
   run_simulation(start, {.parameters = retriangulating_run(dir / "resumed", no_end, 60)});
   RunParameters rest;
   read_run_parameters(dir / "resumed/run.toml", rest);
-  rest.steps = 160;
+  rest.steps = 200;
   resume_simulation({.parameters = rest});
   EXPECT_TRUE(summarise(dir / "whole/metrics.csv").events.count("split")) << "the surgery lies after step 60";
   EXPECT_EQ(test::read_file(dir / "resumed/metrics.csv"), test::read_file(dir / "whole/metrics.csv"));

@@ -16,6 +16,10 @@ struct DegradedElements {
   long edges = 0;            //!< edges outside [ℓ/r, r·ℓ]
   long triangles = 0;        //!< triangles with an angle below the minimum
   std::vector<int> faces;    //!< the faces of both (an edge's one or two faces), ascending
+  //! The faces of elements halfway to degraded (edges outside [ℓ/√r, √r·ℓ], angles below twice
+  //! the minimum) and the degraded ones, ascending: a local remeshing takes them along, so that
+  //! they do not call for the next one a step later (hysteresis, as the whole pipeline has).
+  std::vector<int> worn_faces;
   std::vector<double> targets; //!< the target ℓ at each vertex the edges were measured against
   long total() const { return edges + triangles; }
 };

@@ -363,7 +363,8 @@ std::vector<ParameterEntry> build_schema()
     e.meshlab = {.name = "Retriangulate", .label = "Re-triangulate",
                  .help = "Re-triangulate between steps when the surface intersects itself (a pinch-off, a hole "
                          "closing, bodies touching) or its triangles degrade (an angle below 15°, an edge outside "
-                         "[ℓ/2, 2ℓ]), by the pipeline of <i>Surface diffusion: re-triangulate</i>. The number of "
+                         "[ℓ/2, 2ℓ]), by the pipeline of <i>Surface diffusion: re-triangulate</i> (degraded elements "
+                         "alone: by remeshing the regions around them). The number of "
                          "vertices then changes. On by default, as in sdflow run; off, the filter fails at the first "
                          "step that makes the surface intersect itself."};
     bind<bool>(e, &RunParameters::retriangulation, &RS::enabled);
