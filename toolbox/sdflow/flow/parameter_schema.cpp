@@ -363,8 +363,7 @@ std::vector<ParameterEntry> build_schema()
     e.meshlab = {.name = "Retriangulate", .label = "Re-triangulate",
                  .help = "Re-triangulate between steps when the surface intersects itself (a pinch-off, a hole "
                          "closing, bodies touching) or its triangles degrade (an angle below 15°, an edge outside "
-                         "[ℓ/2, 2ℓ]), by the pipeline of <i>Surface diffusion: re-triangulate</i> (degraded elements "
-                         "alone: by remeshing the regions around them). The number of "
+                         "[ℓ/2, 2ℓ]), by the pipeline of <i>Surface diffusion: re-triangulate</i>. The number of "
                          "vertices then changes. On by default, as in sdflow run; off, the filter fails at the first "
                          "step that makes the surface intersect itself."};
     bind<bool>(e, &RunParameters::retriangulation, &RS::enabled);
@@ -401,7 +400,7 @@ std::vector<ParameterEntry> build_schema()
   {
     auto& e = add(entry("retriangulation.local", "--retriangulate-local", ParameterType::boolean,
                         "When only degraded elements call for a re-triangulation, remesh just the region around them "
-                        "(three rings of faces, boundary kept); off, the whole pipeline runs then too"));
+                        "(three rings of faces, boundary kept) instead of running the whole pipeline"));
     bind<bool>(e, &RunParameters::retriangulation, &RS::local);
   }
   {

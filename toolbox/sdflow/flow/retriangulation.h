@@ -32,11 +32,13 @@ struct RetriangulationSchedule {
   //! appear; larger values save remeshings on large surfaces.
   double degraded_fraction = 0;
   bool always = false;        //!< run the whole pipeline after every k-th step (the paper's practice)
-  //! When only degraded elements call for it (nothing intersects), remesh just the region around
+  //! When only degraded elements call for it (nothing intersects), remesh just the regions around
   //! them (remesh/local_remesh.h) instead of running the whole pipeline; the whole pipeline still
   //! runs when the surface intersects itself, when the local remeshing leaves it intersecting, with
-  //! `always`, and when a step could not be taken.
-  bool local = true;
+  //! `always`, and when a step could not be taken. Off by default: each remeshing costs less, but
+  //! the rest of the surface stays as worn as it was and degrades again sooner, so a run remeshes
+  //! more often and refactorises its system each time (docs/design.md §3 has the figures).
+  bool local = false;
   //! Give each closed component (or group of components that split or fused) back the volume the
   //! re-triangulation took or added (flow/volume.h, restore_volumes_from).
   bool restore_volume = true;
