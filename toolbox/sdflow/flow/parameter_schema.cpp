@@ -398,6 +398,12 @@ std::vector<ParameterEntry> build_schema()
     bind<bool>(e, &RunParameters::retriangulation, &RS::always);
   }
   {
+    auto& e = add(entry("retriangulation.local", "--retriangulate-local", ParameterType::boolean,
+                        "When only degraded elements call for a re-triangulation, remesh just the region around them "
+                        "(three rings of faces, boundary kept) instead of running the whole pipeline"));
+    bind<bool>(e, &RunParameters::retriangulation, &RS::local);
+  }
+  {
     auto& e = add(entry("retriangulation.edge_length", "--edge-length", ParameterType::real,
                         "ℓ, the target edge length (0: the initial surface's mean edge length, written to run.toml "
                         "as a number)"));
