@@ -236,8 +236,9 @@ TEST(RetriangulationHook, degraded_elements_alone_are_remeshed_locally_and_the_v
     EXPECT_EQ(degraded_elements(remeshed, ell), 0);
     EXPECT_NEAR(enclosed_volume(remeshed), volume, 1e-9 * volume);
     // Locally, the faces away from the damage keep their vertices: most of the sphere's survive.
-    if (local)
+    if (local) {
       EXPECT_GT(remeshed.n_vertices(), mesh.n_vertices() - 40);
+    }
   }
 }
 

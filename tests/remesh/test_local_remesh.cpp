@@ -94,9 +94,11 @@ TEST(LocalRemesh, keeps_the_outside_bit_for_bit_and_fixes_the_degraded_elements_
   std::set<TriangleKey> result;
   for (const auto f : r.mesh.faces())
     result.insert(triangle_key(r.mesh, f));
-  for (const auto f : mesh.faces())
-    if (!patch[f.idx()])
+  for (const auto f : mesh.faces()) {
+    if (!patch[f.idx()]) {
       EXPECT_TRUE(result.count(triangle_key(mesh, f))) << "face " << f.idx() << " outside the patch changed";
+    }
+  }
   EXPECT_EQ(static_cast<long>(r.mesh.n_faces()), outside + r.new_faces);
 
   EXPECT_EQ(degraded(r.mesh, ell), 0);
