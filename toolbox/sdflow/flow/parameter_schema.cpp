@@ -398,6 +398,13 @@ std::vector<ParameterEntry> build_schema()
     bind<bool>(e, &RunParameters::retriangulation, &RS::always);
   }
   {
+    auto& e = add(entry("retriangulation.local", "--retriangulate-local", ParameterType::boolean,
+                        "Where the surface intersects itself, cut out and rebuild only the faces near the crossing "
+                        "(the whole pipeline when that fails, and always for components touching each other); "
+                        "off, the whole pipeline runs"));
+    bind<bool>(e, &RunParameters::retriangulation, &RS::local);
+  }
+  {
     auto& e = add(entry("retriangulation.edge_length", "--edge-length", ParameterType::real,
                         "ℓ, the target edge length (0: the initial surface's mean edge length, written to run.toml "
                         "as a number)"));

@@ -5,6 +5,7 @@
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/quality.h"
 #include "sdflow/remesh/remesh.h"
+#include "sdflow/retri/local_surgery.h"
 #include "sdflow/spatial/intersect.h"
 #include "sdflow/stopwatch.h"
 
@@ -35,6 +36,9 @@ public:
     vertices_ = mesh.n_vertices();
     return tracker_->pairs().size();
   }
+
+  //! The intersecting pairs found by the last count().
+  const std::vector<FacePair>& pairs() const { return tracker_->pairs(); }
 
 private:
   std::optional<SelfIntersectionTracker> tracker_;
@@ -120,7 +124,16 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     report.check_seconds = stopwatch.restart();
     if (reason.empty())
       return report;
-    RetriangulationResult r = retriangulate(mesh, schedule.pipeline);
+    // reason_to_retriangulate looked for intersections unless forced or always re-triangulating.
+    std::optional<RetriangulationResult> local;
+    std::string route;
+    if (schedule.local && !context.force && !schedule.always && !watch->pairs().empty()) {
+      LocalSurgery surgery = local_surgery(mesh, watch->pairs(), schedule.pipeline);
+      local = std::move(surgery.result);
+      if (!local)
+        route = fmt::format(" (local surgery: {}; the whole surface instead)", surgery.failure);
+    }
+    RetriangulationResult r = local ? std::move(*local) : retriangulate(mesh, schedule.pipeline);
     report.pipeline_seconds = r.seconds;
     stopwatch.restart();
     std::string volume_note;
@@ -139,7 +152,7 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     report.merged = r.merged_components > 0;
     report.degraded_left = degraded_elements(r.mesh, schedule).total();
     report.detail =
-        fmt::format("{}: {}{}; {} degraded elements left", reason, retriangulation_summary(r), volume_note, report.degraded_left);
+        fmt::format("{}{}: {}{}; {} degraded elements left", reason, route, retriangulation_summary(r), volume_note, report.degraded_left);
     mesh = std::move(r.mesh);
     return report;
   };

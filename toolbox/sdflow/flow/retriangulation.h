@@ -31,6 +31,10 @@ struct RetriangulationSchedule {
   //! appear; larger values save remeshings on large surfaces.
   double degraded_fraction = 0;
   bool always = false;        //!< run the whole pipeline after every k-th step (the paper's practice)
+  //! When the surface intersects itself, do the surgery only around the crossing
+  //! (retri/local_surgery.h), falling back to the whole pipeline when that declines or fails
+  //! (components that intersect each other always take the whole pipeline).
+  bool local = true;
   //! Give each closed component (or group of components that split or fused) back the volume the
   //! re-triangulation took or added (flow/volume.h, restore_volumes_from).
   bool restore_volume = true;
