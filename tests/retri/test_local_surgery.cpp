@@ -248,6 +248,20 @@ TEST(LocalSurgery, a_patch_that_would_be_most_of_the_surface_is_declined)
   EXPECT_NE(local.failure.find("the patch would hold"), std::string::npos) << local.failure;
 }
 
+TEST(LocalSurgery, a_rebuild_that_fails_every_time_gives_up_after_its_attempts_and_says_why)
+{
+  // More jet neighbours than any patch has points: every attempt's rebuild throws, the patch
+  // doubles twice, and the last reason is reported for the caller's fallback.
+  const Mesh crossed =
+      test::mapped(capsule(12), [](const Eigen::Vector3d& p) { return pinched(p, 0.1, 1.2, 1.3); });
+  RetriangulationOptions options;
+  options.normals.neighbours = 5000;
+  const LocalSurgery local = local_surgery(crossed, self_intersections(crossed), options);
+  EXPECT_FALSE(local.result.has_value());
+  EXPECT_EQ(local.attempts, LocalSurgeryOptions{}.attempts);
+  EXPECT_NE(local.failure.find("nearest_neighbours"), std::string::npos) << local.failure;
+}
+
 TEST(LocalSurgery, nothing_to_do_without_crossings_and_bad_options_are_refused)
 {
   const Mesh sphere = analytic::icosphere(2);
