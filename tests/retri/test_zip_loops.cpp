@@ -36,7 +36,9 @@ TEST(ZipLoops, two_circles_become_an_annulus_facing_up)
     outer[static_cast<std::size_t>(i)] = i;
   for (int j = 0; j < m; ++j)
     inner[static_cast<std::size_t>(j)] = n + j;
-  const auto strip = zip_loops(x, outer, inner);
+  VertexVectors up = VertexVectors::Zero(n + m, 3);
+  up.col(2).setOnes();
+  const auto strip = zip_loops(x, up, outer, inner);
   ASSERT_EQ(strip.size(), static_cast<std::size_t>(n + m)) << "one triangle per edge of either loop";
   FaceIndices t(static_cast<Eigen::Index>(strip.size()), 3);
   for (std::size_t f = 0; f < strip.size(); ++f) {
@@ -54,9 +56,11 @@ TEST(ZipLoops, two_circles_become_an_annulus_facing_up)
 TEST(ZipLoops, loops_running_opposite_ways_or_too_short_are_refused)
 {
   const VertexVectors x = circles(8, 6);
+  VertexVectors up = VertexVectors::Zero(14, 3);
+  up.col(2).setOnes();
   const std::vector<int> outer{0, 1, 2, 3, 4, 5, 6, 7}, inner_reversed{13, 12, 11, 10, 9, 8};
-  EXPECT_THROW(zip_loops(x, outer, inner_reversed), InvalidMesh);
-  EXPECT_THROW(zip_loops(x, outer, {8, 9}), InvalidMesh);
+  EXPECT_THROW(zip_loops(x, up, outer, inner_reversed), InvalidMesh);
+  EXPECT_THROW(zip_loops(x, up, outer, {8, 9}), InvalidMesh);
 }
 
 } // namespace

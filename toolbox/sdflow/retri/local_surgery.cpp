@@ -174,6 +174,10 @@ std::vector<LoopPair> match_rims_to_cuts(const VertexVectors& positions, const s
     spacing[c] /= static_cast<double>(cuts[c].size());
   }
   rim_is_inner.assign(rims.size(), 1);
+  // Each rim loop near a cut loop is a candidate for it; the longest is its rim, the others (a hole
+  // of the rebuild close to the cut) stay inner holes.
+  std::vector<double> farthest_of_chosen(cuts.size(), 0);
+  std::vector<int> chosen(cuts.size(), -1);
   for (std::size_t r = 0; r < rims.size(); ++r) {
     std::vector<int> votes(cuts.size(), 0);
     std::vector<double> sum(cuts.size(), 0), farthest(cuts.size(), 0);
@@ -192,16 +196,19 @@ std::vector<LoopPair> match_rims_to_cuts(const VertexVectors& positions, const s
     const auto c = static_cast<std::size_t>(std::max_element(votes.begin(), votes.end()) - votes.begin());
     if (sum[c] / static_cast<double>(rims[r].size()) > kRimMeanDistance * spacing[c])
       continue;
-    if (farthest[c] > kRimMaxDistance * spacing[c])
-      throw AttemptFailed("a rebuilt rim loop strays from the cut it should join");
-    if (!pairs[c].rim.empty())
-      throw AttemptFailed("a cut loop has two rebuilt rims");
-    pairs[c].rim = rims[r];
-    rim_is_inner[r] = 0;
+    if (chosen[c] >= 0 && rims[static_cast<std::size_t>(chosen[c])].size() >= rims[r].size())
+      continue;
+    chosen[c] = static_cast<int>(r);
+    farthest_of_chosen[c] = farthest[c];
   }
-  for (const LoopPair& pair : pairs)
-    if (pair.rim.empty())
+  for (std::size_t c = 0; c < cuts.size(); ++c) {
+    if (chosen[c] < 0)
       throw AttemptFailed("the rebuild left nothing along a cut loop");
+    if (farthest_of_chosen[c] > kRimMaxDistance * spacing[c])
+      throw AttemptFailed("a rebuilt rim loop strays from the cut it should join");
+    pairs[c].rim = rims[static_cast<std::size_t>(chosen[c])];
+    rim_is_inner[static_cast<std::size_t>(chosen[c])] = 0;
+  }
   return pairs;
 }
 
@@ -341,14 +348,18 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
     return outer[static_cast<std::size_t>(
         oriented.source[static_cast<std::size_t>(rebuilt.source[static_cast<std::size_t>(v.idx())])])] != 0;
   };
+  // Dropped: the triangles at the cut or the borrowed points, and those at a vertex where the rest
+  // would meet in more than one fan.
+  std::vector<char> dropped(rebuilt.mesh.n_faces(), 0);
+  for (const auto f : rebuilt.mesh.faces())
+    for (const auto v : rebuilt.mesh.fv_range(f))
+      dropped[static_cast<std::size_t>(f.idx())] = dropped[static_cast<std::size_t>(f.idx())] || is_outer(v);
+  separate_split_fans(rebuilt.mesh, dropped);
   std::vector<int> trimmed_index(rebuilt.mesh.n_vertices(), -1);
   std::vector<Eigen::Vector3d> trimmed_points;
   std::vector<std::array<int, 3>> trimmed_faces;
   for (const auto f : rebuilt.mesh.faces()) {
-    bool keep = true;
-    for (const auto v : rebuilt.mesh.fv_range(f))
-      keep = keep && !is_outer(v);
-    if (!keep)
+    if (dropped[static_cast<std::size_t>(f.idx())])
       continue;
     std::array<int, 3> t{};
     int k = 0;
@@ -406,8 +417,15 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
     const auto c = triangle_corners(trimmed, f).index;
     faces.push_back({c[0], c[1], c[2]});
   }
+  // Normals at the zip's vertices: the patch's at the cut, the rebuild's at the rim.
+  VertexVectors zn = VertexVectors::Zero(zx.rows(), 3);
+  for (const auto v : patch.vertices())
+    if (const int z = zip_index[static_cast<std::size_t>(v.idx())]; z >= 0)
+      zn.row(z) = area_normal(patch, v).transpose();
+  for (const auto v : trimmed.vertices())
+    zn.row(v.idx()) = area_normal(trimmed, v).transpose();
   for (const LoopPair& pair : pairs)
-    for (const auto& t : zip_loops(zx, pair.cut, pair.rim))
+    for (const auto& t : zip_loops(zx, zn, pair.cut, pair.rim))
       faces.push_back(t);
   FaceIndices zt(static_cast<Eigen::Index>(faces.size()), 3);
   for (std::size_t i = 0; i < faces.size(); ++i)
@@ -423,16 +441,13 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
       return loops;
     }(), hole_bound, r.filled_holes);
   r.seconds.holes = seconds_since(start);
+  // The seam remeshed with the cut fixed; when that leaves the patch intersecting the surface (a
+  // remeshing on a thin gap), the strip as zipped.
   start = Clock::now();
-  if (options.remesh_iterations > 0) {
-    RemeshResult seam = remesh_keeping_cut(rebuilt_patch, sizing, ell, options.remesh_iterations);
-    rebuilt_patch = std::move(seam.mesh);
-    r.remesh.splits += seam.statistics.splits;
-    r.remesh.collapses += seam.statistics.collapses;
-    r.remesh.flips += seam.statistics.flips;
-    r.remesh.relaxation_reverts += seam.statistics.relaxation_reverts;
-  }
-  r.remesh.edge_length = ell;
+  std::vector<RemeshResult> candidates;
+  if (options.remesh_iterations > 0)
+    candidates.push_back(remesh_keeping_cut(rebuilt_patch, sizing, ell, options.remesh_iterations));
+  candidates.push_back({std::move(rebuilt_patch), {}});
   r.seconds.remesh += seconds_since(start);
 
   // Stage 6: the kept faces and the rebuilt patch as one soup, checked, validated.
@@ -443,39 +458,52 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
       cut_vertex.emplace(key_of(cut.patch.point(v)), cut.global[static_cast<std::size_t>(v.idx())]);
   PolygonSoup soup;
   std::vector<long long> kept_index(mesh.n_vertices(), -1);
-  const auto soup_vertex = [&](int g) {
-    long long& index = kept_index[static_cast<std::size_t>(g)];
-    if (index < 0) {
-      index = static_cast<long long>(soup.points.size());
-      soup.points.push_back(to_eigen(mesh.point(mesh.vertex_handle(g))));
-    }
-    return index;
-  };
   for (const auto f : mesh.faces())
     if (!selection.in_patch[static_cast<std::size_t>(f.idx())]) {
       std::vector<long long> polygon;
-      for (const auto v : mesh.fv_range(f))
-        polygon.push_back(soup_vertex(v.idx()));
+      for (const auto v : mesh.fv_range(f)) {
+        long long& index = kept_index[static_cast<std::size_t>(v.idx())];
+        if (index < 0) {
+          index = static_cast<long long>(soup.points.size());
+          soup.points.push_back(to_eigen(mesh.point(v)));
+        }
+        polygon.push_back(index);
+      }
       soup.polygons.push_back(std::move(polygon));
     }
-  const std::size_t first_new = soup.polygons.size();
-  std::vector<long long> new_index(rebuilt_patch.n_vertices(), -1);
-  for (const auto v : rebuilt_patch.vertices()) {
-    if (const auto it = cut_vertex.find(key_of(rebuilt_patch.point(v))); it != cut_vertex.end()) {
-      new_index[static_cast<std::size_t>(v.idx())] = soup_vertex(it->second);
-      continue;
+  const std::size_t kept_points = soup.points.size(), first_new = soup.polygons.size();
+  const RemeshResult* placed = nullptr;
+  for (const RemeshResult& candidate : candidates) {
+    soup.points.resize(kept_points);
+    soup.polygons.resize(first_new);
+    const Mesh& patch_mesh = candidate.mesh;
+    std::vector<long long> new_index(patch_mesh.n_vertices(), -1);
+    for (const auto v : patch_mesh.vertices()) {
+      if (const auto it = cut_vertex.find(key_of(patch_mesh.point(v))); it != cut_vertex.end()) {
+        new_index[static_cast<std::size_t>(v.idx())] = kept_index[static_cast<std::size_t>(it->second)];
+        continue;
+      }
+      new_index[static_cast<std::size_t>(v.idx())] = static_cast<long long>(soup.points.size());
+      soup.points.push_back(to_eigen(patch_mesh.point(v)));
     }
-    new_index[static_cast<std::size_t>(v.idx())] = static_cast<long long>(soup.points.size());
-    soup.points.push_back(to_eigen(rebuilt_patch.point(v)));
+    for (const auto f : patch_mesh.faces()) {
+      std::vector<long long> polygon;
+      for (const auto v : patch_mesh.fv_range(f))
+        polygon.push_back(new_index[static_cast<std::size_t>(v.idx())]);
+      soup.polygons.push_back(std::move(polygon));
+    }
+    if (!new_faces_intersect(soup, first_new)) {
+      placed = &candidate;
+      break;
+    }
   }
-  for (const auto f : rebuilt_patch.faces()) {
-    std::vector<long long> polygon;
-    for (const auto v : rebuilt_patch.fv_range(f))
-      polygon.push_back(new_index[static_cast<std::size_t>(v.idx())]);
-    soup.polygons.push_back(std::move(polygon));
-  }
-  if (new_faces_intersect(soup, first_new))
+  if (!placed)
     throw AttemptFailed("the rebuilt patch intersects the surface");
+  r.remesh.splits += placed->statistics.splits;
+  r.remesh.collapses += placed->statistics.collapses;
+  r.remesh.flips += placed->statistics.flips;
+  r.remesh.relaxation_reverts += placed->statistics.relaxation_reverts;
+  r.remesh.edge_length = ell;
   ComponentSelection selection_after = keep_components(build_mesh(soup, "local surgery").mesh, debris);
   r.dropped_components += static_cast<int>(selection_after.dropped.size());
   r.mesh = std::move(selection_after.mesh);
@@ -541,18 +569,31 @@ LocalSurgery local_surgery(const Mesh& mesh, const std::vector<FacePair>& crossi
     if (patch.faces == previous_faces)
       return outcome; // a larger radius takes no more faces: the last failure stands
     previous_faces = patch.faces;
-    ++outcome.attempts;
-    try {
-      RetriangulationResult r = rebuild_patch(mesh, patch, options, ell, static_cast<int>(boundary.size()), hole_bound);
-      r.intersecting_pairs = static_cast<int>(crossings.size());
-      r.components_before = components;
-      logger().debug("local surgery: {}", retriangulation_summary(r));
-      outcome.result = std::move(r);
-      outcome.failure.clear();
-      return outcome;
-    } catch (const Error& e) {
-      outcome.failure = fmt::format("patch of {} faces: {}", patch.faces, e.what());
-      logger().debug("local surgery, attempt {}: {}", outcome.attempts, outcome.failure);
+    outcome.patch_radius = radius;
+    // The patch remeshed first, as the pipeline's stage 1 does; then as it is (a remeshing of a
+    // thin neck can leave the rebuild too little room).
+    const RetriangulationOptions as_it_is = [&] {
+      RetriangulationOptions o = options;
+      o.remesh_iterations = 0;
+      return o;
+    }();
+    for (const RetriangulationOptions* variant : {&options, &as_it_is}) {
+      if (variant == &as_it_is && options.remesh_iterations == 0)
+        break;
+      ++outcome.attempts;
+      try {
+        RetriangulationResult r =
+            rebuild_patch(mesh, patch, *variant, ell, static_cast<int>(boundary.size()), hole_bound);
+        r.intersecting_pairs = static_cast<int>(crossings.size());
+        r.components_before = components;
+        logger().debug("local surgery: {}", retriangulation_summary(r));
+        outcome.result = std::move(r);
+        outcome.failure.clear();
+        return outcome;
+      } catch (const Error& e) {
+        outcome.failure = fmt::format("patch of {} faces: {}", patch.faces, e.what());
+        logger().debug("local surgery, attempt {}: {}", outcome.attempts, outcome.failure);
+      }
     }
   }
   return outcome;

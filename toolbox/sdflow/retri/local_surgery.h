@@ -7,9 +7,9 @@
 //! is not ragged at the cut), trimmed back from the cut, zipped to the cut loops by a strip
 //! (zip_loops.h), its inner holes filled, and remeshed with the cut fixed. Every face of the kept
 //! surface stays as it was, bit for bit. The result is checked (a valid oriented manifold, no
-//! self-intersection near the new faces, as many boundary loops as the input, no debris); an
-//! attempt that fails is repeated with a larger patch, and when every one fails the caller runs
-//! the whole-surface pipeline.
+//! self-intersection near the new faces, as many boundary loops as the input, no debris); a
+//! patch whose rebuild fails is rebuilt once more without remeshing it first, then a larger one
+//! is tried, and when every one fails the caller runs the whole-surface pipeline.
 //!
 //! Stage 0 (components that intersect each other, surface_union.h) is not done locally: a
 //! crossing between two components makes the surgery decline.
@@ -27,7 +27,8 @@ namespace sdflow {
 struct LocalSurgeryOptions {
   //! The patch: the faces with a vertex within this many ℓ of a vertex of an intersecting face.
   double patch_radius = 3;
-  //! Attempts before giving up; the radius doubles after each failed one.
+  //! Patch radii tried before giving up, each double the last; at each the patch is rebuilt
+  //! remeshed first (stage 1), then, if that fails, as it is.
   int attempts = 3;
   //! A patch of more than this fraction of the faces is not local: the surgery declines.
   double max_patch_fraction = 0.5;
@@ -39,7 +40,8 @@ struct LocalSurgery {
   //! surgery declined or every attempt failed.
   std::optional<RetriangulationResult> result;
   std::string failure; //!< why there is no result (the last attempt's reason); empty on success
-  int attempts = 0;    //!< attempts made
+  int attempts = 0;    //!< rebuilds made
+  double patch_radius = 0; //!< the radius of the last patch tried (0: none was)
 };
 
 //! Throws InvalidParameter for options out of range.

@@ -124,6 +124,22 @@ bool absorb_small_kept_components(const Mesh& mesh, std::vector<char>& in_patch,
 
 } // namespace
 
+bool separate_split_fans(const Mesh& mesh, std::vector<char>& in_patch)
+{
+  bool moved = false, changed = true;
+  while (changed) {
+    changed = false;
+    for (const auto v : mesh.vertices()) {
+      if (!kept_fans_split(mesh, v, in_patch))
+        continue;
+      for (const auto f : mesh.vf_range(v))
+        in_patch[static_cast<std::size_t>(f.idx())] = 1;
+      changed = moved = true;
+    }
+  }
+  return moved;
+}
+
 SurgeryPatch surgery_patch(const Mesh& mesh, const std::vector<FacePair>& crossings, double radius,
                            int min_kept_faces)
 {
@@ -131,14 +147,7 @@ SurgeryPatch surgery_patch(const Mesh& mesh, const std::vector<FacePair>& crossi
   patch.in_patch = faces_near_crossings(mesh, crossings, radius);
   bool changed = true;
   while (changed) {
-    changed = false;
-    for (const auto v : mesh.vertices()) {
-      if (!kept_fans_split(mesh, v, patch.in_patch))
-        continue;
-      for (const auto f : mesh.vf_range(v))
-        patch.in_patch[static_cast<std::size_t>(f.idx())] = 1;
-      changed = true;
-    }
+    changed = separate_split_fans(mesh, patch.in_patch);
     changed = absorb_small_kept_components(mesh, patch.in_patch, min_kept_faces) || changed;
   }
   for (const auto f : mesh.faces()) {

@@ -26,4 +26,8 @@ struct SurgeryPatch {
 SurgeryPatch surgery_patch(const Mesh& mesh, const std::vector<FacePair>& crossings, double radius,
                            int min_kept_faces);
 
+//! Moves into the patch (`in_patch`, by face index) every face of a vertex around which the faces
+//! kept form more than one fan, until there is none; returns whether any face moved.
+bool separate_split_fans(const Mesh& mesh, std::vector<char>& in_patch);
+
 } // namespace sdflow

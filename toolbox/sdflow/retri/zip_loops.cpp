@@ -26,8 +26,8 @@ std::size_t nearest_on_loop(const VertexVectors& positions, const std::vector<in
 
 } // namespace
 
-std::vector<std::array<int, 3>> zip_loops(const VertexVectors& positions, const std::vector<int>& outer,
-                                          const std::vector<int>& inner)
+std::vector<std::array<int, 3>> zip_loops(const VertexVectors& positions, const VertexVectors& normals,
+                                          const std::vector<int>& outer, const std::vector<int>& inner)
 {
   const std::size_t n = outer.size(), m = inner.size();
   if (n < 3 || m < 3)
@@ -46,11 +46,21 @@ std::vector<std::array<int, 3>> zip_loops(const VertexVectors& positions, const 
   const auto a = [&](std::size_t i) { return outer[i % n]; };
   const auto b = [&](std::size_t j) { return inner[(start + j) % m]; };
   const auto distance = [&](int p, int q) { return (position(positions, p) - position(positions, q)).norm(); };
+  // Does triangle pqr face along the normals at its corners?
+  const auto faces_along = [&](int p, int q, int r) {
+    const Eigen::Vector3d x = position(positions, p), y = position(positions, q), z = position(positions, r);
+    return (y - x).cross(z - x).dot(normals.row(p) + normals.row(q) + normals.row(r)) > 0;
+  };
   std::vector<std::array<int, 3>> strip;
   strip.reserve(n + m);
   std::size_t i = 0, j = 0;
   while (i < n || j < m) {
-    const bool advance_outer = j == m || (i < n && distance(a(i + 1), b(j)) <= distance(a(i), b(j + 1)));
+    bool advance_outer = j == m || (i < n && distance(a(i + 1), b(j)) <= distance(a(i), b(j + 1)));
+    if (i < n && j < m) {
+      const bool outer_ok = faces_along(a(i + 1), a(i), b(j)), inner_ok = faces_along(b(j), b(j + 1), a(i));
+      if (outer_ok != inner_ok)
+        advance_outer = outer_ok;
+    }
     if (advance_outer) {
       strip.push_back({a(i + 1), a(i), b(j)});
       ++i;
