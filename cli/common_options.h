@@ -16,6 +16,9 @@ namespace sdflow::cli {
 //! The names of an output option, on every verb that writes one.
 inline constexpr const char* output_names = "-o,--output,--out";
 
+//! The mesh formats every verb reads and writes (io/io.h, MeshFormat), as help texts list them.
+inline constexpr const char* mesh_formats = "OFF, OBJ, PLY, STL, VTP";
+
 //! `-o, --output, --out`: where the verb writes its result.
 CLI::Option* add_output_option(CLI::App& verb, std::string& output, const std::string& help);
 

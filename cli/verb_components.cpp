@@ -6,6 +6,7 @@
 #include "common_options.h"
 #include "json_report.h"
 #include "verbs.h"
+#include "work_progress.h"
 
 #include "sdflow/io/io.h"
 #include "sdflow/io/repair.h"
@@ -41,19 +42,26 @@ std::filesystem::path numbered(const std::filesystem::path& output, std::size_t 
 
 void run(const ComponentsArguments& args)
 {
+  WorkProgress progress("components");
+  progress.stage("reading " + args.mesh);
   const Mesh mesh = read_mesh_or_repair(args.mesh).mesh;
+  progress.stage(fmt::format("sorting {} faces into components", mesh.n_faces()));
   const ComponentSelection selection = keep_components(mesh, args.options);
   std::vector<std::pair<std::string, const Mesh*>> written;
   std::vector<Mesh> parts;
   if (args.split) {
+    progress.stage(fmt::format("splitting {} components", selection.kept.size()));
     parts = split_components(mesh, args.options);
     for (std::size_t i = 0; i < parts.size(); ++i)
       written.emplace_back(numbered(args.output, i).string(), &parts[i]);
   } else {
     written.emplace_back(args.output, &selection.mesh);
   }
-  for (const auto& [file, part] : written)
+  for (const auto& [file, part] : written) {
+    progress.stage("writing " + file);
     write_mesh(*part, file, {.encoding = args.encoding, .vertex_fields = surface_fields(*part)});
+  }
+  progress.finish();
 
   if (args.json) {
     toml::array components, outputs;
@@ -90,7 +98,7 @@ void add_components_verb(CLI::App& app)
 {
   auto args = std::make_shared<ComponentsArguments>();
   CLI::App* verb = app.add_subcommand("components", "Keep the large connected components, or split into one file each");
-  verb->add_option("mesh", args->mesh, "Mesh file (OFF, OBJ, PLY, STL)")->required();
+  verb->add_option("mesh", args->mesh, fmt::format("Mesh file ({})", mesh_formats))->required();
   add_output_option(*verb, args->output, "Output mesh (with --split: OUT_0.ext, OUT_1.ext, ... largest first)")
       ->required();
   verb->add_option("--min-component-faces,--min-faces", args->options.min_faces,

@@ -102,7 +102,7 @@ void add_fill_holes_verb(CLI::App& app)
   auto args = std::make_shared<FillHolesArguments>();
   CLI::App* verb = app.add_subcommand(
       "fill-holes", "Fill boundary loops by minimum-weight triangulation, refinement and fairing (Liepa 2003)");
-  verb->add_option("mesh", args->input, "Mesh file (OFF, OBJ, PLY, STL)")->required();
+  verb->add_option("mesh", args->input, fmt::format("Mesh file ({})", mesh_formats))->required();
   add_output_option(*verb, args->output, "Output mesh")->required();
   verb->add_option("--max-hole-length,--max-loop-length", args->options.max_loop_length,
                    "Leave open the loops longer than this (default: fill every loop; --max-loop-length: its older "

@@ -7,6 +7,7 @@
 #include "common_options.h"
 #include "json_report.h"
 #include "verbs.h"
+#include "work_progress.h"
 
 #include "sdflow/errors.h"
 #include "sdflow/io/io.h"
@@ -50,22 +51,31 @@ void run(const IntersectionsArguments& args)
   std::size_t faces = 0;
   std::vector<FacePair> pairs;
   std::optional<RemovalResult> removal;
+  WorkProgress progress("intersections");
+  progress.stage("reading " + args.mesh);
   if (!args.other.empty()) {
     const Mesh mesh = read_mesh_or_repair(args.mesh).mesh;
     faces = mesh.n_faces();
-    pairs = surface_intersections(mesh, read_mesh_or_repair(args.other).mesh);
+    progress.stage("reading " + args.other);
+    const Mesh other = read_mesh_or_repair(args.other).mesh;
+    progress.stage(fmt::format("testing {} against {} faces", faces, other.n_faces()));
+    pairs = surface_intersections(mesh, other);
   } else if (!args.output.empty()) {
     const Mesh mesh = read_mesh_or_repair(args.mesh).mesh;
     faces = mesh.n_faces();
+    progress.stage(fmt::format("finding and removing the intersecting faces among {}", faces));
     removal = remove_self_intersections(mesh);
     pairs = removal->intersecting_pairs;
+    progress.stage("writing " + args.output);
     write_mesh(removal->mesh, args.output,
                {.encoding = args.encoding, .vertex_fields = surface_fields(removal->mesh)});
   } else {
     const TriangleSoup soup = triangle_soup(read_polygon_soup(args.mesh), args.mesh);
     faces = static_cast<std::size_t>(soup.triangles.rows());
+    progress.stage(fmt::format("testing {} faces against each other", faces));
     pairs = self_intersections(soup.positions, soup.triangles);
   }
+  progress.finish();
   int degenerate = 0;
   for (const FacePair& p : pairs)
     degenerate += args.other.empty() && p.first == p.second;
@@ -109,7 +119,7 @@ void add_intersections_verb(CLI::App& app)
   auto args = std::make_shared<IntersectionsArguments>();
   CLI::App* verb = app.add_subcommand(
     "intersections", "List the intersecting face pairs of a surface (exact), or between two surfaces; -o removes them");
-  verb->add_option("mesh", args->mesh, "Mesh file (OFF, OBJ, PLY, STL)")->required();
+  verb->add_option("mesh", args->mesh, fmt::format("Mesh file ({})", mesh_formats))->required();
   verb->add_option("other", args->other, "Second mesh: list the pairs between the two surfaces instead");
   add_output_option(*verb, args->output,
                     "Write the surface without its intersecting faces and the vertices they leave alone");

@@ -61,7 +61,7 @@ void add_normals_verb(CLI::App& app)
   args->agreement_degrees = args->options.orientation.agreement_angle * 180 / M_PI;
   CLI::App* verb = app.add_subcommand(
       "normals", "Estimate oriented point normals (jet fitting, MST orientation) and write a PLY point cloud");
-  verb->add_option("input", args->input, "Mesh or point file (OFF, OBJ, PLY, STL): its vertices are the points")
+  verb->add_option("input", args->input, fmt::format("Mesh or point file ({}): its vertices are the points", mesh_formats))
       ->required();
   add_output_option(*verb, args->output, "Output point cloud (.ply with x y z nx ny nz)")->required();
   verb->add_option("--neighbours,--k", args->options.neighbours,

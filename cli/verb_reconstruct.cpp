@@ -97,7 +97,7 @@ void add_reconstruct_verb(CLI::App& app)
   verb->add_option("points", args->input,
                    "Point cloud: PLY with x y z [nx ny nz], or any mesh file whose vertices are the points")
       ->required();
-  add_output_option(*verb, args->output, "Output mesh (OFF, OBJ, PLY, STL)")->required();
+  add_output_option(*verb, args->output, fmt::format("Output mesh ({})", mesh_formats))->required();
   verb->add_option("--beta", args->beta_degrees, "Degrees of the wedge in which only the radius ranks candidates")
       ->capture_default_str();
   verb->add_option("--radius-ratio", args->options.radius_ratio_bound,

@@ -92,7 +92,7 @@ void add_remesh_verb(CLI::App& app)
 {
   auto args = std::make_shared<RemeshArguments>();
   CLI::App* verb = app.add_subcommand("remesh", "Isotropic remeshing to a target edge length (Botsch & Kobbelt 2004)");
-  verb->add_option("input", args->input, "Input mesh (OFF, OBJ, PLY, STL)")->required();
+  verb->add_option("input", args->input, fmt::format("Input mesh ({})", mesh_formats))->required();
   add_output_option(*verb, args->output, "Output mesh")->required();
   verb->add_option("--edge-length", args->edge_length, "Target edge length")->required()->check(CLI::PositiveNumber);
   verb->add_option("--remesh-iterations,--iterations", args->iterations,

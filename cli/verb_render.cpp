@@ -292,7 +292,7 @@ void add_render_verb(CLI::App& app)
   auto args = std::make_shared<RenderArguments>();
   CLI::App* verb =
       app.add_subcommand("render", "A shaded PNG picture of a surface (gnuplot), coloured by mean curvature");
-  verb->add_option("input", args->input, "Mesh (OFF, OBJ, PLY, STL)")->required();
+  verb->add_option("input", args->input, fmt::format("Mesh ({})", mesh_formats))->required();
   add_output_option(*verb, args->output, "Picture to write (.png)")->required();
   verb->add_option("--view", args->view, "View angles in degrees, rotation about x then z (gnuplot's set view)")
       ->delimiter(',')

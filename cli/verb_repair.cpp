@@ -10,14 +10,12 @@
 #include "sdflow/io/io.h"
 #include "sdflow/io/repair.h"
 #include "sdflow/retri/resolve_intersections.h"
-#include "sdflow/spatial/intersect.h"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include <iostream>
 #include <memory>
-#include <optional>
 #include <string>
 
 namespace sdflow::cli {
@@ -35,26 +33,19 @@ struct RepairArguments {
 //! What the verb did, for either report.
 struct RepairReport {
   std::size_t input_vertices = 0, input_faces = 0;
-  RepairResult repaired;
-  std::optional<ResolveResult> resolved;
-  std::size_t intersecting_pairs = 0; //!< of the surface written
+  RepairedSurface surface;
 };
-
-const Mesh& written_mesh(const RepairReport& r)
-{
-  return r.resolved ? r.resolved->mesh : r.repaired.mesh;
-}
 
 void report_json(const RepairArguments& args, const RepairReport& r)
 {
   toml::array repairs;
-  for (const Repair& repair : r.repaired.repairs)
+  for (const Repair& repair : r.surface.repaired.repairs)
     repairs.push_back(toml::table{{"code", repair.code}, {"count", static_cast<int64_t>(repair.count)},
                                   {"message", repair.message}});
   toml::array findings;
-  for (const Finding& f : r.repaired.findings)
+  for (const Finding& f : r.surface.repaired.findings)
     findings.push_back(toml::table{{"severity", severity_name(f.severity)}, {"code", f.code}, {"message", f.message}});
-  const Mesh& mesh = written_mesh(r);
+  const Mesh& mesh = r.surface.mesh();
   toml::table root{{"input", args.input},
                    {"output", args.output},
                    {"input_vertices", static_cast<int64_t>(r.input_vertices)},
@@ -63,27 +54,27 @@ void report_json(const RepairArguments& args, const RepairReport& r)
                    {"faces", static_cast<int64_t>(mesh.n_faces())},
                    {"repairs", std::move(repairs)},
                    {"findings", std::move(findings)},
-                   {"retriangulation_passes", static_cast<int64_t>(r.resolved ? r.resolved->summaries.size() : 0)},
-                   {"self_intersecting_pairs", static_cast<int64_t>(r.intersecting_pairs)}};
+                   {"retriangulation_passes", static_cast<int64_t>(r.surface.resolved ? r.surface.resolved->summaries.size() : 0)},
+                   {"self_intersecting_pairs", static_cast<int64_t>(r.surface.intersecting_pairs)}};
   std::cout << toml::json_formatter{root} << '\n';
 }
 
 void report_text(const RepairArguments& args, const RepairReport& r)
 {
-  const Mesh& mesh = written_mesh(r);
+  const Mesh& mesh = r.surface.mesh();
   std::cout << fmt::format("{}: {} vertices, {} faces -> {} vertices, {} faces\n", args.input, r.input_vertices,
                            r.input_faces, mesh.n_vertices(), mesh.n_faces());
-  if (r.repaired.repairs.empty())
+  if (r.surface.repaired.repairs.empty())
     std::cout << "  nothing to repair\n";
-  for (const Repair& repair : r.repaired.repairs)
+  for (const Repair& repair : r.surface.repaired.repairs)
     std::cout << fmt::format("  [{}] {}\n", repair.code, repair.message);
-  for (const Finding& f : r.repaired.findings)
+  for (const Finding& f : r.surface.repaired.findings)
     std::cout << fmt::format("  {}: [{}] {}\n", severity_name(f.severity), f.code, f.message);
-  if (r.resolved)
-    for (std::size_t pass = 0; pass < r.resolved->summaries.size(); ++pass)
-      std::cout << fmt::format("  [self-intersection] re-triangulation {}: {}\n", pass + 1, r.resolved->summaries[pass]);
-  if (r.intersecting_pairs > 0)
-    std::cout << fmt::format("  warning: [self-intersection] {} pair(s) of faces intersect{}\n", r.intersecting_pairs,
+  if (r.surface.resolved)
+    for (std::size_t pass = 0; pass < r.surface.resolved->summaries.size(); ++pass)
+      std::cout << fmt::format("  [self-intersection] re-triangulation {}: {}\n", pass + 1, r.surface.resolved->summaries[pass]);
+  if (r.surface.intersecting_pairs > 0)
+    std::cout << fmt::format("  warning: [self-intersection] {} pair(s) of faces intersect{}\n", r.surface.intersecting_pairs,
                              args.remove_self_intersections ? "" : " (--remove-self-intersections re-triangulates them away)");
   std::cout << fmt::format("  wrote {}\n", args.output);
 }
@@ -94,18 +85,13 @@ void run(const RepairArguments& args)
   WorkProgress progress("repair");
   progress.stage("reading " + args.input);
   const PolygonSoup soup = read_polygon_soup(args.input);
-  progress.stage(fmt::format("repairing {} faces", soup.polygons.size()));
-  RepairReport report{.input_vertices = soup.points.size(), .input_faces = soup.polygons.size(),
-                      .repaired = repair_soup(soup, args.input, args.options)};
-  progress.stage("looking for self-intersections");
-  report.intersecting_pairs = self_intersections(report.repaired.mesh).size();
-  if (args.remove_self_intersections && report.intersecting_pairs > 0) {
-    progress.stage(fmt::format("re-triangulating {} intersecting pairs away", report.intersecting_pairs));
-    report.resolved = resolve_self_intersections(report.repaired.mesh);
-    report.intersecting_pairs = report.resolved->pairs_after;
-  }
+  const RepairReport report{
+      .input_vertices = soup.points.size(),
+      .input_faces = soup.polygons.size(),
+      .surface = repair_surface(soup, args.input, args.options, args.remove_self_intersections,
+                                [&progress](const std::string& what) { progress.stage(what); })};
   progress.stage("writing " + args.output);
-  const Mesh& repaired = written_mesh(report);
+  const Mesh& repaired = report.surface.mesh();
   write_mesh(repaired, args.output, {.encoding = args.encoding, .vertex_fields = surface_fields(repaired)});
   progress.finish();
   if (args.json)
@@ -122,7 +108,7 @@ void add_repair_verb(CLI::App& app)
   CLI::App* verb = app.add_subcommand(
       "repair", "Make a damaged mesh valid: merge duplicate vertices, drop degenerate and repeated faces, split "
                 "non-manifold edges and vertices, orient consistently and outward, drop isolated vertices");
-  verb->add_option("input", args->input, "Input mesh (OFF, OBJ, PLY, STL)")->required();
+  verb->add_option("input", args->input, fmt::format("Input mesh ({})", mesh_formats))->required();
   add_output_option(*verb, args->output, "Output mesh")->required();
   add_encoding_flags(*verb, args->encoding);
   verb->add_option("--merge-tolerance", args->options.merge_tolerance,

@@ -117,7 +117,7 @@ void add_retriangulate_verb(CLI::App& app)
   CLI::App* verb = app.add_subcommand(
       "retriangulate", "The re-triangulation pipeline of paper §3.2.1: remesh, remove self-intersections, jet + MST "
                        "normals, advancing-front reconstruction, hole filling, components");
-  verb->add_option("input", args->input, "Input mesh (OFF, OBJ, PLY, STL)")->required();
+  verb->add_option("input", args->input, fmt::format("Input mesh ({})", mesh_formats))->required();
   add_output_option(*verb, args->output, "Output mesh")->required();
   verb->add_option("--edge-length", o.edge_length, "Target edge length (default: the input's mean)")
       ->check(CLI::PositiveNumber);

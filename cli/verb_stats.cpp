@@ -132,7 +132,7 @@ void add_stats_verb(CLI::App& app)
 {
   auto args = std::make_shared<StatsArguments>();
   CLI::App* verb = app.add_subcommand("stats", "Validate a mesh and report topology, area, volume, curvature and quality");
-  verb->add_option("mesh", args->mesh, "Mesh file (OFF, OBJ, PLY, STL)")->required();
+  verb->add_option("mesh", args->mesh, fmt::format("Mesh file ({})", mesh_formats))->required();
   add_json_flag(*verb, args->json);
   verb->add_flag("--no-tetgen", args->no_tetgen, "Skip the TetGen volume cross-check");
   verb->callback([args] {

@@ -148,7 +148,7 @@ relative_error() { # VALUE REFERENCE
 event_table() { # NAME genus|components REFERENCE VERTEX_COUNTS...
   local name=$1 what=$2 ref=$3 d=() p=() n a b
   shift 3
-  echo "| vertices | default | error | --preset paper | error | volume drift (default) | CPU default / paper |"
+  echo "| vertices | default | error | --preset paper | error | volume drift (default) | wall time default / paper |"
   echo "|---|---|---|---|---|---|---|"
   for n in "$@"; do
     a=$(event_time "${name}_${n}_default" "$what") b=$(event_time "${name}_${n}_paper" "$what")
@@ -221,7 +221,7 @@ tables=$(mktemp)
     header="| L/D | 1-D reference |"
     rule="|---|---|"
     for h in "${capsule_edges[@]}"; do header+=" default, edge $h |"; rule+="---|"; done
-    header+=" default, extrapolated t | --preset paper, edge $paper_capsule_edge | CPU (default, finest) |"; rule+="---|---|---|"
+    header+=" default, extrapolated t | --preset paper, edge $paper_capsule_edge | wall time (default, finest) |"; rule+="---|---|---|"
     echo "$header"
     echo "$rule"
     for ratio in "${capsule_ratios[@]}"; do

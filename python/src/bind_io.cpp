@@ -130,7 +130,7 @@ void bind_io(py::module_& m)
         py::tuple vf = mesh_to_numpy(built.mesh);
         return py::make_tuple(vf[0], vf[1], findings_to_python(built.findings));
       },
-      py::arg("path"), "(V, F, findings) of a mesh file (OFF, OBJ, PLY, STL), validated and oriented outward.");
+      py::arg("path"), "(V, F, findings) of a mesh file (OFF, OBJ, PLY, STL, VTP), validated and oriented outward.");
 
   m.def(
       "write",

@@ -7,12 +7,10 @@
 #include "sdflow/io/io.h"
 #include "sdflow/io/repair.h"
 #include "sdflow/retri/resolve_intersections.h"
-#include "sdflow/spatial/intersect.h"
 
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
-#include <optional>
 #include <string>
 
 namespace sdflow::python {
@@ -24,19 +22,13 @@ namespace {
 py::tuple repair_to_python(const PolygonSoup& soup, const std::string& source, bool is_file, double merge_tolerance,
                            bool remove_self_intersections)
 {
-  RepairResult repaired;
-  std::optional<ResolveResult> resolved;
-  std::size_t intersecting_pairs = 0;
+  RepairedSurface surface;
   {
     ToolboxLock release;
-    repaired = repair_soup(soup, source, {.merge_tolerance = merge_tolerance});
-    intersecting_pairs = self_intersections(repaired.mesh).size();
-    if (remove_self_intersections && intersecting_pairs > 0) {
-      resolved = resolve_self_intersections(repaired.mesh);
-      intersecting_pairs = resolved->pairs_after;
-    }
+    surface = repair_surface(soup, source, {.merge_tolerance = merge_tolerance}, remove_self_intersections);
   }
-  const Mesh& mesh = resolved ? resolved->mesh : repaired.mesh;
+  const RepairResult& repaired = surface.repaired;
+  const Mesh& mesh = surface.mesh();
   py::list repairs;
   for (const Repair& r : repaired.repairs) {
     py::dict d;
@@ -62,8 +54,8 @@ py::tuple repair_to_python(const PolygonSoup& soup, const std::string& source, b
   info["faces"] = mesh.n_faces();
   info["repairs"] = repairs;
   info["findings"] = findings;
-  info["retriangulation_passes"] = resolved ? resolved->summaries.size() : 0;
-  info["self_intersecting_pairs"] = intersecting_pairs;
+  info["retriangulation_passes"] = surface.resolved ? surface.resolved->summaries.size() : 0;
+  info["self_intersecting_pairs"] = surface.intersecting_pairs;
   py::tuple vf = mesh_to_numpy(mesh);
   return py::make_tuple(vf[0], vf[1], info);
 }

@@ -201,7 +201,6 @@ min_angle = 15
 edge_ratio = 2
 degraded_fraction = 0
 always = false
-local = true
 edge_length = 0.4125
 remesh_iterations = 3
 neighbours = 18

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <fstream>
 #include <limits>
 #include <numbers>
@@ -101,17 +102,26 @@ TEST(RetriangulatingRun, torus_hole_seals_and_the_surface_becomes_genus_zero)
 
 TEST(RetriangulatingRun, resumed_run_repeats_the_same_surgery)
 {
-  test::TempDir dir;
+  // With the whole pipeline and with local remeshing (whose pinch-off comes later in steps).
   const Mesh start = dumbbell();
   constexpr double no_end = std::numeric_limits<double>::infinity();
-  run_simulation(start, {.parameters = retriangulating_run(dir / "whole", no_end, 160)});
-  run_simulation(start, {.parameters = retriangulating_run(dir / "resumed", no_end, 60)});
-  RunParameters rest;
-  read_run_parameters(dir / "resumed/run.toml", rest);
-  rest.steps = 160;
-  resume_simulation({.parameters = rest});
-  EXPECT_TRUE(summarise(dir / "whole/metrics.csv").events.count("split")) << "the surgery lies after step 60";
-  EXPECT_EQ(test::read_file(dir / "resumed/metrics.csv"), test::read_file(dir / "whole/metrics.csv"));
+  for (const bool local : {false, true}) {
+    SCOPED_TRACE(local);
+    test::TempDir dir;
+    RunParameters whole = retriangulating_run(dir / "whole", no_end, 200);
+    whole.retriangulation.local = local;
+    run_simulation(start, {.parameters = whole});
+    RunParameters first = retriangulating_run(dir / "resumed", no_end, 60);
+    first.retriangulation.local = local;
+    run_simulation(start, {.parameters = first});
+    RunParameters rest;
+    read_run_parameters(dir / "resumed/run.toml", rest);
+    EXPECT_EQ(rest.retriangulation.local, local) << "run.toml keeps the switch";
+    rest.steps = 200;
+    resume_simulation({.parameters = rest});
+    EXPECT_TRUE(summarise(dir / "whole/metrics.csv").events.count("split")) << "the surgery lies after step 60";
+    EXPECT_EQ(test::read_file(dir / "resumed/metrics.csv"), test::read_file(dir / "whole/metrics.csv"));
+  }
 }
 
 TEST(RetriangulatingRun, edge_length_is_fixed_from_the_initial_surface_in_run_toml)
@@ -202,6 +212,57 @@ TEST(RetriangulationHook, gives_back_the_volume_a_remeshing_takes)
       EXPECT_GT(change, 1e-3);
   }
 }
+TEST(RetriangulationHook, degraded_elements_alone_are_remeshed_locally_and_the_volume_restored)
+{
+  Mesh mesh = analytic::icosphere(4);
+  double ell = 0;
+  for (const auto e : mesh.edges())
+    ell += mesh.calc_edge_length(e) / static_cast<double>(mesh.n_edges());
+  const auto v = *mesh.vertices().begin();
+  mesh.set_point(v, mesh.point(v) + 0.85 * (mesh.point(*mesh.vv_iter(v)) - mesh.point(v)));
+  ASSERT_GT(degraded_elements(mesh, ell), 1);
+  const double volume = enclosed_volume(mesh);
+  RetriangulationSchedule schedule;
+  schedule.pipeline.edge_length = ell;
+  schedule.pipeline.edges_per_radius = 0; // the uniform ℓ the count above measures against
+  for (const bool local : {true, false}) {
+    SCOPED_TRACE(local);
+    schedule.local = local;
+    Mesh remeshed = mesh;
+    const RetriangulationReport report = make_retriangulation_hook(schedule)(remeshed, {.step = 1});
+    EXPECT_TRUE(report.remeshed);
+    EXPECT_EQ(report.local, local);
+    EXPECT_EQ(report.detail.find("local remeshing") != std::string::npos, local) << report.detail;
+    EXPECT_EQ(report.degraded_left, 0);
+    EXPECT_EQ(degraded_elements(remeshed, ell), 0);
+    EXPECT_NEAR(enclosed_volume(remeshed), volume, 1e-9 * volume);
+    // Locally, the faces away from the damage keep their vertices: most of the sphere's survive.
+    if (local) {
+      EXPECT_GT(remeshed.n_vertices(), mesh.n_vertices() - 40);
+    }
+  }
+}
+
+TEST(RetriangulatingRun, local_and_whole_surface_remeshing_pinch_the_dumbbell_off_alike)
+{
+  // The same event (two closed bodies) within 5% of each other in time, as test_exact_kinetics.cpp
+  // asks of an event against its exact time.
+  std::array<double, 2> time{};
+  for (const bool local : {true, false}) {
+    SCOPED_TRACE(local);
+    test::TempDir dir;
+    RunParameters p = retriangulating_run(dir / "run", 1.0);
+    p.stop_at_topology_change = true;
+    p.retriangulation.local = local;
+    const SimulationResult r = run_simulation(dumbbell(), {.parameters = p});
+    const MetricsSummary m = summarise(dir / "run/metrics.csv");
+    EXPECT_EQ(m.last[components_col], "2");
+    EXPECT_NE(m.last.back().find("split"), std::string::npos);
+    time[local] = r.time;
+  }
+  EXPECT_NEAR(time[1], time[0], 0.05 * time[0]);
+}
+
 TEST(RetriangulatingRun, stops_at_the_first_topology_change_when_asked)
 {
   test::TempDir dir;
@@ -281,6 +342,7 @@ TEST(RetriangulationHook, a_crossing_is_cut_out_locally_with_the_outcome_of_the_
 {
   RetriangulationSchedule schedule;
   schedule.pipeline.edge_length = 0.3;
+  schedule.local = true;
   Mesh local = pinched_capsule();
   const RetriangulationReport by_patch = make_retriangulation_hook(schedule)(local, {.step = 1});
   schedule.local = false;
@@ -302,13 +364,15 @@ TEST(RetriangulationHook, touching_components_fall_back_to_the_whole_pipeline_an
 {
   RetriangulationSchedule schedule;
   schedule.pipeline.edge_length = 0.1;
+  schedule.local = true;
   Mesh touching = analytic::disjoint_union(analytic::icosphere(3, 1.0, {-0.6, 0, 0}),
                                            analytic::icosphere(3, 1.0, {0.6, 0, 0}));
   const RetriangulationReport report = make_retriangulation_hook(schedule)(touching, {.step = 1});
   EXPECT_TRUE(report.merged);
-  EXPECT_NE(report.detail.find("(local surgery: two components intersect each other"), std::string::npos)
+  EXPECT_NE(report.detail.find("the local surgery declined or failed (two components intersect each other"),
+            std::string::npos)
       << report.detail;
-  EXPECT_NE(report.detail.find("the whole surface instead"), std::string::npos) << report.detail;
+  EXPECT_NE(report.detail.find("so the whole pipeline ran"), std::string::npos) << report.detail;
   EXPECT_EQ(component_topology(touching).size(), 1u);
 }
 

@@ -87,5 +87,36 @@ TEST(RestoreVolumesFrom, separate_bodies_keep_their_own_volumes)
   for (int k = 0; k < 2; ++k)
     EXPECT_NEAR(got[k], want[k], 1e-10 * want[k]) << k;
 }
+
+TEST(RestoreVolumesKept, each_body_gets_back_the_volume_of_the_one_its_kept_vertices_came_from)
+{
+  // The bodies listed the other way round after the remeshing, the small one shrunk: each gets
+  // its own volume back through the vertices the map says were kept (here every other one).
+  const Mesh small = analytic::icosphere(3, 1.0, {-5, 0, 0}), large = analytic::icosphere(3, 2.0, {5, 0, 0});
+  const Mesh before = analytic::disjoint_union(small, large);
+  Mesh shrunk = small;
+  for (const auto v : shrunk.vertices())
+    shrunk.set_point(v, Mesh::Point(-5, 0, 0) + 0.98 * (shrunk.point(v) - Mesh::Point(-5, 0, 0)));
+  Mesh after = analytic::disjoint_union(large, shrunk);
+  const int n = static_cast<int>(small.n_vertices());
+  std::vector<int> map(before.n_vertices(), -1);
+  for (int v = 0; v < n; v += 2) {
+    map[v] = n + v;     // small → second in `after`
+    map[n + v] = v;     // large → first
+  }
+  set_vertex_positions(after, restore_volumes_kept(before, after, map).positions);
+  const std::vector<double> want = component_volumes(before), got = component_volumes(after);
+  EXPECT_NEAR(got[1], want[0], 1e-10 * want[0]);
+  EXPECT_NEAR(got[0], want[1], 1e-10 * want[1]);
+}
+
+TEST(RestoreVolumesKept, a_body_without_kept_vertices_is_matched_by_nearness)
+{
+  const Mesh before = analytic::icosphere(4);
+  Mesh after = analytic::icosphere(2);
+  set_vertex_positions(after, restore_volumes_kept(before, after, std::vector<int>(before.n_vertices(), -1)).positions);
+  EXPECT_NEAR(enclosed_volume(after), enclosed_volume(before), 1e-10 * enclosed_volume(before));
+  EXPECT_THROW(restore_volumes_kept(before, after, {}), InvalidParameter);
+}
 } // namespace
 } // namespace sdflow

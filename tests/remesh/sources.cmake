@@ -1,1 +1,3 @@
-target_sources(sdflow_tests PRIVATE ${CMAKE_CURRENT_LIST_DIR}/test_remesh.cpp)
+target_sources(sdflow_tests PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/test_local_remesh.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_remesh.cpp)

@@ -399,9 +399,10 @@ std::vector<ParameterEntry> build_schema()
   }
   {
     auto& e = add(entry("retriangulation.local", "--retriangulate-local", ParameterType::boolean,
-                        "Where the surface intersects itself, cut out and rebuild only the faces near the crossing "
-                        "(the whole pipeline when that fails, and always for components touching each other); "
-                        "off, the whole pipeline runs"));
+                        "When only degraded elements call for a re-triangulation, remesh just the region around them "
+                        "(three rings of faces, boundary kept) instead of running the whole pipeline; at a "
+                        "self-intersection, rebuild only the faces near the crossing (the whole pipeline when either "
+                        "fails, and for components touching each other)"));
     bind<bool>(e, &RunParameters::retriangulation, &RS::local);
   }
   {

@@ -14,10 +14,11 @@ namespace sdflow {
 
 //! When a run re-triangulates: every `every` steps the surface is looked at, and
 //! the pipeline of retri/pipeline.h runs when it intersects itself (a pinch-off, a hole sealing,
-//! bodies touching), when its triangles have degraded (more than `degraded_fraction` of the
-//! triangle count are triangles with an angle below `min_angle_deg` or edges outside [ℓ/r, r·ℓ]
-//! with r = `edge_ratio` and ℓ the local target of the pipeline's curvature-adapted sizing, and more
-//! than the last re-triangulation left behind), or every time with `always` (the paper's practice).
+//! bodies touching), or every time with `always` (the paper's practice). When its triangles have
+//! degraded (more than `degraded_fraction` of the triangle count are triangles with an angle below
+//! `min_angle_deg` or edges outside [ℓ/r, r·ℓ] with r = `edge_ratio` and ℓ the local target of the
+//! pipeline's curvature-adapted sizing, and more than the last re-triangulation left behind), the
+//! region around them is remeshed (`local`), or the whole pipeline runs.
 struct RetriangulationSchedule {
   //! On by default: re-triangulation is what carries the method through topology changes. Off, a
   //! flow stops at the first self-intersection (intersection_guard.h).
@@ -31,10 +32,15 @@ struct RetriangulationSchedule {
   //! appear; larger values save remeshings on large surfaces.
   double degraded_fraction = 0;
   bool always = false;        //!< run the whole pipeline after every k-th step (the paper's practice)
-  //! When the surface intersects itself, do the surgery only around the crossing
-  //! (retri/local_surgery.h), falling back to the whole pipeline when that declines or fails
-  //! (components that intersect each other always take the whole pipeline).
-  bool local = true;
+  //! When only degraded elements call for it (nothing intersects), remesh just the regions around
+  //! them (remesh/local_remesh.h) instead of running the whole pipeline; when the surface
+  //! intersects itself, do the pipeline's surgery only around the crossing (retri/local_surgery.h).
+  //! The whole pipeline still runs when either of them fails or declines (components intersecting
+  //! each other), with `always`, and when a step could not be taken. Off by default: each
+  //! remeshing costs less, but the rest of the surface stays as worn as it was and degrades again
+  //! sooner, so a run remeshes more often and refactorises its system each time (docs/design.md §3
+  //! has the figures, and those of the surgery, which costs a tenth of the whole pipeline's).
+  bool local = false;
   //! Give each closed component (or group of components that split or fused) back the volume the
   //! re-triangulation took or added (flow/volume.h, restore_volumes_from).
   bool restore_volume = true;
@@ -57,13 +63,16 @@ struct RetriangulationContext {
 //! What a re-triangulation hook did to the mesh (each flag becomes an event of the step's row).
 struct RetriangulationReport {
   bool remeshed = false; //!< triangulation improved (same topology)
+  bool local = false;    //!< ... only around the degraded elements (remesh/local_remesh.h)
   bool surgery = false;  //!< self-intersections removed and the surface rebuilt
   bool split = false;    //!< a component broke into several
   bool merged = false;   //!< components were joined
   std::string detail;    //!< one line for events.log
-  long degraded_left = -1; //!< degraded elements left by the pipeline when it ran (-1: it did not)
+  long degraded_left = -1; //!< degraded elements left by a re-triangulation (-1: none ran)
   double check_seconds = 0;  //!< wall time of the look at the surface (intersections, degraded elements)
-  RetriangulationResult::Seconds pipeline_seconds; //!< of the pipeline's stages, when it ran
+  //! Of the pipeline's stages, when it ran; a local remeshing counts as `remesh`, and its check for
+  //! self-intersections as `intersections`.
+  RetriangulationResult::Seconds pipeline_seconds;
   double volume_seconds = 0; //!< of giving the components back their volume
   bool changed() const { return remeshed || surgery || split || merged; }
 };

@@ -1,6 +1,7 @@
 target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/blas_threads.cpp
   sdflow/flow/checkpoint.cpp
+  sdflow/flow/degraded_elements.cpp
   sdflow/flow/intersection_guard.cpp
   sdflow/flow/parameter_schema.cpp
   sdflow/flow/parameters.cpp

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -149,6 +150,37 @@ VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after)
     if (g.closed && g.has_old && g.new_area > 0)
       target[k] += (g.old_volume - g.new_volume) * new_area[k] / g.new_area;
   }
+  return restore_volumes(after, target);
+}
+
+VolumeRestoration restore_volumes_kept(const Mesh& before, const Mesh& after, const std::vector<int>& vertex_map)
+{
+  if (vertex_map.size() != before.n_vertices())
+    throw InvalidParameter(fmt::format("restore_volumes_kept: {} mapped vertices for {}", vertex_map.size(),
+                                       before.n_vertices()));
+  int old_count = 0, new_count = 0;
+  const std::vector<int> old_component = face_component_ids(before, &old_count);
+  const std::vector<int> new_component = face_component_ids(after, &new_count);
+  if (old_count != new_count)
+    return restore_volumes_from(before, after);
+  std::vector<int> old_vertex_component(before.n_vertices(), -1), new_vertex_component(after.n_vertices(), -1);
+  for (const auto f : before.faces())
+    for (const auto v : f.vertices())
+      old_vertex_component[v.idx()] = old_component[f.idx()];
+  for (const auto f : after.faces())
+    for (const auto v : f.vertices())
+      new_vertex_component[v.idx()] = new_component[f.idx()];
+  std::vector<int> source(new_count, -1);
+  for (std::size_t v = 0; v < vertex_map.size(); ++v)
+    if (vertex_map[v] >= 0 && old_vertex_component[v] >= 0)
+      source[new_vertex_component[vertex_map[v]]] = old_vertex_component[v];
+  if (std::find(source.begin(), source.end(), -1) != source.end())
+    return restore_volumes_from(before, after);
+  const std::vector<double> old_volume =
+      component_volumes(vertex_positions(before), face_indices(before), old_component, old_count);
+  std::vector<double> target(new_count);
+  for (int k = 0; k < new_count; ++k)
+    target[k] = old_volume[source[k]];
   return restore_volumes(after, target);
 }
 

@@ -30,4 +30,12 @@ VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& t
 //! Groups with an open component are left alone. Throws SolverFailure as restore_volumes does.
 VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after);
 
+//! The same for `after`, a remeshing of `before` that kept its components and the vertices
+//! `vertex_map` takes into it (vertex of `before` → of `after`, -1 for one remeshed away, as a
+//! local remeshing reports them): each component of `after` gets back the volume of the component
+//! of `before` its kept vertices belong to, without the nearest-point search of
+//! restore_volumes_from, to which it falls back when the component counts differ or a component
+//! kept no vertex. Throws SolverFailure as restore_volumes does.
+VolumeRestoration restore_volumes_kept(const Mesh& before, const Mesh& after, const std::vector<int>& vertex_map);
+
 } // namespace sdflow

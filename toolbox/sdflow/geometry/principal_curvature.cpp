@@ -1,32 +1,39 @@
 #include "sdflow/geometry/principal_curvature.h"
 
-#include "sdflow/geometry/cotangent_curvature.h"
-#include "sdflow/geometry/laplacian.h"
+#include "sdflow/errors.h"
+#include "sdflow/geometry/detail/mixed_voronoi.h"
 #include "sdflow/geometry/normals.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
 namespace sdflow {
+namespace {
 
-Eigen::VectorXd largest_principal_curvature(const Mesh& mesh, const Eigen::VectorXd& mean_curvature,
-                                            const Eigen::VectorXd& areas)
+//! The angle of the corner at `p` between the edges to `a` and `b`.
+double corner_angle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b)
+{
+  const Eigen::Vector3d u = a - p, w = b - p;
+  return std::atan2(u.cross(w).norm(), u.dot(w));
+}
+
+//! κ = |H| + √max(H² − K, 0) with K = (2π − Σα)/A at interior vertices with area; boundary vertices
+//! take the largest κ of their interior neighbours, the others 0.
+Eigen::VectorXd kappa_from(const Mesh& mesh, const Eigen::VectorXd& mean_curvature, const Eigen::VectorXd& areas,
+                           const Eigen::VectorXd& angle_sums)
 {
   Eigen::VectorXd kappa = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(mesh.n_vertices()));
   for (auto v : mesh.vertices()) {
-    if (mesh.is_boundary(v) || !(areas[v.idx()] > 0))
+    const int i = v.idx();
+    if (mesh.is_boundary(v) || !(areas[i] > 0))
       continue;
-    const Eigen::Vector3d p = to_eigen(mesh.point(v));
-    double angle_sum = 0;
-    for (auto h : mesh.voh_range(v)) {
-      const Eigen::Vector3d a = to_eigen(mesh.point(h.to())) - p;
-      const Eigen::Vector3d b = to_eigen(mesh.point(h.next().to())) - p;
-      angle_sum += std::atan2(a.cross(b).norm(), a.dot(b));
-    }
-    const double gaussian = (2 * std::numbers::pi - angle_sum) / areas[v.idx()];
-    const double h = mean_curvature[v.idx()];
-    kappa[v.idx()] = std::abs(h) + std::sqrt(std::max(h * h - gaussian, 0.0));
+    const double gaussian = (2 * std::numbers::pi - angle_sums[i]) / areas[i];
+    const double h = mean_curvature[i];
+    kappa[i] = std::abs(h) + std::sqrt(std::max(h * h - gaussian, 0.0));
   }
   for (auto v : mesh.vertices())
     if (mesh.is_boundary(v))
@@ -36,12 +43,59 @@ Eigen::VectorXd largest_principal_curvature(const Mesh& mesh, const Eigen::Vecto
   return kappa;
 }
 
+} // namespace
+
+Eigen::VectorXd largest_principal_curvature(const Mesh& mesh, const Eigen::VectorXd& mean_curvature,
+                                            const Eigen::VectorXd& areas)
+{
+  Eigen::VectorXd angle_sums = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(mesh.n_vertices()));
+  for (auto f : mesh.faces()) {
+    const TriangleCorners t = triangle_corners(mesh, f);
+    for (int c = 0; c < 3; ++c)
+      angle_sums[t.index[c]] += corner_angle(t.point[c], t.point[(c + 1) % 3], t.point[(c + 2) % 3]);
+  }
+  return kappa_from(mesh, mean_curvature, areas, angle_sums);
+}
+
 Eigen::VectorXd largest_principal_curvature(const Mesh& mesh)
 {
+  // One pass over the faces gathers what cotangent_laplacian, mixed_voronoi_areas and the angle
+  // sums would: L X without assembling L, the areas and the corner angles. A re-triangulating run
+  // evaluates this after every step (radius_targets), so the sparse assembly mattered.
+  const auto n = static_cast<Eigen::Index>(mesh.n_vertices());
+  VertexVectors laplacian_x = VertexVectors::Zero(n, 3);
+  Eigen::VectorXd areas = Eigen::VectorXd::Zero(n), angle_sums = Eigen::VectorXd::Zero(n);
+  for (auto f : mesh.faces()) {
+    const TriangleCorners t = triangle_corners(mesh, f);
+    const double twice_area = (t.point[1] - t.point[0]).cross(t.point[2] - t.point[0]).norm();
+    if (!(twice_area > 0))
+      throw InvalidMesh(fmt::format("largest_principal_curvature: triangle {} has zero area", f.idx()));
+    std::array<double, 3> dots{};
+    for (int c = 0; c < 3; ++c) {
+      const int j = t.index[(c + 1) % 3], k = t.index[(c + 2) % 3];
+      const Eigen::Vector3d a = t.point[(c + 1) % 3] - t.point[c];
+      const Eigen::Vector3d b = t.point[(c + 2) % 3] - t.point[c];
+      dots[c] = a.dot(b);
+      const double half_cot = 0.5 * dots[c] / twice_area; // the cotangent weight of edge jk, halved
+      const Eigen::Vector3d edge = t.point[(c + 2) % 3] - t.point[(c + 1) % 3];
+      laplacian_x.row(j) += half_cot * edge.transpose();
+      laplacian_x.row(k) -= half_cot * edge.transpose();
+      angle_sums[t.index[c]] += std::atan2(a.cross(b).norm(), dots[c]);
+    }
+    detail::add_mixed_voronoi_areas(t.point, t.index, dots, twice_area, areas);
+  }
   const VertexVectors normals = vertex_normals(mesh);
-  const SparseMatrix laplacian = cotangent_laplacian(mesh);
-  const Eigen::VectorXd areas = mixed_voronoi_areas(mesh);
-  return largest_principal_curvature(mesh, cotangent_mean_curvature(mesh, normals, laplacian, areas), areas);
+  Eigen::VectorXd h = Eigen::VectorXd::Zero(n);
+  for (auto v : mesh.vertices()) {
+    const int i = v.idx();
+    if (mesh.is_boundary(v))
+      continue;
+    if (!(areas[i] > 0))
+      throw InvalidMesh(
+          fmt::format("largest_principal_curvature: vertex {} has no area (isolated or degenerate star)", i));
+    h[i] = 0.5 * normals.row(i).dot(laplacian_x.row(i)) / areas[i];
+  }
+  return kappa_from(mesh, h, areas, angle_sums);
 }
 
 } // namespace sdflow

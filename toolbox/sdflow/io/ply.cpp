@@ -19,8 +19,6 @@
 namespace sdflow::detail {
 namespace {
 
-enum class Scalar { int8, uint8, int16, uint16, int32, uint32, float32, float64 };
-
 struct Property {
   std::string name;
   bool list = false;
@@ -57,21 +55,6 @@ std::optional<Scalar> scalar_named(std::string_view name)
     if (n == name)
       return s;
   return std::nullopt;
-}
-
-std::size_t size_of(Scalar s)
-{
-  switch (s) {
-  case Scalar::int8:
-  case Scalar::uint8: return 1;
-  case Scalar::int16:
-  case Scalar::uint16: return 2;
-  case Scalar::int32:
-  case Scalar::uint32:
-  case Scalar::float32: return 4;
-  case Scalar::float64: return 8;
-  }
-  return 0;
 }
 
 Header read_header(std::string_view bytes, const std::filesystem::path& file)
@@ -120,7 +103,7 @@ Header read_header(std::string_view bytes, const std::filesystem::path& file)
         count_type = scalar_named(tokens[2]);
         type = scalar_named(tokens[3]);
         property.name = tokens[4];
-        if (!count_type || *count_type == Scalar::float32 || *count_type == Scalar::float64)
+        if (!count_type || !is_integer(*count_type))
           fail(file, n, fmt::format("list length type '{}' is not an integer type", tokens[2]));
         property.count_type = *count_type;
       } else if (tokens.size() == 3) {
@@ -214,6 +197,8 @@ const char* scalar_name(Scalar type)
   case Scalar::uint16: return "ushort";
   case Scalar::int32: return "int";
   case Scalar::uint32: return "uint";
+  case Scalar::int64: return "int64"; // not a PLY type: scalar_named never gives it
+  case Scalar::uint64: return "uint64";
   case Scalar::float32: return "float";
   case Scalar::float64: return "double";
   }
@@ -233,6 +218,8 @@ bool representable(double v, Scalar type)
   case Scalar::uint16: return whole_in(0, 65535);
   case Scalar::int32: return whole_in(-2147483648.0, 2147483647.0);
   case Scalar::uint32: return whole_in(0, 4294967295.0);
+  case Scalar::int64: return whole_in(-9223372036854775808.0, 9223372036854775807.0);
+  case Scalar::uint64: return whole_in(0, 18446744073709551615.0);
   case Scalar::float32: return !std::isfinite(v) || std::abs(v) <= 3.4028234663852886e38;
   case Scalar::float64: return true;
   }
@@ -336,17 +323,7 @@ public:
                        index_, element_->count, property));
     const char* p = data_.data() + pos_;
     pos_ += size;
-    switch (type) {
-    case Scalar::int8: return load_scalar<std::int8_t>(p, order_);
-    case Scalar::uint8: return load_scalar<std::uint8_t>(p, order_);
-    case Scalar::int16: return load_scalar<std::int16_t>(p, order_);
-    case Scalar::uint16: return load_scalar<std::uint16_t>(p, order_);
-    case Scalar::int32: return load_scalar<std::int32_t>(p, order_);
-    case Scalar::uint32: return load_scalar<std::uint32_t>(p, order_);
-    case Scalar::float32: return load_scalar<float>(p, order_);
-    case Scalar::float64: return load_scalar<double>(p, order_);
-    }
-    return 0;
+    return load_as_double(p, type, order_);
   }
 
   bool has(long long count, std::size_t item_size) const

@@ -1,6 +1,7 @@
 target_sources(sdflow_toolbox PRIVATE
   sdflow/io/io.cpp
   sdflow/io/base64.cpp
+  sdflow/io/binary_scalar.cpp
   sdflow/io/text.cpp
   sdflow/io/off.cpp
   sdflow/io/obj.cpp

@@ -21,8 +21,7 @@
 namespace sdflow::detail {
 namespace {
 
-enum class Scalar { int8, uint8, int16, uint16, int32, uint32, int64, uint64, float32, float64 };
-
+//! The type a DataArray names (VTK's type names).
 std::optional<Scalar> scalar_named(std::string_view name)
 {
   static constexpr std::array<std::pair<std::string_view, Scalar>, 10> names = {{
@@ -35,25 +34,6 @@ std::optional<Scalar> scalar_named(std::string_view name)
       return s;
   return std::nullopt;
 }
-
-std::size_t size_of(Scalar s)
-{
-  switch (s) {
-  case Scalar::int8:
-  case Scalar::uint8: return 1;
-  case Scalar::int16:
-  case Scalar::uint16: return 2;
-  case Scalar::int32:
-  case Scalar::uint32:
-  case Scalar::float32: return 4;
-  case Scalar::int64:
-  case Scalar::uint64:
-  case Scalar::float64: return 8;
-  }
-  return 1;
-}
-
-bool is_integer(Scalar s) { return s != Scalar::float32 && s != Scalar::float64; }
 
 //! A DataArray as declared, with its inline text.
 struct DataArray {
@@ -322,22 +302,7 @@ private:
     return static_cast<std::size_t>(count);
   }
 
-  double load_real(const char* p, Scalar type) const
-  {
-    switch (type) {
-    case Scalar::int8: return load_scalar<std::int8_t>(p, d_.order);
-    case Scalar::uint8: return load_scalar<std::uint8_t>(p, d_.order);
-    case Scalar::int16: return load_scalar<std::int16_t>(p, d_.order);
-    case Scalar::uint16: return load_scalar<std::uint16_t>(p, d_.order);
-    case Scalar::int32: return load_scalar<std::int32_t>(p, d_.order);
-    case Scalar::uint32: return load_scalar<std::uint32_t>(p, d_.order);
-    case Scalar::int64: return static_cast<double>(load_scalar<std::int64_t>(p, d_.order));
-    case Scalar::uint64: return static_cast<double>(load_scalar<std::uint64_t>(p, d_.order));
-    case Scalar::float32: return load_scalar<float>(p, d_.order);
-    case Scalar::float64: return load_scalar<double>(p, d_.order);
-    }
-    return 0;
-  }
+  double load_real(const char* p, Scalar type) const { return load_as_double(p, type, d_.order); }
 
   long long load_integer(const char* p, Scalar type, const DataArray& a) const
   {

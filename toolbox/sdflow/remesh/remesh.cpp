@@ -624,14 +624,14 @@ using SizingTree = nanoflann::KDTreeSingleIndexAdaptor<
 //! the barycentric weights b_i of q in its triangle and the eq. (8) normals n_i at its corners.
 //! On a quadric that is exact to leading order (the interpolant's error is −½ Σ b_i II(x_i − q)),
 //! so new vertices no longer sit inside convex parts by the sagitta κh²/8 of the old triangles.
-PointProjection curved_projection(const Mesh& mesh, std::shared_ptr<const ClosestPointGrid> grid)
+PointProjection curved_projection(const Mesh& mesh, VertexVectors normals, std::shared_ptr<const ClosestPointGrid> grid)
 {
   constexpr double kSmoothPatchCosine = 0.866; // corner normals within 30° of the triangle's
   struct Surface {
     VertexVectors points, normals;
     FaceIndices triangles;
   };
-  auto surface = std::make_shared<Surface>(Surface{vertex_positions(mesh), vertex_normals(mesh), {}});
+  auto surface = std::make_shared<Surface>(Surface{vertex_positions(mesh), std::move(normals), {}});
   // Corners in the order of ClosestPoint::barycentric (closest_point_grid.h: from, to, next).
   surface->triangles.resize(static_cast<Eigen::Index>(mesh.n_faces()), 3);
   for (auto f : mesh.faces()) {
@@ -688,7 +688,7 @@ RemeshResult isotropic_remesh(const Mesh& input, const RemeshOptions& options)
   if (!project) {
     auto grid = std::make_shared<const ClosestPointGrid>(result.mesh);
     if (options.curved_projection)
-      project = curved_projection(result.mesh, std::move(grid));
+      project = curved_projection(result.mesh, vertex_normals(result.mesh), std::move(grid));
     else
       project = [grid](const Eigen::Vector3d& p) { return grid->closest_point(p).point; };
   }
@@ -703,6 +703,16 @@ RemeshResult isotropic_remesh(const Mesh& input, const RemeshOptions& options)
   Remesher remesher(result.mesh, options, ell, std::move(project), std::move(project_boundary), own_projections);
   result.statistics = remesher.run();
   return result;
+}
+
+PointProjection curved_surface_projection(const Mesh& surface, VertexVectors normals)
+{
+  if (surface.n_faces() == 0)
+    throw InvalidMesh("curved_surface_projection: the surface has no triangles");
+  if (normals.rows() != static_cast<Eigen::Index>(surface.n_vertices()))
+    throw InvalidParameter(fmt::format("curved_surface_projection: {} normals for {} vertices", normals.rows(),
+                                       surface.n_vertices()));
+  return curved_projection(surface, std::move(normals), std::make_shared<const ClosestPointGrid>(surface));
 }
 
 SizingField nearest_vertex_sizing(const Mesh& mesh, std::vector<double> lengths)

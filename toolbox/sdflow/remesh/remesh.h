@@ -82,6 +82,14 @@ struct RemeshResult {
 //! sizing field that returns a non-positive length, InvalidMesh for an empty mesh.
 RemeshResult isotropic_remesh(const Mesh& mesh, const RemeshOptions& options = {});
 
+//! The projection of RemeshOptions::curved_projection onto `surface` (no deleted elements): its
+//! closest point, lifted onto the smooth surface by the Phong tessellation of the given unit vertex
+//! normals (#V by 3; eq. 8's, possibly computed on a larger surface than this one, so that a
+//! patch's boundary vertices get the normals of their whole star). Safe to call from several
+//! threads. Throws InvalidMesh for a surface without triangles, InvalidParameter for a wrong
+//! normal count.
+PointProjection curved_surface_projection(const Mesh& surface, VertexVectors normals);
+
 //! Curvature-adapted sizing (Dunyach et al. 2013): ℓ(v) = √(6ε/κ − 3ε²) where κ is the largest
 //! absolute principal curvature at v (from the discrete mean curvature, eq. 9, and the angle
 //! defect), so the chord deviates at most ε from the surface; clamped to [min_length, max_length].

@@ -1,3 +1,5 @@
 target_sources(sdflow_toolbox PRIVATE
+  sdflow/remesh/face_patch.cpp
+  sdflow/remesh/local_remesh.cpp
   sdflow/remesh/remesh.cpp
   sdflow/remesh/star_projection.cpp)

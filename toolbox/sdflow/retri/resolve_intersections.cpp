@@ -24,4 +24,23 @@ ResolveResult resolve_self_intersections(const Mesh& mesh, const ResolveOptions&
   return result;
 }
 
+RepairedSurface repair_surface(const PolygonSoup& soup, const std::string& source, const RepairOptions& options,
+                               bool remove_intersections, const std::function<void(const std::string&)>& stage)
+{
+  const auto begin = [&stage](const std::string& what) {
+    if (stage)
+      stage(what);
+  };
+  begin(fmt::format("repairing {} faces", soup.polygons.size()));
+  RepairedSurface r{.repaired = repair_soup(soup, source, options)};
+  begin("looking for self-intersections");
+  r.intersecting_pairs = self_intersections(r.repaired.mesh).size();
+  if (remove_intersections && r.intersecting_pairs > 0) {
+    begin(fmt::format("re-triangulating {} intersecting pairs away", r.intersecting_pairs));
+    r.resolved = resolve_self_intersections(r.repaired.mesh);
+    r.intersecting_pairs = r.resolved->pairs_after;
+  }
+  return r;
+}
+
 } // namespace sdflow

@@ -89,6 +89,20 @@ T load_scalar(const char* bytes, std::endian order)
   return value;
 }
 
+//! The numeric types of binary mesh data (PLY properties, VTK DataArrays); each format names them
+//! its own way.
+enum class Scalar { int8, uint8, int16, uint16, int32, uint32, int64, uint64, float32, float64 };
+
+//! Bytes of one value of type `s`.
+std::size_t size_of(Scalar s);
+
+//! True for the integer types.
+bool is_integer(Scalar s);
+
+//! The value of type `type` stored at `bytes` in byte order `order`, as a double (64-bit integers
+//! beyond 2⁵³ round).
+double load_as_double(const char* bytes, Scalar type, std::endian order);
+
 //! Append `value` to `out` in little-endian byte order (binary PLY and STL).
 template <class T>
 void store_little_endian(std::ostream& out, T value)

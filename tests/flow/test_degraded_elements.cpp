@@ -1,0 +1,56 @@
+//! The elements the re-triangulation hook calls degraded, and those halfway there that a local
+//! remeshing takes along (degraded_elements.h).
+#include "sdflow/flow/degraded_elements.h"
+#include "support/analytic_meshes.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace sdflow {
+namespace {
+
+RetriangulationSchedule uniform_schedule(double ell)
+{
+  RetriangulationSchedule s;
+  s.pipeline.edge_length = ell;
+  s.pipeline.edges_per_radius = 0; // uniform ℓ: every target is ℓ
+  return s;
+}
+
+TEST(DegradedElements, an_edge_between_the_bands_is_worn_but_not_degraded)
+{
+  // ℓ at 0.6 of the icosphere's mean edge: its edges, within ±20% of the mean, are 1.3–2 ℓ: each
+  // face has one outside [ℓ/√2, √2·ℓ], and none is outside [ℓ/2, 2ℓ].
+  const Mesh mesh = analytic::icosphere(3);
+  double mean = 0;
+  for (const auto e : mesh.edges())
+    mean += mesh.calc_edge_length(e) / static_cast<double>(mesh.n_edges());
+  const DegradedElements worn = degraded_elements(mesh, uniform_schedule(0.6 * mean));
+  EXPECT_EQ(worn.total(), 0);
+  EXPECT_TRUE(worn.faces.empty());
+  EXPECT_EQ(worn.worn_faces.size(), mesh.n_faces());
+  EXPECT_EQ(worn.targets, std::vector<double>(mesh.n_vertices(), 0.6 * mean));
+
+  const DegradedElements fine = degraded_elements(mesh, uniform_schedule(mean));
+  EXPECT_EQ(fine.total(), 0);
+  EXPECT_TRUE(fine.worn_faces.empty()) << "a fresh icosphere's edges are within √2 of their mean";
+}
+
+TEST(DegradedElements, a_short_edge_marks_its_two_faces_and_they_are_worn_too)
+{
+  Mesh mesh = analytic::icosphere(3);
+  double mean = 0;
+  for (const auto e : mesh.edges())
+    mean += mesh.calc_edge_length(e) / static_cast<double>(mesh.n_edges());
+  const auto v = *mesh.vertices().begin();
+  mesh.set_point(v, mesh.point(v) + 0.9 * (mesh.point(*mesh.vv_iter(v)) - mesh.point(v)));
+  const DegradedElements d = degraded_elements(mesh, uniform_schedule(mean));
+  EXPECT_GE(d.edges, 1);
+  EXPECT_GE(d.faces.size(), 2u);
+  EXPECT_TRUE(std::includes(d.worn_faces.begin(), d.worn_faces.end(), d.faces.begin(), d.faces.end()));
+  EXPECT_GT(d.worn_faces.size(), d.faces.size());
+}
+
+} // namespace
+} // namespace sdflow

@@ -1,0 +1,53 @@
+#include "sdflow/flow/degraded_elements.h"
+
+#include "sdflow/geometry/quality.h"
+#include "sdflow/remesh/remesh.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sdflow {
+
+DegradedElements degraded_elements(const Mesh& mesh, const RetriangulationSchedule& s)
+{
+  const RetriangulationOptions& pipeline = s.pipeline;
+  const double ell = pipeline.edge_length;
+  DegradedElements d;
+  // The targets the pipeline's remesher would aim at: a closing neck asks for shorter edges.
+  d.targets = pipeline.edges_per_radius > 0
+                  ? radius_targets(mesh, {.edges_per_radius = pipeline.edges_per_radius,
+                                          .min_length = pipeline.min_edge_fraction * ell, .max_length = ell})
+                  : std::vector<double>(mesh.n_vertices(), ell);
+  // 2: degraded, 1: worn (halfway to degraded), 0: neither.
+  std::vector<char> state(mesh.n_faces(), 0);
+  const auto mark = [&state](Mesh::FaceHandle f, char level) {
+    if (f.is_valid())
+      state[f.idx()] = std::max(state[f.idx()], level);
+  };
+  const double worn_ratio = std::sqrt(s.edge_ratio);
+  for (const auto e : mesh.edges()) {
+    const double length = mesh.calc_edge_length(e);
+    const double local = 0.5 * (d.targets[e.v0().idx()] + d.targets[e.v1().idx()]);
+    const bool degraded = length > s.edge_ratio * local || length * s.edge_ratio < local;
+    if (!degraded && !(length > worn_ratio * local || length * worn_ratio < local))
+      continue;
+    d.edges += degraded;
+    mark(e.h0().face(), degraded ? 2 : 1);
+    mark(e.h1().face(), degraded ? 2 : 1);
+  }
+  for (const auto f : mesh.faces()) {
+    const double angle = smallest_angle_deg(mesh, f);
+    if (angle < s.min_angle_deg)
+      ++d.triangles;
+    mark(f, angle < s.min_angle_deg ? 2 : angle < 2 * s.min_angle_deg ? 1 : 0);
+  }
+  for (const auto f : mesh.faces()) {
+    if (state[f.idx()] == 2)
+      d.faces.push_back(f.idx());
+    if (state[f.idx()] > 0)
+      d.worn_faces.push_back(f.idx());
+  }
+  return d;
+}
+
+} // namespace sdflow
