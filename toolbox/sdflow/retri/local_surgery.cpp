@@ -163,7 +163,7 @@ struct LoopPair {
 //! The rim loops of the trimmed rebuild that run along a cut loop, one per cut loop (the others are
 //! inner holes). `positions` hold every vertex in the zip's numbering.
 std::vector<LoopPair> match_rims_to_cuts(const VertexVectors& positions, const std::vector<std::vector<int>>& cuts,
-                                         const std::vector<std::vector<int>>& rims, std::vector<char>& rim_is_inner)
+                                         const std::vector<std::vector<int>>& rims)
 {
   std::vector<LoopPair> pairs(cuts.size());
   std::vector<double> spacing(cuts.size(), 0);
@@ -173,7 +173,6 @@ std::vector<LoopPair> match_rims_to_cuts(const VertexVectors& positions, const s
       spacing[c] += (positions.row(cuts[c][i]) - positions.row(cuts[c][(i + 1) % cuts[c].size()])).norm();
     spacing[c] /= static_cast<double>(cuts[c].size());
   }
-  rim_is_inner.assign(rims.size(), 1);
   // Each rim loop near a cut loop is a candidate for it; the longest is its rim, the others (a hole
   // of the rebuild close to the cut) stay inner holes.
   std::vector<double> farthest_of_chosen(cuts.size(), 0);
@@ -207,7 +206,6 @@ std::vector<LoopPair> match_rims_to_cuts(const VertexVectors& positions, const s
     if (farthest_of_chosen[c] > kRimMaxDistance * spacing[c])
       throw AttemptFailed("a rebuilt rim loop strays from the cut it should join");
     pairs[c].rim = rims[static_cast<std::size_t>(chosen[c])];
-    rim_is_inner[static_cast<std::size_t>(chosen[c])] = 0;
   }
   return pairs;
 }
@@ -410,8 +408,7 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
   std::vector<std::vector<int>> rims;
   for (const auto& loop : boundary_loops(trimmed))
     rims.push_back(loop_vertices(trimmed, loop));
-  std::vector<char> rim_is_inner;
-  const std::vector<LoopPair> pairs = match_rims_to_cuts(zx, cuts, rims, rim_is_inner);
+  const std::vector<LoopPair> pairs = match_rims_to_cuts(zx, cuts, rims);
   std::vector<std::array<int, 3>> faces;
   for (const auto f : trimmed.faces()) {
     const auto c = triangle_corners(trimmed, f).index;
@@ -432,7 +429,7 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
     zt.row(static_cast<Eigen::Index>(i)) << faces[i][0], faces[i][1], faces[i][2];
   Mesh rebuilt_patch = make_mesh(zx, zt);
 
-  // Stage 5 on the inner holes, then the seam remeshed with the cut fixed.
+  // Stage 5 on the inner holes.
   if (options.fill_holes)
     rebuilt_patch = fill_inner_holes(rebuilt_patch, [&] {
       std::vector<std::vector<int>> loops;
