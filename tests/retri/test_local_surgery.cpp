@@ -107,7 +107,7 @@ Mesh capsule(double ratio)
   return mesh_implicit_surface(expression_surface(shape), {.edge_length = 0.3}).mesh;
 }
 
-//! The surface a run with the default re-triangulation reaches at the first step that makes it
+//! The surface a run re-triangulating by the whole pipeline reaches at the first step that makes it
 //! intersect itself (the one its hook then re-triangulates), or an empty mesh when none does
 //! before `end_time`: the fixture the flow itself makes.
 Mesh first_crossing(const Mesh& start, double end_time)
@@ -115,6 +115,7 @@ Mesh first_crossing(const Mesh& start, double end_time)
   RunParameters p;
   p.end_time = end_time;
   p.retriangulation.pipeline.edge_length = mean_edge_length(start);
+  p.retriangulation.local = false; // the whole pipeline between steps, whatever the default
   const RetriangulationHook retriangulate = make_retriangulation_hook(p.retriangulation);
   Mesh crossed;
   const RetriangulationHook capture = [&](Mesh& mesh, const RetriangulationContext& context) {
@@ -155,13 +156,14 @@ void expect_same_outcome_as_global(const Mesh& crossed, const RetriangulationOpt
   EXPECT_NEAR(enclosed_volume(r.mesh), enclosed_volume(global.mesh), 0.02 * enclosed_volume(global.mesh));
 }
 
-//! The surface a run with the default re-triangulation reaches at the last step before its genus
-//! changes (empty when it does not before `end_time`).
+//! The surface a run re-triangulating by the whole pipeline reaches at the last step before its
+//! genus changes (empty when it does not before `end_time`).
 Mesh last_before_genus_change(const Mesh& start, double end_time)
 {
   RunParameters p;
   p.end_time = end_time;
   p.retriangulation.pipeline.edge_length = mean_edge_length(start);
+  p.retriangulation.local = false;
   const RetriangulationHook retriangulate = make_retriangulation_hook(p.retriangulation);
   Mesh before;
   bool changed = false;
