@@ -7,6 +7,7 @@
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/shapes/catalogue.h"
+#include "sdflow/shapes/expression.h"
 #include "sdflow/shapes/mesher.h"
 #include "support/analytic_meshes.h"
 
@@ -316,6 +317,63 @@ TEST(RetriangulationHook, a_forced_call_runs_the_pipeline_whatever_the_schedule)
   const RetriangulationReport report = hook(forced, {.step = 3, .force = true});
   EXPECT_TRUE(report.remeshed);
   EXPECT_NE(report.detail.find("no step could be taken"), std::string::npos) << report.detail;
+}
+
+//! A capsule of radius 1, L/D = 9, along x (edges of 0.3), its middle pinched through the axis
+//! (radius down by 1.3 (1 - (x/1.2)²) for |x| < 1.2), as a neck is between two steps.
+Mesh pinched_capsule()
+{
+  const std::string expression = "sqrt(max(abs(x)-8,0)^2+y^2+z^2)-1";
+  const ExpressionParameters shape{expression,
+                                   Eigen::AlignedBox3d(Eigen::Vector3d(-9.5, -1.5, -1.5), Eigen::Vector3d(9.5, 1.5, 1.5))};
+  Mesh mesh = mesh_implicit_surface(expression_surface(shape), {.edge_length = 0.3}).mesh;
+  for (const auto v : mesh.vertices()) {
+    const Eigen::Vector3d p = to_eigen(mesh.point(v));
+    const double rho = std::hypot(p.y(), p.z()), u = p.x() / 1.2;
+    if (std::abs(u) >= 1 || rho == 0)
+      continue;
+    const double scale = (rho - 1.3 * (1 - u * u)) / rho;
+    mesh.point(v) = to_point(Eigen::Vector3d(p.x(), p.y() * scale, p.z() * scale));
+  }
+  return mesh;
+}
+
+TEST(RetriangulationHook, a_crossing_is_cut_out_locally_with_the_outcome_of_the_whole_pipeline)
+{
+  RetriangulationSchedule schedule;
+  schedule.pipeline.edge_length = 0.3;
+  schedule.local = true;
+  Mesh local = pinched_capsule();
+  const RetriangulationReport by_patch = make_retriangulation_hook(schedule)(local, {.step = 1});
+  schedule.local = false;
+  Mesh global = pinched_capsule();
+  const RetriangulationReport whole = make_retriangulation_hook(schedule)(global, {.step = 1});
+  for (const RetriangulationReport* report : {&by_patch, &whole}) {
+    EXPECT_TRUE(report->surgery);
+    EXPECT_TRUE(report->split);
+  }
+  EXPECT_NE(by_patch.detail.find("locally: a patch of"), std::string::npos) << by_patch.detail;
+  EXPECT_EQ(whole.detail.find("locally"), std::string::npos) << whole.detail;
+  EXPECT_EQ(component_topology(local).size(), 2u);
+  EXPECT_EQ(component_topology(global).size(), 2u);
+  EXPECT_NEAR(enclosed_volume(local), enclosed_volume(global), 1e-3 * enclosed_volume(global))
+      << "both get the input's volume back";
+}
+
+TEST(RetriangulationHook, touching_components_fall_back_to_the_whole_pipeline_and_say_so)
+{
+  RetriangulationSchedule schedule;
+  schedule.pipeline.edge_length = 0.1;
+  schedule.local = true;
+  Mesh touching = analytic::disjoint_union(analytic::icosphere(3, 1.0, {-0.6, 0, 0}),
+                                           analytic::icosphere(3, 1.0, {0.6, 0, 0}));
+  const RetriangulationReport report = make_retriangulation_hook(schedule)(touching, {.step = 1});
+  EXPECT_TRUE(report.merged);
+  EXPECT_NE(report.detail.find("the local surgery declined or failed (two components intersect each other"),
+            std::string::npos)
+      << report.detail;
+  EXPECT_NE(report.detail.find("so the whole pipeline ran"), std::string::npos) << report.detail;
+  EXPECT_EQ(component_topology(touching).size(), 1u);
 }
 
 TEST(RetriangulatingRun, a_step_no_tau_can_take_is_retried_after_a_retriangulation)

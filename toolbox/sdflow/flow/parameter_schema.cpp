@@ -400,7 +400,9 @@ std::vector<ParameterEntry> build_schema()
   {
     auto& e = add(entry("retriangulation.local", "--retriangulate-local", ParameterType::boolean,
                         "When only degraded elements call for a re-triangulation, remesh just the region around them "
-                        "(three rings of faces, boundary kept) instead of running the whole pipeline"));
+                        "(three rings of faces, boundary kept) instead of running the whole pipeline; at a "
+                        "self-intersection, rebuild only the faces near the crossing (the whole pipeline when either "
+                        "fails, and for components touching each other)"));
     bind<bool>(e, &RunParameters::retriangulation, &RS::local);
   }
   {

@@ -5,6 +5,7 @@
 #include "sdflow/flow/volume.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/remesh/local_remesh.h"
+#include "sdflow/retri/local_surgery.h"
 #include "sdflow/spatial/intersect.h"
 #include "sdflow/stopwatch.h"
 
@@ -36,6 +37,9 @@ public:
     return tracker_->pairs().size();
   }
 
+  //! The intersecting pairs found by the last count().
+  const std::vector<FacePair>& pairs() const { return tracker_->pairs(); }
+
 private:
   std::optional<SelfIntersectionTracker> tracker_;
   FaceIndices triangles_;
@@ -46,6 +50,7 @@ private:
 struct Verdict {
   std::string reason;
   bool local = false;        //!< only degraded elements call for it, and the schedule allows a local remeshing
+  bool intersecting = false; //!< the surface intersects itself (the watch holds the pairs)
   DegradedElements degraded; //!< found when nothing intersects
 };
 
@@ -62,6 +67,7 @@ Verdict look_at_surface(const Mesh& mesh, const RetriangulationSchedule& s, long
   }
   if (const std::size_t pairs = watch.count(mesh); pairs > 0) {
     v.reason = fmt::format("{} intersecting face pairs", pairs);
+    v.intersecting = true;
     return v;
   }
   v.degraded = degraded_elements(mesh, s);
@@ -227,7 +233,15 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
         return report;
       }
     }
-    RetriangulationResult r = retriangulate(mesh, schedule.pipeline);
+    // At a crossing, the surgery around it first (the watch's pairs are this surface's).
+    std::optional<RetriangulationResult> surgery;
+    if (schedule.local && verdict.intersecting) {
+      LocalSurgery attempt = local_surgery(mesh, watch->pairs(), schedule.pipeline);
+      surgery = std::move(attempt.result);
+      if (!surgery)
+        fallback = fmt::format("the local surgery declined or failed ({}), so the whole pipeline ran; ", attempt.failure);
+    }
+    RetriangulationResult r = surgery ? std::move(*surgery) : retriangulate(mesh, schedule.pipeline);
     const RetriangulationResult::Seconds local = report.pipeline_seconds; // of a local remeshing given up
     report.pipeline_seconds = r.seconds;
     report.pipeline_seconds.remesh += local.remesh;

@@ -33,11 +33,13 @@ struct RetriangulationSchedule {
   double degraded_fraction = 0;
   bool always = false;        //!< run the whole pipeline after every k-th step (the paper's practice)
   //! When only degraded elements call for it (nothing intersects), remesh just the regions around
-  //! them (remesh/local_remesh.h) instead of running the whole pipeline; the whole pipeline still
-  //! runs when the surface intersects itself, when the local remeshing leaves it intersecting, with
-  //! `always`, and when a step could not be taken. Off by default: each remeshing costs less, but
-  //! the rest of the surface stays as worn as it was and degrades again sooner, so a run remeshes
-  //! more often and refactorises its system each time (docs/design.md §3 has the figures).
+  //! them (remesh/local_remesh.h) instead of running the whole pipeline; when the surface
+  //! intersects itself, do the pipeline's surgery only around the crossing (retri/local_surgery.h).
+  //! The whole pipeline still runs when either of them fails or declines (components intersecting
+  //! each other), with `always`, and when a step could not be taken. Off by default: each
+  //! remeshing costs less, but the rest of the surface stays as worn as it was and degrades again
+  //! sooner, so a run remeshes more often and refactorises its system each time (docs/design.md §3
+  //! has the figures, and those of the surgery, which costs a tenth of the whole pipeline's).
   bool local = false;
   //! Give each closed component (or group of components that split or fused) back the volume the
   //! re-triangulation took or added (flow/volume.h, restore_volumes_from).

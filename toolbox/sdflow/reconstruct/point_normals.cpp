@@ -98,31 +98,41 @@ Graph knn_graph(const NeighbourTable& neighbours, const std::vector<int>& index,
   return g;
 }
 
-//! Orients `normals` in place along Prim's minimum spanning tree of each connected component of
-//! `graph`; returns the number of components.
-int orient_along_spanning_trees(const VertexVectors& points, VertexVectors& normals, const Graph& graph)
+//! The connected component of each node of `graph` (numbered from 0 in order of their first node);
+//! `count` receives their number.
+std::vector<int> graph_components(const Graph& graph, int& count)
 {
   const int n = graph.size();
-  // Components first, so each gets its own seed at an extreme point.
   std::vector<int> component(n, -1);
   std::vector<int> stack;
-  int components = 0;
+  count = 0;
   for (int s = 0; s < n; ++s) {
     if (component[s] >= 0)
       continue;
-    component[s] = components;
+    component[s] = count;
     stack.push_back(s);
     while (!stack.empty()) {
       const int i = stack.back();
       stack.pop_back();
       for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e)
         if (component[graph.targets[e]] < 0) {
-          component[graph.targets[e]] = components;
+          component[graph.targets[e]] = count;
           stack.push_back(graph.targets[e]);
         }
     }
-    ++components;
+    ++count;
   }
+  return component;
+}
+
+//! Orients `normals` in place along Prim's minimum spanning tree of each connected component of
+//! `graph`; returns the number of components.
+int orient_along_spanning_trees(const VertexVectors& points, VertexVectors& normals, const Graph& graph)
+{
+  const int n = graph.size();
+  // Components first, so each gets its own seed at an extreme point.
+  int components = 0;
+  const std::vector<int> component = graph_components(graph, components);
   // extreme[c][2 d] has the smallest coordinate d in component c, extreme[c][2 d + 1] the largest.
   std::vector<std::array<int, 6>> extreme(components, {-1, -1, -1, -1, -1, -1});
   for (int i = 0; i < n; ++i) {
@@ -330,7 +340,16 @@ NormalOrientation orient_normals(const VertexVectors& points, const VertexVector
   return result;
 }
 
-OrientedPoints oriented_point_normals(const VertexVectors& points, const PointNormalsOptions& options)
+namespace {
+
+//! Oriented points as oriented_point_normals makes them, and the k-NN graph over the points kept
+//! along which they were last oriented.
+struct OrientedAlongGraph {
+  OrientedPoints oriented;
+  Graph graph;
+};
+
+OrientedAlongGraph orient_and_drop(const VertexVectors& points, const PointNormalsOptions& options)
 {
   const NeighbourTable neighbours = nearest_neighbours(points, options.neighbours);
   NormalOrientation orientation =
@@ -340,7 +359,8 @@ OrientedPoints oriented_point_normals(const VertexVectors& points, const PointNo
   std::vector<int> index(n, 0);
   for (int i : orientation.inconsistent)
     index[i] = -1;
-  OrientedPoints result;
+  OrientedAlongGraph along;
+  OrientedPoints& result = along.oriented;
   result.removed = std::move(orientation.inconsistent);
   const int kept = n - static_cast<int>(result.removed.size());
   result.points.resize(kept, 3);
@@ -353,18 +373,45 @@ OrientedPoints oriented_point_normals(const VertexVectors& points, const PointNo
       result.normals.row(index[i]) = orientation.normals.row(i);
       result.source.push_back(i);
     }
+  along.graph = knn_graph(neighbours, index, kept);
   if (!result.removed.empty()) {
-    const Graph graph = knn_graph(neighbours, index, kept);
-    const int components = orient_along_spanning_trees(result.points, result.normals, graph);
+    const int components = orient_along_spanning_trees(result.points, result.normals, along.graph);
     logger().debug("point normals: {} of {} points removed as inconsistently oriented; {} components remain",
                    result.removed.size(), n, components);
   }
-  return result;
+  return along;
+}
+
+} // namespace
+
+OrientedPoints oriented_point_normals(const VertexVectors& points, const PointNormalsOptions& options)
+{
+  return orient_and_drop(points, options).oriented;
 }
 
 OrientedPoints oriented_point_normals(const Mesh& mesh, const PointNormalsOptions& options)
 {
   return oriented_point_normals(vertex_positions(mesh), options);
+}
+
+OrientedPoints normals_oriented_by_reference(const VertexVectors& points, const VertexVectors& reference,
+                                             const PointNormalsOptions& options)
+{
+  if (reference.rows() != points.rows())
+    throw InvalidParameter(fmt::format("normals_oriented_by_reference: {} points, {} reference normals",
+                                       points.rows(), reference.rows()));
+  OrientedAlongGraph along = orient_and_drop(points, options);
+  OrientedPoints& result = along.oriented;
+  int count = 0;
+  const std::vector<int> component = graph_components(along.graph, count);
+  std::vector<double> agreement(static_cast<std::size_t>(count), 0);
+  for (Eigen::Index i = 0; i < result.points.rows(); ++i)
+    agreement[static_cast<std::size_t>(component[static_cast<std::size_t>(i)])] +=
+        result.normals.row(i).dot(reference.row(result.source[static_cast<std::size_t>(i)]));
+  for (Eigen::Index i = 0; i < result.points.rows(); ++i)
+    if (agreement[static_cast<std::size_t>(component[static_cast<std::size_t>(i)])] < 0)
+      result.normals.row(i) *= -1;
+  return result;
 }
 
 } // namespace sdflow

@@ -80,4 +80,14 @@ OrientedPoints oriented_point_normals(const VertexVectors& points, const PointNo
 //! The same on the vertices of a mesh (its connectivity is not used).
 OrientedPoints oriented_point_normals(const Mesh& mesh, const PointNormalsOptions& options = {});
 
+//! oriented_point_normals, then each connected piece of the k-NN graph it last oriented along
+//! turned to agree on the whole with reference normals (#P by 3; the sum of n·r over the piece is
+//! made positive), e.g. the vertex normals of the oriented surface the points were taken from.
+//! For a piece of a surface, where the spanning tree's outward seed is not defined (the extreme
+//! point of a patch cut from the inner wall of a torus faces inward), but the surface's own
+//! orientation is known. Throws as oriented_point_normals, and InvalidParameter when the reference
+//! has another row count.
+OrientedPoints normals_oriented_by_reference(const VertexVectors& points, const VertexVectors& reference,
+                                             const PointNormalsOptions& options = {});
+
 } // namespace sdflow

@@ -262,6 +262,8 @@ std::string retriangulation_summary(const RetriangulationResult& r)
   if (r.rebuilt)
     s += fmt::format("; {} intersecting pairs, {} faces removed, {} points dropped, rebuilt, {} holes filled",
                      r.intersecting_pairs, r.removed_faces, r.removed_points, r.filled_holes);
+  if (r.patch_faces > 0)
+    s += fmt::format(" (locally: a patch of {} faces)", r.patch_faces);
   if (r.uniform_fallback)
     s += "; uniform ℓ (the adapted one left crossing sheets)";
   s += fmt::format("; components {} → {}", r.components_before, r.components_after);

@@ -75,6 +75,8 @@ struct RetriangulationResult {
   //! The curvature-adapted edge lengths left sheets that cross, or nothing, after a rebuild: the
   //! result is the pipeline's with the uniform ℓ.
   bool uniform_fallback = false;
+  //! Faces cut out and rebuilt by a local surgery (local_surgery.h); 0: the whole surface was.
+  int patch_faces = 0;
   struct Seconds {
     double merge = 0, remesh = 0, intersections = 0, normals = 0, reconstruction = 0, holes = 0, components = 0;
   } seconds;

@@ -1,7 +1,10 @@
 # Re-triangulation (docs/design.md §3): the pipeline and the stages that only it composes.
 target_sources(sdflow_toolbox PRIVATE
   sdflow/retri/components.cpp
+  sdflow/retri/local_surgery.cpp
   sdflow/retri/remove_intersections.cpp
   sdflow/retri/resolve_intersections.cpp
   sdflow/retri/surface_union.cpp
+  sdflow/retri/surgery_patch.cpp
+  sdflow/retri/zip_loops.cpp
   sdflow/retri/pipeline.cpp)

@@ -1,0 +1,277 @@
+//! Surgery only around the intersecting faces (retri/local_surgery.h) against the whole-surface
+//! pipeline (retri/pipeline.h): same components and genera, the faces far from the crossing kept
+//! bit for bit, and a clear refusal where it cannot work.
+#include "sdflow/errors.h"
+#include "sdflow/flow/retriangulation.h"
+#include "sdflow/flow/surface_diffusion.h"
+#include "sdflow/geometry/measures.h"
+#include "sdflow/geometry/topology.h"
+#include "sdflow/retri/local_surgery.h"
+#include "sdflow/shapes/catalogue.h"
+#include "sdflow/shapes/expression.h"
+#include "sdflow/shapes/mesher.h"
+#include "sdflow/spatial/intersect.h"
+#include "support/analytic_meshes.h"
+#include "support/mesh_checks.h"
+#include "support/test_meshes.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <string>
+
+namespace sdflow {
+namespace {
+
+//! Components as (closed, genus) pairs, sorted: what the topology outcome is.
+std::vector<std::pair<bool, int>> outcome(const Mesh& mesh)
+{
+  std::vector<std::pair<bool, int>> parts;
+  for (const auto& c : component_topology(mesh))
+    parts.emplace_back(c.closed(), c.genus);
+  std::sort(parts.begin(), parts.end());
+  return parts;
+}
+
+using Triangle = std::array<double, 9>;
+
+//! A face by its corners' coordinates, starting at the smallest corner (orientation kept).
+Triangle triangle_key(const Mesh& mesh, Mesh::FaceHandle f)
+{
+  const auto x = triangle_corners(mesh, f).point;
+  std::array<std::array<double, 3>, 3> c{};
+  for (int k = 0; k < 3; ++k)
+    c[static_cast<std::size_t>(k)] = {x[static_cast<std::size_t>(k)].x(), x[static_cast<std::size_t>(k)].y(),
+                                      x[static_cast<std::size_t>(k)].z()};
+  const auto first = static_cast<std::size_t>(std::min_element(c.begin(), c.end()) - c.begin());
+  Triangle key{};
+  for (std::size_t k = 0; k < 3; ++k)
+    for (std::size_t d = 0; d < 3; ++d)
+      key[3 * k + d] = c[(first + k) % 3][d];
+  return key;
+}
+
+//! Input faces with every corner farther than `distance` from every corner of a crossing face,
+//! and how many of them the result holds unchanged (same coordinates, same orientation).
+struct FarFaces {
+  int far = 0, kept = 0;
+};
+
+FarFaces far_faces_kept(const Mesh& input, const std::vector<FacePair>& crossings, const Mesh& result, double distance)
+{
+  std::vector<Eigen::Vector3d> seeds;
+  for (const FacePair& pair : crossings)
+    for (const int f : {pair.first, pair.second})
+      for (const auto v : input.fv_range(input.face_handle(f)))
+        seeds.push_back(to_eigen(input.point(v)));
+  std::set<Triangle> after;
+  for (const auto f : result.faces())
+    after.insert(triangle_key(result, f));
+  FarFaces counts;
+  for (const auto f : input.faces()) {
+    bool far = true;
+    for (const auto v : input.fv_range(f))
+      for (const Eigen::Vector3d& s : seeds)
+        far = far && (to_eigen(input.point(v)) - s).norm() > distance;
+    if (!far)
+      continue;
+    ++counts.far;
+    counts.kept += after.count(triangle_key(input, f)) > 0;
+  }
+  return counts;
+}
+
+//! A surface of revolution about the x axis pinched through the axis around x = centre: the
+//! radius drops by `depth` (1 - ((x - centre)/width)²) there, so where it was smaller than that the
+//! walls pass through each other, as in a neck pinching off between two steps.
+Eigen::Vector3d pinched(const Eigen::Vector3d& p, double centre, double width, double depth)
+{
+  const double rho = std::hypot(p.y(), p.z()), u = (p.x() - centre) / width;
+  if (std::abs(u) >= 1 || rho == 0)
+    return p;
+  const double scale = (rho - depth * (1 - u * u)) / rho;
+  return {p.x(), p.y() * scale, p.z() * scale};
+}
+
+//! A capsule of radius 1 and length-to-diameter ratio `ratio` along x, meshed with edges of 0.3.
+Mesh capsule(double ratio)
+{
+  const double half = ratio - 1;
+  const std::string expression = "sqrt(max(abs(x)-" + std::to_string(half) + ",0)^2+y^2+z^2)-1";
+  const ExpressionParameters shape{
+      expression, Eigen::AlignedBox3d(Eigen::Vector3d(-half - 1.5, -1.5, -1.5), Eigen::Vector3d(half + 1.5, 1.5, 1.5))};
+  return mesh_implicit_surface(expression_surface(shape), {.edge_length = 0.3}).mesh;
+}
+
+//! The surface a run re-triangulating by the whole pipeline reaches at the first step that makes it
+//! intersect itself (the one its hook then re-triangulates), or an empty mesh when none does
+//! before `end_time`: the fixture the flow itself makes.
+Mesh first_crossing(const Mesh& start, double end_time)
+{
+  RunParameters p;
+  p.end_time = end_time;
+  p.retriangulation.pipeline.edge_length = mean_edge_length(start);
+  p.retriangulation.local = false; // the whole pipeline between steps, whatever the default
+  const RetriangulationHook retriangulate = make_retriangulation_hook(p.retriangulation);
+  Mesh crossed;
+  const RetriangulationHook capture = [&](Mesh& mesh, const RetriangulationContext& context) {
+    if (crossed.n_faces() == 0 && !self_intersections(mesh).empty())
+      crossed = mesh;
+    return retriangulate(mesh, context);
+  };
+  SurfaceDiffusion flow(start, p, capture);
+  while (crossed.n_faces() == 0 && !flow.finished())
+    flow.step();
+  return crossed;
+}
+
+//! The local and the global surgery of one intersecting surface, compared.
+void expect_same_outcome_as_global(const Mesh& crossed, const RetriangulationOptions& options,
+                                   const std::vector<std::pair<bool, int>>& expected)
+{
+  const std::vector<FacePair> crossings = self_intersections(crossed);
+  ASSERT_FALSE(crossings.empty()) << "the fixture must intersect itself";
+  const RetriangulationResult global = retriangulate(crossed, options);
+  const LocalSurgery local = local_surgery(crossed, crossings, options);
+  ASSERT_TRUE(local.result.has_value()) << local.failure;
+  const RetriangulationResult& r = *local.result;
+  EXPECT_EQ(outcome(global.mesh), expected);
+  EXPECT_EQ(outcome(r.mesh), expected);
+  EXPECT_TRUE(r.rebuilt);
+  EXPECT_GT(r.patch_faces, 0);
+  EXPECT_EQ(r.components_after, static_cast<int>(expected.size()));
+  EXPECT_EQ(checks::self_intersecting_pairs(r.mesh), 0);
+  EXPECT_TRUE(checks::is_two_manifold(r.mesh));
+  // Faces beyond the largest patch radius tried (and a margin for the patch's regularisation)
+  // are the input's, bit for bit; and the patch is a small part of the surface.
+  const double ell = options.edge_length > 0 ? options.edge_length : mean_edge_length(crossed);
+  const double reach = local.patch_radius + 3 * ell;
+  const FarFaces far = far_faces_kept(crossed, crossings, r.mesh, reach);
+  EXPECT_GT(far.far, static_cast<int>(crossed.n_faces()) / 2);
+  EXPECT_EQ(far.kept, far.far);
+  EXPECT_NEAR(enclosed_volume(r.mesh), enclosed_volume(global.mesh), 0.02 * enclosed_volume(global.mesh));
+}
+
+//! The surface a run re-triangulating by the whole pipeline reaches at the last step before its
+//! genus changes (empty when it does not before `end_time`).
+Mesh last_before_genus_change(const Mesh& start, double end_time)
+{
+  RunParameters p;
+  p.end_time = end_time;
+  p.retriangulation.pipeline.edge_length = mean_edge_length(start);
+  p.retriangulation.local = false;
+  const RetriangulationHook retriangulate = make_retriangulation_hook(p.retriangulation);
+  Mesh before;
+  bool changed = false;
+  const RetriangulationHook capture = [&](Mesh& mesh, const RetriangulationContext& context) {
+    const Mesh input = mesh;
+    const RetriangulationReport report = retriangulate(mesh, context);
+    if (!changed && component_topology(mesh)[0].genus != component_topology(input)[0].genus) {
+      before = input;
+      changed = true;
+    }
+    return report;
+  };
+  SurfaceDiffusion flow(start, p, capture);
+  while (!changed && !flow.finished())
+    flow.step();
+  return before;
+}
+
+TEST(LocalSurgery, a_torus_whose_hole_crossed_becomes_a_sphere)
+{
+  // The torus R = 3, r = 1.5 (2000 vertices) as the flow brings it to the step before its hole
+  // seals, the hole's wall then drawn in by the hole's radius and 0.1 more at its waist (fading
+  // out over |z| < 0.6 and one unit outward), so it crosses the axis by about an edge: the crossing
+  // a slightly longer step would have made.
+  const Mesh start = mesh_implicit_surface(torus_shape({.major = 3, .minor = 1.5}), {.vertices = 2000}).mesh;
+  const Mesh closing = last_before_genus_change(start, 10);
+  ASSERT_GT(closing.n_faces(), 0u) << "the hole never sealed";
+  double hole = std::numeric_limits<double>::infinity();
+  for (const auto v : closing.vertices())
+    if (std::abs(closing.point(v)[2]) < 0.6)
+      hole = std::min(hole, std::hypot(closing.point(v)[0], closing.point(v)[1]));
+  const Mesh crossed = test::mapped(closing, [hole](const Eigen::Vector3d& p) {
+    const double rho = std::hypot(p.x(), p.y()), u = p.z() / 0.6;
+    const double fade = 1 - (rho - hole);
+    if (std::abs(u) >= 1 || fade <= 0)
+      return p;
+    const double scale = (rho - (hole + 0.1) * (1 - u * u) * fade) / rho;
+    return Eigen::Vector3d(p.x() * scale, p.y() * scale, p.z());
+  });
+  expect_same_outcome_as_global(crossed, {.edge_length = mean_edge_length(start)}, {{true, 0}});
+}
+
+TEST(LocalSurgery, a_capsule_pinched_through_its_middle_breaks_in_two)
+{
+  const Mesh crossed =
+      test::mapped(capsule(9), [](const Eigen::Vector3d& p) { return pinched(p, 0.1, 1.2, 1.3); });
+  expect_same_outcome_as_global(crossed, {}, {{true, 0}, {true, 0}});
+}
+
+TEST(LocalSurgery, a_long_capsule_pinched_at_two_places_breaks_in_three)
+{
+  const Mesh crossed = test::mapped(capsule(12), [](const Eigen::Vector3d& p) {
+    return pinched(pinched(p, -3.9, 1.2, 1.3), 4.1, 1.2, 1.3);
+  });
+  expect_same_outcome_as_global(crossed, {}, {{true, 0}, {true, 0}, {true, 0}});
+}
+
+TEST(LocalSurgery, the_dumbbell_at_its_pinch_in_a_run_splits_in_two)
+{
+  // The paper's dumbbell at half size (1000 vertices).
+  const Mesh start = mesh_implicit_surface(dumbbell_shape({.radius = 3, .separation = 9}), {.edge_length = 0.5}).mesh;
+  const Mesh crossed = first_crossing(start, 2);
+  ASSERT_GT(crossed.n_faces(), 0u) << "the neck never crossed itself";
+  expect_same_outcome_as_global(crossed, {.edge_length = mean_edge_length(start)}, {{true, 0}, {true, 0}});
+}
+
+TEST(LocalSurgery, components_that_intersect_each_other_are_left_to_the_whole_pipeline)
+{
+  const Mesh touching = analytic::disjoint_union(analytic::icosphere(3, 1.0, {-0.6, 0, 0}),
+                                                 analytic::icosphere(3, 1.0, {0.6, 0, 0}));
+  const LocalSurgery local = local_surgery(touching, self_intersections(touching), {.edge_length = 0.1});
+  EXPECT_FALSE(local.result.has_value());
+  EXPECT_EQ(local.attempts, 0);
+  EXPECT_NE(local.failure.find("components intersect"), std::string::npos) << local.failure;
+}
+
+TEST(LocalSurgery, a_patch_that_would_be_most_of_the_surface_is_declined)
+{
+  const Mesh crossed =
+      test::mapped(capsule(9), [](const Eigen::Vector3d& p) { return pinched(p, 0.1, 1.2, 1.3); });
+  const LocalSurgery local =
+      local_surgery(crossed, self_intersections(crossed), {}, {.patch_radius = 3, .max_patch_fraction = 0.01});
+  EXPECT_FALSE(local.result.has_value());
+  EXPECT_NE(local.failure.find("the patch would hold"), std::string::npos) << local.failure;
+}
+
+TEST(LocalSurgery, a_rebuild_that_fails_every_time_gives_up_after_its_attempts_and_says_why)
+{
+  // More jet neighbours than any patch has points: every rebuild throws (remeshed and as it is),
+  // the patch doubles twice, and the last reason is reported for the caller's fallback.
+  const Mesh crossed =
+      test::mapped(capsule(12), [](const Eigen::Vector3d& p) { return pinched(p, 0.1, 1.2, 1.3); });
+  RetriangulationOptions options;
+  options.normals.neighbours = 5000;
+  const LocalSurgery local = local_surgery(crossed, self_intersections(crossed), options);
+  EXPECT_FALSE(local.result.has_value());
+  EXPECT_EQ(local.attempts, 2 * LocalSurgeryOptions{}.attempts);
+  EXPECT_NE(local.failure.find("nearest_neighbours"), std::string::npos) << local.failure;
+}
+
+TEST(LocalSurgery, nothing_to_do_without_crossings_and_bad_options_are_refused)
+{
+  const Mesh sphere = analytic::icosphere(2);
+  EXPECT_FALSE(local_surgery(sphere, {}, {}).result.has_value());
+  EXPECT_THROW(local_surgery(sphere, {}, {}, {.patch_radius = 0}), InvalidParameter);
+  EXPECT_THROW(local_surgery(sphere, {}, {}, {.attempts = 0}), InvalidParameter);
+  EXPECT_THROW(local_surgery(sphere, {}, {}, {.max_patch_fraction = 1.5}), InvalidParameter);
+}
+
+} // namespace
+} // namespace sdflow

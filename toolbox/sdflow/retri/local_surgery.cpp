@@ -1,0 +1,599 @@
+#include "sdflow/retri/local_surgery.h"
+
+#include "sdflow/errors.h"
+#include "sdflow/geometry/measures.h"
+#include "sdflow/geometry/topology.h"
+#include "sdflow/io/soup.h"
+#include "sdflow/io/validate.h"
+#include "sdflow/log.h"
+#include "sdflow/reconstruct/advancing_front.h"
+#include "sdflow/reconstruct/holes.h"
+#include "sdflow/reconstruct/point_normals.h"
+#include "sdflow/remesh/remesh.h"
+#include "sdflow/retri/components.h"
+#include "sdflow/retri/remove_intersections.h"
+#include "sdflow/retri/surgery_patch.h"
+#include "sdflow/retri/zip_loops.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace sdflow {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+//! An attempt that cannot finish; the message says why.
+class AttemptFailed : public Error {
+public:
+  using Error::Error;
+};
+
+//! Rings of kept vertices beyond the cut whose points and normals the rebuild borrows.
+constexpr int kContextRings = 2;
+//! A rebuilt rim loop belongs to a cut loop when its vertices lie within this many of the cut
+//! loop's mean edge lengths of it on average, and no vertex farther than kRimMaxDistance.
+constexpr double kRimMeanDistance = 3;
+constexpr double kRimMaxDistance = 5;
+
+//! The area-weighted normal of the triangles around v (not normalised; zero in a degenerate star).
+Eigen::Vector3d area_normal(const Mesh& mesh, Mesh::VertexHandle v)
+{
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  for (const auto f : mesh.vf_range(v)) {
+    const auto x = triangle_corners(mesh, f).point;
+    n += (x[1] - x[0]).cross(x[2] - x[0]);
+  }
+  return n;
+}
+
+//! The vertices of a boundary loop, each the start of one of its halfedges, in order.
+std::vector<int> loop_vertices(const Mesh& mesh, const std::vector<Mesh::HalfedgeHandle>& loop)
+{
+  std::vector<int> vertices;
+  vertices.reserve(loop.size());
+  for (const auto h : loop)
+    vertices.push_back(mesh.from_vertex_handle(h).idx());
+  return vertices;
+}
+
+//! The patch faces as their own mesh (its boundary is the cut), with the input index of each of
+//! its vertices, and the kept vertices within kContextRings of the cut.
+struct Cut {
+  Mesh patch;
+  std::vector<int> global;
+  std::vector<int> context;
+};
+
+Cut cut_out(const Mesh& mesh, const SurgeryPatch& selection)
+{
+  Cut cut;
+  std::vector<int> local(mesh.n_vertices(), -1);
+  std::vector<std::array<int, 3>> triangles;
+  for (const auto f : mesh.faces()) {
+    if (!selection.in_patch[static_cast<std::size_t>(f.idx())])
+      continue;
+    std::array<int, 3> t{};
+    int k = 0;
+    for (const auto v : mesh.fv_range(f)) {
+      int& index = local[static_cast<std::size_t>(v.idx())];
+      if (index < 0) {
+        index = static_cast<int>(cut.global.size());
+        cut.global.push_back(v.idx());
+      }
+      t[k++] = index;
+    }
+    triangles.push_back(t);
+  }
+  VertexVectors x(static_cast<Eigen::Index>(cut.global.size()), 3);
+  for (std::size_t i = 0; i < cut.global.size(); ++i)
+    x.row(static_cast<Eigen::Index>(i)) = to_eigen(mesh.point(mesh.vertex_handle(cut.global[i]))).transpose();
+  FaceIndices t(static_cast<Eigen::Index>(triangles.size()), 3);
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+    t.row(static_cast<Eigen::Index>(i)) << triangles[i][0], triangles[i][1], triangles[i][2];
+  cut.patch = make_mesh(x, t);
+
+  // Rings of kept vertices around the cut, walking only through vertices with a kept face.
+  const auto has_kept_face = [&](Mesh::VertexHandle v) {
+    for (const auto f : mesh.vf_range(v))
+      if (!selection.in_patch[static_cast<std::size_t>(f.idx())])
+        return true;
+    return false;
+  };
+  std::vector<char> seen(mesh.n_vertices(), 0);
+  std::vector<int> ring;
+  for (const auto v : cut.patch.vertices())
+    if (cut.patch.is_boundary(v)) {
+      const int g = cut.global[static_cast<std::size_t>(v.idx())];
+      seen[static_cast<std::size_t>(g)] = 1;
+      ring.push_back(g);
+    }
+  for (int r = 0; r < kContextRings; ++r) {
+    std::vector<int> next;
+    for (const int g : ring)
+      for (const auto w : mesh.vv_range(mesh.vertex_handle(g)))
+        if (!seen[static_cast<std::size_t>(w.idx())] && local[static_cast<std::size_t>(w.idx())] < 0 &&
+            has_kept_face(w)) {
+          seen[static_cast<std::size_t>(w.idx())] = 1;
+          next.push_back(w.idx());
+        }
+    cut.context.insert(cut.context.end(), next.begin(), next.end());
+    ring.swap(next);
+  }
+  return cut;
+}
+
+//! The patch's sizing: at each vertex the mean length of its edges, within [min_fraction·ℓ, ℓ].
+//! Around a crossing the pipeline keeps the mesh's own scale too (pipeline.cpp, adapted_sizing),
+//! and the kept surface around the cut keeps it by construction.
+SizingField patch_sizing(const Mesh& patch, double ell, double min_fraction)
+{
+  const Eigen::VectorXd mean = vertex_mean_edge_lengths(patch);
+  std::vector<double> target(patch.n_vertices());
+  for (std::size_t v = 0; v < target.size(); ++v)
+    target[v] = std::clamp(mean(static_cast<Eigen::Index>(v)), min_fraction * ell, ell);
+  return nearest_vertex_sizing(patch, std::move(target));
+}
+
+//! Isotropic remeshing with the boundary (the cut) kept exactly.
+RemeshResult remesh_keeping_cut(const Mesh& mesh, const SizingField& sizing, double ell, int iterations)
+{
+  RemeshOptions remesh;
+  remesh.edge_length = ell;
+  remesh.iterations = iterations;
+  remesh.boundary = BoundaryMode::keep;
+  remesh.sizing = sizing;
+  return isotropic_remesh(mesh, remesh);
+}
+
+//! A rebuilt rim loop matched to a cut loop.
+struct LoopPair {
+  std::vector<int> cut; //!< vertices in the zip's numbering
+  std::vector<int> rim;
+};
+
+//! The rim loops of the trimmed rebuild that run along a cut loop, one per cut loop (the others are
+//! inner holes). `positions` hold every vertex in the zip's numbering.
+std::vector<LoopPair> match_rims_to_cuts(const VertexVectors& positions, const std::vector<std::vector<int>>& cuts,
+                                         const std::vector<std::vector<int>>& rims)
+{
+  std::vector<LoopPair> pairs(cuts.size());
+  std::vector<double> spacing(cuts.size(), 0);
+  for (std::size_t c = 0; c < cuts.size(); ++c) {
+    pairs[c].cut = cuts[c];
+    for (std::size_t i = 0; i < cuts[c].size(); ++i)
+      spacing[c] += (positions.row(cuts[c][i]) - positions.row(cuts[c][(i + 1) % cuts[c].size()])).norm();
+    spacing[c] /= static_cast<double>(cuts[c].size());
+  }
+  // Each rim loop near a cut loop is a candidate for it; the longest is its rim, the others (a hole
+  // of the rebuild close to the cut) stay inner holes.
+  std::vector<double> farthest_of_chosen(cuts.size(), 0);
+  std::vector<int> chosen(cuts.size(), -1);
+  for (std::size_t r = 0; r < rims.size(); ++r) {
+    std::vector<int> votes(cuts.size(), 0);
+    std::vector<double> sum(cuts.size(), 0), farthest(cuts.size(), 0);
+    for (const int v : rims[r]) {
+      std::vector<double> nearest(cuts.size(), std::numeric_limits<double>::infinity());
+      for (std::size_t c = 0; c < cuts.size(); ++c)
+        for (const int w : cuts[c])
+          nearest[c] = std::min(nearest[c], (positions.row(v) - positions.row(w)).norm());
+      const auto best = static_cast<std::size_t>(std::min_element(nearest.begin(), nearest.end()) - nearest.begin());
+      ++votes[best];
+      for (std::size_t c = 0; c < cuts.size(); ++c) {
+        sum[c] += nearest[c];
+        farthest[c] = std::max(farthest[c], nearest[c]);
+      }
+    }
+    const auto c = static_cast<std::size_t>(std::max_element(votes.begin(), votes.end()) - votes.begin());
+    if (sum[c] / static_cast<double>(rims[r].size()) > kRimMeanDistance * spacing[c])
+      continue;
+    if (chosen[c] >= 0 && rims[static_cast<std::size_t>(chosen[c])].size() >= rims[r].size())
+      continue;
+    chosen[c] = static_cast<int>(r);
+    farthest_of_chosen[c] = farthest[c];
+  }
+  for (std::size_t c = 0; c < cuts.size(); ++c) {
+    if (chosen[c] < 0)
+      throw AttemptFailed("the rebuild left nothing along a cut loop");
+    if (farthest_of_chosen[c] > kRimMaxDistance * spacing[c])
+      throw AttemptFailed("a rebuilt rim loop strays from the cut it should join");
+    pairs[c].rim = rims[static_cast<std::size_t>(chosen[c])];
+  }
+  return pairs;
+}
+
+//! Fills the holes of `mesh` that are not its cut loops (Liepa 2003, holes.h): each cut loop is
+//! closed by a temporary fan, the holes shorter than `bound` filled, the fans removed.
+Mesh fill_inner_holes(const Mesh& input, const std::vector<std::vector<int>>& cuts, double bound, int& filled_count)
+{
+  Mesh mesh = input;
+  std::vector<Mesh::VertexHandle> caps;
+  for (const auto& loop : cuts) {
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (const int v : loop)
+      centre += to_eigen(mesh.point(mesh.vertex_handle(v)));
+    const auto cap = mesh.add_vertex(to_point(centre / static_cast<double>(loop.size())));
+    caps.push_back(cap);
+    for (std::size_t i = 0; i < loop.size(); ++i)
+      if (!mesh.add_face(mesh.vertex_handle(loop[i]), mesh.vertex_handle(loop[(i + 1) % loop.size()]), cap).is_valid())
+        throw AttemptFailed("a cut loop could not be capped (not a simple boundary loop)");
+  }
+  HoleFillingOptions holes;
+  holes.max_loop_length = bound;
+  FilledHoles filled = fill_holes(mesh, holes);
+  filled_count = static_cast<int>(std::count_if(filled.loops.begin(), filled.loops.end(),
+                                                [](const HoleReport& loop) { return loop.outcome == LoopOutcome::filled; }));
+  for (const auto cap : caps)
+    filled.mesh.delete_vertex(cap, false);
+  filled.mesh.garbage_collection();
+  return std::move(filled.mesh);
+}
+
+//! Exact coordinates as a map key.
+using PointKey = std::array<double, 3>;
+PointKey key_of(const Mesh::Point& p) { return {p[0], p[1], p[2]}; }
+
+//! The bounding box of some triangles of a soup.
+Eigen::AlignedBox3d box_of(const std::vector<Eigen::Vector3d>& points, const std::vector<std::vector<long long>>& polygons,
+                           std::size_t first)
+{
+  Eigen::AlignedBox3d box;
+  for (std::size_t f = first; f < polygons.size(); ++f)
+    for (const long long v : polygons[f])
+      box.extend(points[static_cast<std::size_t>(v)]);
+  return box;
+}
+
+//! Do the new triangles of the soup (from `first_new` on) intersect any triangle (exact,
+//! self_intersections' rule)? Only triangles whose boxes meet the new ones' box are tested: the
+//! kept surface intersects itself nowhere else, the crossings having all been inside the patch.
+bool new_faces_intersect(const PolygonSoup& soup, std::size_t first_new)
+{
+  const Eigen::AlignedBox3d region = box_of(soup.points, soup.polygons, first_new);
+  std::vector<int> used(soup.points.size(), -1);
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<int, 3>> triangles;
+  for (const auto& polygon : soup.polygons) {
+    Eigen::AlignedBox3d box;
+    for (const long long v : polygon)
+      box.extend(soup.points[static_cast<std::size_t>(v)]);
+    if (!box.intersects(region))
+      continue;
+    std::array<int, 3> t{};
+    for (int k = 0; k < 3; ++k) {
+      int& index = used[static_cast<std::size_t>(polygon[static_cast<std::size_t>(k)])];
+      if (index < 0) {
+        index = static_cast<int>(points.size());
+        points.push_back(soup.points[static_cast<std::size_t>(polygon[static_cast<std::size_t>(k)])]);
+      }
+      t[static_cast<std::size_t>(k)] = index;
+    }
+    triangles.push_back(t);
+  }
+  VertexVectors x(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    x.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  FaceIndices t(static_cast<Eigen::Index>(triangles.size()), 3);
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+    t.row(static_cast<Eigen::Index>(i)) << triangles[i][0], triangles[i][1], triangles[i][2];
+  return !self_intersections(x, t).empty();
+}
+
+//! One attempt on one patch: rebuild it and put it back, or throw (AttemptFailed or any stage's error).
+RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& selection, const RetriangulationOptions& options,
+                                    double ell, int input_boundary_loops, double hole_bound)
+{
+  RetriangulationResult r;
+  r.edge_length = ell;
+  const ComponentOptions debris{.min_faces = options.min_component_faces,
+                                .min_thickness = options.min_component_thickness * ell};
+
+  // Stage 1 on the patch, its cut fixed.
+  auto start = Clock::now();
+  const Cut cut = cut_out(mesh, selection);
+  const SizingField sizing = patch_sizing(cut.patch, ell, options.min_edge_fraction);
+  Mesh patch = cut.patch;
+  if (options.remesh_iterations > 0) {
+    RemeshResult remeshed = remesh_keeping_cut(cut.patch, sizing, ell, options.remesh_iterations);
+    patch = std::move(remeshed.mesh);
+    r.remesh = remeshed.statistics;
+  }
+  r.seconds.remesh = seconds_since(start);
+
+  // Stage 2.
+  start = Clock::now();
+  const RemovalResult removal = remove_self_intersections(patch);
+  r.intersecting_pairs = static_cast<int>(removal.intersecting_pairs.size());
+  r.removed_faces = static_cast<int>(removal.removed_faces.size());
+  r.seconds.intersections = seconds_since(start);
+
+  // Stage 3: the patch's points, then the context's, normals signed by the surface's own orientation.
+  start = Clock::now();
+  const auto own = static_cast<Eigen::Index>(removal.mesh.n_vertices());
+  const auto total = own + static_cast<Eigen::Index>(cut.context.size());
+  VertexVectors points(total, 3), reference(total, 3);
+  std::vector<char> outer(static_cast<std::size_t>(total), 0);
+  for (const auto v : removal.mesh.vertices()) {
+    const auto origin = patch.vertex_handle(removal.vertex_origin[static_cast<std::size_t>(v.idx())]);
+    points.row(v.idx()) = to_eigen(patch.point(origin)).transpose();
+    reference.row(v.idx()) = area_normal(patch, origin).transpose();
+    outer[static_cast<std::size_t>(v.idx())] = patch.is_boundary(origin);
+  }
+  for (std::size_t i = 0; i < cut.context.size(); ++i) {
+    const auto row = own + static_cast<Eigen::Index>(i);
+    const auto v = mesh.vertex_handle(cut.context[i]);
+    points.row(row) = to_eigen(mesh.point(v)).transpose();
+    reference.row(row) = area_normal(mesh, v).transpose();
+    outer[static_cast<std::size_t>(row)] = 1;
+  }
+  const OrientedPoints oriented = normals_oriented_by_reference(points, reference, options.normals);
+  r.removed_points = static_cast<int>(oriented.removed.size());
+  r.seconds.normals = seconds_since(start);
+
+  // Stage 4, then the rebuild trimmed to the triangles that touch neither the cut nor the context.
+  start = Clock::now();
+  const Reconstruction rebuilt = reconstruct_surface(oriented.points, oriented.normals, options.reconstruction);
+  r.unused_points = static_cast<int>(rebuilt.unused.size());
+  const auto is_outer = [&](Mesh::VertexHandle v) {
+    return outer[static_cast<std::size_t>(
+        oriented.source[static_cast<std::size_t>(rebuilt.source[static_cast<std::size_t>(v.idx())])])] != 0;
+  };
+  // Dropped: the triangles at the cut or the borrowed points, and those at a vertex where the rest
+  // would meet in more than one fan.
+  std::vector<char> dropped(rebuilt.mesh.n_faces(), 0);
+  for (const auto f : rebuilt.mesh.faces())
+    for (const auto v : rebuilt.mesh.fv_range(f))
+      dropped[static_cast<std::size_t>(f.idx())] = dropped[static_cast<std::size_t>(f.idx())] || is_outer(v);
+  separate_split_fans(rebuilt.mesh, dropped);
+  std::vector<int> trimmed_index(rebuilt.mesh.n_vertices(), -1);
+  std::vector<Eigen::Vector3d> trimmed_points;
+  std::vector<std::array<int, 3>> trimmed_faces;
+  for (const auto f : rebuilt.mesh.faces()) {
+    if (dropped[static_cast<std::size_t>(f.idx())])
+      continue;
+    std::array<int, 3> t{};
+    int k = 0;
+    for (const auto v : rebuilt.mesh.fv_range(f)) {
+      int& index = trimmed_index[static_cast<std::size_t>(v.idx())];
+      if (index < 0) {
+        index = static_cast<int>(trimmed_points.size());
+        trimmed_points.push_back(to_eigen(rebuilt.mesh.point(v)));
+      }
+      t[static_cast<std::size_t>(k++)] = index;
+    }
+    trimmed_faces.push_back(t);
+  }
+  if (trimmed_faces.empty())
+    throw AttemptFailed("nothing of the rebuild is left inside the cut");
+  VertexVectors tx(static_cast<Eigen::Index>(trimmed_points.size()), 3);
+  for (std::size_t i = 0; i < trimmed_points.size(); ++i)
+    tx.row(static_cast<Eigen::Index>(i)) = trimmed_points[i].transpose();
+  FaceIndices tt(static_cast<Eigen::Index>(trimmed_faces.size()), 3);
+  for (std::size_t i = 0; i < trimmed_faces.size(); ++i)
+    tt.row(static_cast<Eigen::Index>(i)) << trimmed_faces[i][0], trimmed_faces[i][1], trimmed_faces[i][2];
+  ComponentSelection pieces = keep_components(make_mesh(tx, tt), debris);
+  r.dropped_components += static_cast<int>(pieces.dropped.size());
+  const Mesh& trimmed = pieces.mesh;
+  if (trimmed.n_faces() == 0)
+    throw AttemptFailed("only debris of the rebuild is left inside the cut");
+  r.seconds.reconstruction = seconds_since(start);
+
+  // The strip: the trimmed rebuild's vertices first, then the cut's (numbered after them).
+  start = Clock::now();
+  const auto rebuilt_vertices = static_cast<int>(trimmed.n_vertices());
+  std::vector<int> zip_index(patch.n_vertices(), -1);
+  std::vector<std::vector<int>> cuts;
+  for (const auto& loop : boundary_loops(patch))
+    cuts.push_back(loop_vertices(patch, loop));
+  int cut_vertices = 0;
+  for (auto& loop : cuts)
+    for (int& v : loop) {
+      if (zip_index[static_cast<std::size_t>(v)] < 0)
+        zip_index[static_cast<std::size_t>(v)] = rebuilt_vertices + cut_vertices++;
+      v = zip_index[static_cast<std::size_t>(v)];
+    }
+  VertexVectors zx(rebuilt_vertices + cut_vertices, 3);
+  zx.topRows(rebuilt_vertices) = vertex_positions(trimmed);
+  for (const auto v : patch.vertices())
+    if (const int z = zip_index[static_cast<std::size_t>(v.idx())]; z >= 0)
+      zx.row(z) = to_eigen(patch.point(v)).transpose();
+  std::vector<std::vector<int>> rims;
+  for (const auto& loop : boundary_loops(trimmed))
+    rims.push_back(loop_vertices(trimmed, loop));
+  const std::vector<LoopPair> pairs = match_rims_to_cuts(zx, cuts, rims);
+  std::vector<std::array<int, 3>> faces;
+  for (const auto f : trimmed.faces()) {
+    const auto c = triangle_corners(trimmed, f).index;
+    faces.push_back({c[0], c[1], c[2]});
+  }
+  // Normals at the zip's vertices: the patch's at the cut, the rebuild's at the rim.
+  VertexVectors zn = VertexVectors::Zero(zx.rows(), 3);
+  for (const auto v : patch.vertices())
+    if (const int z = zip_index[static_cast<std::size_t>(v.idx())]; z >= 0)
+      zn.row(z) = area_normal(patch, v).transpose();
+  for (const auto v : trimmed.vertices())
+    zn.row(v.idx()) = area_normal(trimmed, v).transpose();
+  for (const LoopPair& pair : pairs)
+    for (const auto& t : zip_loops(zx, zn, pair.cut, pair.rim))
+      faces.push_back(t);
+  FaceIndices zt(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t i = 0; i < faces.size(); ++i)
+    zt.row(static_cast<Eigen::Index>(i)) << faces[i][0], faces[i][1], faces[i][2];
+  Mesh rebuilt_patch = make_mesh(zx, zt);
+
+  // Stage 5 on the inner holes.
+  if (options.fill_holes)
+    rebuilt_patch = fill_inner_holes(rebuilt_patch, [&] {
+      std::vector<std::vector<int>> loops;
+      for (const LoopPair& pair : pairs)
+        loops.push_back(pair.cut);
+      return loops;
+    }(), hole_bound, r.filled_holes);
+  r.seconds.holes = seconds_since(start);
+  // The seam remeshed with the cut fixed; when that leaves the patch intersecting the surface (a
+  // remeshing on a thin gap), the strip as zipped.
+  start = Clock::now();
+  std::vector<RemeshResult> candidates;
+  if (options.remesh_iterations > 0)
+    candidates.push_back(remesh_keeping_cut(rebuilt_patch, sizing, ell, options.remesh_iterations));
+  candidates.push_back({std::move(rebuilt_patch), {}});
+  r.seconds.remesh += seconds_since(start);
+
+  // Stage 6: the kept faces and the rebuilt patch as one soup, checked, validated.
+  start = Clock::now();
+  std::map<PointKey, int> cut_vertex;
+  for (const auto v : cut.patch.vertices())
+    if (cut.patch.is_boundary(v))
+      cut_vertex.emplace(key_of(cut.patch.point(v)), cut.global[static_cast<std::size_t>(v.idx())]);
+  PolygonSoup soup;
+  std::vector<long long> kept_index(mesh.n_vertices(), -1);
+  for (const auto f : mesh.faces())
+    if (!selection.in_patch[static_cast<std::size_t>(f.idx())]) {
+      std::vector<long long> polygon;
+      for (const auto v : mesh.fv_range(f)) {
+        long long& index = kept_index[static_cast<std::size_t>(v.idx())];
+        if (index < 0) {
+          index = static_cast<long long>(soup.points.size());
+          soup.points.push_back(to_eigen(mesh.point(v)));
+        }
+        polygon.push_back(index);
+      }
+      soup.polygons.push_back(std::move(polygon));
+    }
+  const std::size_t kept_points = soup.points.size(), first_new = soup.polygons.size();
+  const RemeshResult* placed = nullptr;
+  for (const RemeshResult& candidate : candidates) {
+    soup.points.resize(kept_points);
+    soup.polygons.resize(first_new);
+    const Mesh& patch_mesh = candidate.mesh;
+    std::vector<long long> new_index(patch_mesh.n_vertices(), -1);
+    for (const auto v : patch_mesh.vertices()) {
+      if (const auto it = cut_vertex.find(key_of(patch_mesh.point(v))); it != cut_vertex.end()) {
+        new_index[static_cast<std::size_t>(v.idx())] = kept_index[static_cast<std::size_t>(it->second)];
+        continue;
+      }
+      new_index[static_cast<std::size_t>(v.idx())] = static_cast<long long>(soup.points.size());
+      soup.points.push_back(to_eigen(patch_mesh.point(v)));
+    }
+    for (const auto f : patch_mesh.faces()) {
+      std::vector<long long> polygon;
+      for (const auto v : patch_mesh.fv_range(f))
+        polygon.push_back(new_index[static_cast<std::size_t>(v.idx())]);
+      soup.polygons.push_back(std::move(polygon));
+    }
+    if (!new_faces_intersect(soup, first_new)) {
+      placed = &candidate;
+      break;
+    }
+  }
+  if (!placed)
+    throw AttemptFailed("the rebuilt patch intersects the surface");
+  r.remesh.splits += placed->statistics.splits;
+  r.remesh.collapses += placed->statistics.collapses;
+  r.remesh.flips += placed->statistics.flips;
+  r.remesh.relaxation_reverts += placed->statistics.relaxation_reverts;
+  r.remesh.edge_length = ell;
+  ComponentSelection selection_after = keep_components(build_mesh(soup, "local surgery").mesh, debris);
+  r.dropped_components += static_cast<int>(selection_after.dropped.size());
+  r.mesh = std::move(selection_after.mesh);
+  r.open_holes = static_cast<int>(boundary_loops(r.mesh).size());
+  if (r.open_holes != input_boundary_loops)
+    throw AttemptFailed(fmt::format("the result has {} boundary loops, the input {}", r.open_holes, input_boundary_loops));
+  int count = 0;
+  face_component_ids(r.mesh, &count);
+  r.components_after = count;
+  r.rebuilt = true;
+  r.patch_faces = selection.faces;
+  r.seconds.components = seconds_since(start);
+  return r;
+}
+
+} // namespace
+
+void validate_local_surgery_options(const LocalSurgeryOptions& o)
+{
+  if (!(o.patch_radius > 0) || !std::isfinite(o.patch_radius))
+    throw InvalidParameter(fmt::format("local surgery: the patch radius must be > 0 (in ℓ), got {}", o.patch_radius));
+  if (o.attempts < 1)
+    throw InvalidParameter(fmt::format("local surgery: attempts must be ≥ 1, got {}", o.attempts));
+  if (!(o.max_patch_fraction > 0 && o.max_patch_fraction <= 1))
+    throw InvalidParameter(
+        fmt::format("local surgery: the largest patch fraction must be in (0, 1], got {}", o.max_patch_fraction));
+}
+
+LocalSurgery local_surgery(const Mesh& mesh, const std::vector<FacePair>& crossings,
+                           const RetriangulationOptions& options, const LocalSurgeryOptions& local)
+{
+  validate_retriangulation_options(options);
+  validate_local_surgery_options(local);
+  LocalSurgery outcome;
+  if (crossings.empty()) {
+    outcome.failure = "nothing intersects";
+    return outcome;
+  }
+  int components = 0;
+  const std::vector<int> component = face_component_ids(mesh, &components);
+  for (const FacePair& pair : crossings)
+    if (component[static_cast<std::size_t>(pair.first)] != component[static_cast<std::size_t>(pair.second)]) {
+      outcome.failure = "two components intersect each other (their union is made on the whole surface)";
+      return outcome;
+    }
+  const double ell = options.edge_length > 0 ? options.edge_length : mean_edge_length(mesh);
+  const std::vector<double> boundary = boundary_loop_lengths(mesh);
+  const double hole_bound = options.max_hole_length > 0 ? options.max_hole_length
+                            : boundary.empty()           ? std::numeric_limits<double>::infinity()
+                                                         : 0.5 * *std::min_element(boundary.begin(), boundary.end());
+  double radius = local.patch_radius * ell;
+  int previous_faces = -1;
+  for (int attempt = 0; attempt < local.attempts; ++attempt, radius *= 2) {
+    const SurgeryPatch patch = surgery_patch(mesh, crossings, radius, options.min_component_faces);
+    if (patch.touches_boundary) {
+      outcome.failure = "the patch reaches a boundary of the surface";
+      return outcome;
+    }
+    if (patch.faces > local.max_patch_fraction * static_cast<double>(mesh.n_faces())) {
+      outcome.failure = fmt::format("the patch would hold {} of the {} faces", patch.faces, mesh.n_faces());
+      return outcome;
+    }
+    if (patch.faces == previous_faces)
+      return outcome; // a larger radius takes no more faces: the last failure stands
+    previous_faces = patch.faces;
+    outcome.patch_radius = radius;
+    // The patch remeshed first, as the pipeline's stage 1 does; then as it is (a remeshing of a
+    // thin neck can leave the rebuild too little room).
+    const RetriangulationOptions as_it_is = [&] {
+      RetriangulationOptions o = options;
+      o.remesh_iterations = 0;
+      return o;
+    }();
+    for (const RetriangulationOptions* variant : {&options, &as_it_is}) {
+      if (variant == &as_it_is && options.remesh_iterations == 0)
+        break;
+      ++outcome.attempts;
+      try {
+        RetriangulationResult r =
+            rebuild_patch(mesh, patch, *variant, ell, static_cast<int>(boundary.size()), hole_bound);
+        r.intersecting_pairs = static_cast<int>(crossings.size());
+        r.components_before = components;
+        logger().debug("local surgery: {}", retriangulation_summary(r));
+        outcome.result = std::move(r);
+        outcome.failure.clear();
+        return outcome;
+      } catch (const Error& e) {
+        outcome.failure = fmt::format("patch of {} faces: {}", patch.faces, e.what());
+        logger().debug("local surgery, attempt {}: {}", outcome.attempts, outcome.failure);
+      }
+    }
+  }
+  return outcome;
+}
+
+} // namespace sdflow

@@ -1,0 +1,163 @@
+#include "sdflow/retri/surgery_patch.h"
+
+#include <nanoflann.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace sdflow {
+namespace {
+
+//! nanoflann's view of a #P by 3 row-major point matrix.
+struct PointAdaptor {
+  const VertexVectors& points;
+  std::size_t kdtree_get_point_count() const { return static_cast<std::size_t>(points.rows()); }
+  double kdtree_get_pt(std::size_t i, std::size_t d) const
+  {
+    return points(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(d));
+  }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const
+  {
+    return false;
+  }
+};
+
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointAdaptor>,
+                                                   PointAdaptor, 3, std::uint32_t>;
+
+//! The faces with a vertex within `radius` of a vertex of a crossing face, and the crossing faces.
+std::vector<char> faces_near_crossings(const Mesh& mesh, const std::vector<FacePair>& crossings, double radius)
+{
+  std::vector<char> in_patch(mesh.n_faces(), 0), seed(mesh.n_vertices(), 0);
+  for (const FacePair& pair : crossings)
+    for (const int f : {pair.first, pair.second}) {
+      in_patch[static_cast<std::size_t>(f)] = 1;
+      for (const auto v : mesh.fv_range(mesh.face_handle(f)))
+        seed[static_cast<std::size_t>(v.idx())] = 1;
+    }
+  std::vector<int> seeds;
+  for (std::size_t v = 0; v < seed.size(); ++v)
+    if (seed[v])
+      seeds.push_back(static_cast<int>(v));
+  if (seeds.empty())
+    return in_patch;
+  VertexVectors points(static_cast<Eigen::Index>(seeds.size()), 3);
+  for (std::size_t i = 0; i < seeds.size(); ++i)
+    points.row(static_cast<Eigen::Index>(i)) = to_eigen(mesh.point(mesh.vertex_handle(seeds[i]))).transpose();
+  const PointAdaptor adaptor{points};
+  KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  const double squared = radius * radius;
+  for (const auto v : mesh.vertices()) {
+    const Mesh::Point& p = mesh.point(v);
+    const double query[3] = {p[0], p[1], p[2]};
+    std::uint32_t nearest = 0;
+    double distance = 0;
+    tree.knnSearch(query, 1, &nearest, &distance);
+    if (distance <= squared)
+      for (const auto f : mesh.vf_range(v))
+        in_patch[static_cast<std::size_t>(f.idx())] = 1;
+  }
+  return in_patch;
+}
+
+//! Whether the kept faces around v form more than one fan (their runs in the cyclic order of v's
+//! outgoing halfedges; a boundary gap of the mesh ends a run too).
+bool kept_fans_split(const Mesh& mesh, Mesh::VertexHandle v, const std::vector<char>& in_patch)
+{
+  int runs = 0, total = 0, kept = 0;
+  bool previous_kept = false, first_kept = false;
+  for (const auto h : mesh.voh_range(v)) {
+    const auto f = mesh.face_handle(h);
+    const bool is_kept = f.is_valid() && !in_patch[static_cast<std::size_t>(f.idx())];
+    if (total == 0)
+      first_kept = is_kept;
+    else if (is_kept && !previous_kept)
+      ++runs;
+    kept += is_kept;
+    previous_kept = is_kept;
+    ++total;
+  }
+  if (first_kept && !previous_kept)
+    ++runs; // the run that starts at the first halfedge
+  if (kept == total)
+    return false;
+  return runs > 1;
+}
+
+//! Moves every kept component of fewer than `min_faces` faces into the patch; returns whether any moved.
+bool absorb_small_kept_components(const Mesh& mesh, std::vector<char>& in_patch, int min_faces)
+{
+  std::vector<int> component(mesh.n_faces(), -1);
+  bool changed = false;
+  std::vector<int> members, stack;
+  for (const auto start : mesh.faces()) {
+    if (in_patch[static_cast<std::size_t>(start.idx())] || component[static_cast<std::size_t>(start.idx())] >= 0)
+      continue;
+    members.clear();
+    stack.assign(1, start.idx());
+    component[static_cast<std::size_t>(start.idx())] = start.idx();
+    while (!stack.empty()) {
+      const int f = stack.back();
+      stack.pop_back();
+      members.push_back(f);
+      for (const auto g : mesh.ff_range(mesh.face_handle(f))) {
+        const auto gi = static_cast<std::size_t>(g.idx());
+        if (!in_patch[gi] && component[gi] < 0) {
+          component[gi] = start.idx();
+          stack.push_back(g.idx());
+        }
+      }
+    }
+    bool next_to_patch = false;
+    for (const int f : members)
+      for (const auto g : mesh.ff_range(mesh.face_handle(f)))
+        next_to_patch = next_to_patch || in_patch[static_cast<std::size_t>(g.idx())];
+    if (next_to_patch && static_cast<int>(members.size()) < min_faces) {
+      for (const int f : members)
+        in_patch[static_cast<std::size_t>(f)] = 1;
+      changed = true;
+    }
+  }
+  return changed;
+}
+
+} // namespace
+
+bool separate_split_fans(const Mesh& mesh, std::vector<char>& in_patch)
+{
+  bool moved = false, changed = true;
+  while (changed) {
+    changed = false;
+    for (const auto v : mesh.vertices()) {
+      if (!kept_fans_split(mesh, v, in_patch))
+        continue;
+      for (const auto f : mesh.vf_range(v))
+        in_patch[static_cast<std::size_t>(f.idx())] = 1;
+      changed = moved = true;
+    }
+  }
+  return moved;
+}
+
+SurgeryPatch surgery_patch(const Mesh& mesh, const std::vector<FacePair>& crossings, double radius,
+                           int min_kept_faces)
+{
+  SurgeryPatch patch;
+  patch.in_patch = faces_near_crossings(mesh, crossings, radius);
+  bool changed = true;
+  while (changed) {
+    changed = separate_split_fans(mesh, patch.in_patch);
+    changed = absorb_small_kept_components(mesh, patch.in_patch, min_kept_faces) || changed;
+  }
+  for (const auto f : mesh.faces()) {
+    if (!patch.in_patch[static_cast<std::size_t>(f.idx())])
+      continue;
+    ++patch.faces;
+    for (const auto v : mesh.fv_range(f))
+      patch.touches_boundary = patch.touches_boundary || mesh.is_boundary(v);
+  }
+  return patch;
+}
+
+} // namespace sdflow

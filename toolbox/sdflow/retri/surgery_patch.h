@@ -1,0 +1,33 @@
+#pragma once
+//! \file surgery_patch.h
+//! \brief The patch a local surgery cuts out and rebuilds (local_surgery.h): the faces near the
+//! self-intersecting ones, grown until the surface kept around it is a manifold whose cut is a
+//! set of simple loops.
+
+#include "sdflow/mesh.h"
+#include "sdflow/spatial/intersect.h"
+
+#include <vector>
+
+namespace sdflow {
+
+//! Faces of a mesh split into the patch and the kept surface.
+struct SurgeryPatch {
+  std::vector<char> in_patch;    //!< by face index: 1 for the faces of the patch
+  int faces = 0;                 //!< faces in the patch
+  bool touches_boundary = false; //!< a patch face has a vertex on a true boundary of the mesh
+};
+
+//! The faces with a vertex within `radius` (Euclidean) of a vertex of a face in `crossings`, the
+//! crossing faces themselves included; then, until nothing changes, every face of a vertex around
+//! which the kept faces form more than one fan (so that the cut is a set of simple loops and the
+//! patch a manifold) and every kept component of fewer than `min_kept_faces` faces (islands
+//! left between crossing sites). The mesh must carry no deleted elements.
+SurgeryPatch surgery_patch(const Mesh& mesh, const std::vector<FacePair>& crossings, double radius,
+                           int min_kept_faces);
+
+//! Moves into the patch (`in_patch`, by face index) every face of a vertex around which the faces
+//! kept form more than one fan, until there is none; returns whether any face moved.
+bool separate_split_fans(const Mesh& mesh, std::vector<char>& in_patch);
+
+} // namespace sdflow
