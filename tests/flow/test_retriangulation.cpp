@@ -342,10 +342,10 @@ TEST(RetriangulationHook, a_crossing_is_cut_out_locally_with_the_outcome_of_the_
 {
   RetriangulationSchedule schedule;
   schedule.pipeline.edge_length = 0.3;
-  schedule.local = true;
+  schedule.local_surgery = true;
   Mesh local = pinched_capsule();
   const RetriangulationReport by_patch = make_retriangulation_hook(schedule)(local, {.step = 1});
-  schedule.local = false;
+  schedule.local_surgery = false;
   Mesh global = pinched_capsule();
   const RetriangulationReport whole = make_retriangulation_hook(schedule)(global, {.step = 1});
   for (const RetriangulationReport* report : {&by_patch, &whole}) {
@@ -364,7 +364,7 @@ TEST(RetriangulationHook, touching_components_fall_back_to_the_whole_pipeline_an
 {
   RetriangulationSchedule schedule;
   schedule.pipeline.edge_length = 0.1;
-  schedule.local = true;
+  schedule.local_surgery = true;
   Mesh touching = analytic::disjoint_union(analytic::icosphere(3, 1.0, {-0.6, 0, 0}),
                                            analytic::icosphere(3, 1.0, {0.6, 0, 0}));
   const RetriangulationReport report = make_retriangulation_hook(schedule)(touching, {.step = 1});

@@ -115,7 +115,7 @@ Mesh first_crossing(const Mesh& start, double end_time)
   RunParameters p;
   p.end_time = end_time;
   p.retriangulation.pipeline.edge_length = mean_edge_length(start);
-  p.retriangulation.local = false; // the whole pipeline between steps, whatever the default
+  p.retriangulation.local_surgery = false; // the whole pipeline between steps, whatever the default
   const RetriangulationHook retriangulate = make_retriangulation_hook(p.retriangulation);
   Mesh crossed;
   const RetriangulationHook capture = [&](Mesh& mesh, const RetriangulationContext& context) {
@@ -163,7 +163,7 @@ Mesh last_before_genus_change(const Mesh& start, double end_time)
   RunParameters p;
   p.end_time = end_time;
   p.retriangulation.pipeline.edge_length = mean_edge_length(start);
-  p.retriangulation.local = false;
+  p.retriangulation.local_surgery = false;
   const RetriangulationHook retriangulate = make_retriangulation_hook(p.retriangulation);
   Mesh before;
   bool changed = false;

@@ -400,10 +400,15 @@ std::vector<ParameterEntry> build_schema()
   {
     auto& e = add(entry("retriangulation.local", "--retriangulate-local", ParameterType::boolean,
                         "When only degraded elements call for a re-triangulation, remesh just the region around them "
-                        "(three rings of faces, boundary kept) instead of running the whole pipeline; at a "
-                        "self-intersection, rebuild only the faces near the crossing (the whole pipeline when either "
-                        "fails, and for components touching each other)"));
+                        "(three rings of faces, boundary kept) instead of running the whole pipeline (the whole "
+                        "pipeline when that fails)"));
     bind<bool>(e, &RunParameters::retriangulation, &RS::local);
+  }
+  {
+    auto& e = add(entry("retriangulation.local_surgery", "--local-surgery", ParameterType::boolean,
+                        "At a self-intersection, rebuild only the faces near the crossing (the whole pipeline when "
+                        "that fails, and for components touching each other)"));
+    bind<bool>(e, &RunParameters::retriangulation, &RS::local_surgery);
   }
   {
     auto& e = add(entry("retriangulation.edge_length", "--edge-length", ParameterType::real,

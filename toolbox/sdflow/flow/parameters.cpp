@@ -208,6 +208,7 @@ void apply_preset(const std::string& name, RunParameters& p)
     paper.retriangulation.pipeline.edges_per_radius = 0;
     paper.retriangulation.pipeline.curved_projection = false;
     paper.retriangulation.restore_volume = false;
+    paper.retriangulation.local_surgery = false;
     source = &paper;
   } else if (name != "default") {
     throw InvalidParameter(fmt::format("preset must be \"paper\" or \"default\", got \"{}\"", name));
@@ -220,6 +221,7 @@ void apply_preset(const std::string& name, RunParameters& p)
   p.retriangulation.pipeline.min_edge_fraction = source->retriangulation.pipeline.min_edge_fraction;
   p.retriangulation.pipeline.curved_projection = source->retriangulation.pipeline.curved_projection;
   p.retriangulation.restore_volume = source->retriangulation.restore_volume;
+  p.retriangulation.local_surgery = source->retriangulation.local_surgery;
 }
 
 void read_run_parameters(const std::filesystem::path& file, RunParameters& p)

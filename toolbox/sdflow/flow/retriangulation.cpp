@@ -235,7 +235,7 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     }
     // At a crossing, the surgery around it first (the watch's pairs are this surface's).
     std::optional<RetriangulationResult> surgery;
-    if (schedule.local && verdict.intersecting) {
+    if (schedule.local_surgery && verdict.intersecting) {
       LocalSurgery attempt = local_surgery(mesh, watch->pairs(), schedule.pipeline);
       surgery = std::move(attempt.result);
       if (!surgery)

@@ -33,14 +33,17 @@ struct RetriangulationSchedule {
   double degraded_fraction = 0;
   bool always = false;        //!< run the whole pipeline after every k-th step (the paper's practice)
   //! When only degraded elements call for it (nothing intersects), remesh just the regions around
-  //! them (remesh/local_remesh.h) instead of running the whole pipeline; when the surface
-  //! intersects itself, do the pipeline's surgery only around the crossing (retri/local_surgery.h).
-  //! The whole pipeline still runs when either of them fails or declines (components intersecting
-  //! each other), with `always`, and when a step could not be taken. Off by default: each
-  //! remeshing costs less, but the rest of the surface stays as worn as it was and degrades again
-  //! sooner, so a run remeshes more often and refactorises its system each time (docs/design.md §3
-  //! has the figures, and those of the surgery, which costs a tenth of the whole pipeline's).
+  //! them (remesh/local_remesh.h) instead of running the whole pipeline; the whole pipeline still
+  //! runs when that fails. Off by default: each remeshing costs less, but the rest of the surface
+  //! stays as worn as it was and degrades again sooner, so a run remeshes more often and
+  //! refactorises its system each time (docs/design.md §3 has the figures).
   bool local = false;
+  //! When the surface intersects itself, do the pipeline's surgery only around the crossing
+  //! (retri/local_surgery.h): same events and outcomes as the whole pipeline for a tenth of its
+  //! cost (docs/design.md §3). The whole pipeline runs when it declines (components intersecting
+  //! each other, a patch reaching a true boundary) or fails, with `always`, and when a step could
+  //! not be taken. Off in the paper's preset.
+  bool local_surgery = true;
   //! Give each closed component (or group of components that split or fused) back the volume the
   //! re-triangulation took or added (flow/volume.h, restore_volumes_from).
   bool restore_volume = true;
