@@ -52,4 +52,20 @@ FaceIndices face_indices(const Mesh& mesh)
   return f;
 }
 
+VertexVectors point_rows(const std::vector<Eigen::Vector3d>& points)
+{
+  VertexVectors x(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    x.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  return x;
+}
+
+FaceIndices triangle_rows(const std::vector<std::array<int, 3>>& triangles)
+{
+  FaceIndices t(static_cast<Eigen::Index>(triangles.size()), 3);
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+    t.row(static_cast<Eigen::Index>(i)) << triangles[i][0], triangles[i][1], triangles[i][2];
+  return t;
+}
+
 } // namespace sdflow

@@ -11,6 +11,7 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include <array>
+#include <vector>
 
 namespace sdflow {
 
@@ -59,6 +60,12 @@ inline TriangleCorners triangle_corners(const Mesh& mesh, Mesh::FaceHandle f)
 
 //! Vertex positions as a #V by 3 matrix.
 VertexVectors vertex_positions(const Mesh& mesh);
+
+//! Points gathered in a list, as a #P by 3 matrix (row i = points[i]).
+VertexVectors point_rows(const std::vector<Eigen::Vector3d>& points);
+
+//! Triangles gathered in a list, as a #F by 3 matrix (row i = triangles[i]).
+FaceIndices triangle_rows(const std::vector<std::array<int, 3>>& triangles);
 
 //! Overwrite vertex positions from a #V by 3 matrix (throws InvalidParameter on a size mismatch).
 void set_vertex_positions(Mesh& mesh, const VertexVectors& positions);

@@ -2,11 +2,11 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/log.h"
+#include "sdflow/spatial/detail/point_kd_tree.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <fmt/format.h>
-#include <nanoflann.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -22,23 +22,8 @@
 namespace sdflow {
 namespace {
 
-//! nanoflann's view of a #P by 3 row-major point matrix.
-struct PointAdaptor {
-  const VertexVectors& points;
-  std::size_t kdtree_get_point_count() const { return static_cast<std::size_t>(points.rows()); }
-  double kdtree_get_pt(std::size_t i, std::size_t d) const
-  {
-    return points(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(d));
-  }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const
-  {
-    return false;
-  }
-};
-
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointAdaptor>,
-                                                   PointAdaptor, 3, std::uint32_t>;
+using detail::PointAdaptor;
+using KdTree = detail::PointKdTree;
 
 constexpr std::size_t parallel_grain = 512;
 

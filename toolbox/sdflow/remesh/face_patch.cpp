@@ -227,13 +227,7 @@ StitchedPatch replace_face_patch(const Mesh& mesh, const std::vector<char>& in_p
   for (; next_face < replacement.n_faces(); ++next_face)
     triangles.push_back(corners(replacement, Mesh::FaceHandle(static_cast<int>(next_face)), replacement_index));
 
-  VertexVectors x(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t i = 0; i < points.size(); ++i)
-    x.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
-  FaceIndices t(static_cast<Eigen::Index>(triangles.size()), 3);
-  for (std::size_t i = 0; i < triangles.size(); ++i)
-    t.row(static_cast<Eigen::Index>(i)) << triangles[i][0], triangles[i][1], triangles[i][2];
-  return {make_mesh(x, t), std::move(index)};
+  return {make_mesh(point_rows(points), triangle_rows(triangles)), std::move(index)};
 }
 
 } // namespace sdflow

@@ -96,10 +96,7 @@ Cut cut_out(const Mesh& mesh, const SurgeryPatch& selection)
   VertexVectors x(static_cast<Eigen::Index>(cut.global.size()), 3);
   for (std::size_t i = 0; i < cut.global.size(); ++i)
     x.row(static_cast<Eigen::Index>(i)) = to_eigen(mesh.point(mesh.vertex_handle(cut.global[i]))).transpose();
-  FaceIndices t(static_cast<Eigen::Index>(triangles.size()), 3);
-  for (std::size_t i = 0; i < triangles.size(); ++i)
-    t.row(static_cast<Eigen::Index>(i)) << triangles[i][0], triangles[i][1], triangles[i][2];
-  cut.patch = make_mesh(x, t);
+  cut.patch = make_mesh(x, triangle_rows(triangles));
 
   // Rings of kept vertices around the cut, walking only through vertices with a kept face.
   const auto has_kept_face = [&](Mesh::VertexHandle v) {
@@ -278,13 +275,7 @@ bool new_faces_intersect(const PolygonSoup& soup, std::size_t first_new)
     }
     triangles.push_back(t);
   }
-  VertexVectors x(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t i = 0; i < points.size(); ++i)
-    x.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
-  FaceIndices t(static_cast<Eigen::Index>(triangles.size()), 3);
-  for (std::size_t i = 0; i < triangles.size(); ++i)
-    t.row(static_cast<Eigen::Index>(i)) << triangles[i][0], triangles[i][1], triangles[i][2];
-  return !self_intersections(x, t).empty();
+  return !self_intersections(point_rows(points), triangle_rows(triangles)).empty();
 }
 
 //! One attempt on one patch: rebuild it and put it back, or throw (AttemptFailed or any stage's error).

@@ -1,6 +1,6 @@
 #include "sdflow/retri/surgery_patch.h"
 
-#include <nanoflann.hpp>
+#include "sdflow/spatial/detail/point_kd_tree.h"
 
 #include <cstdint>
 #include <vector>
@@ -8,23 +8,8 @@
 namespace sdflow {
 namespace {
 
-//! nanoflann's view of a #P by 3 row-major point matrix.
-struct PointAdaptor {
-  const VertexVectors& points;
-  std::size_t kdtree_get_point_count() const { return static_cast<std::size_t>(points.rows()); }
-  double kdtree_get_pt(std::size_t i, std::size_t d) const
-  {
-    return points(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(d));
-  }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const
-  {
-    return false;
-  }
-};
-
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointAdaptor>,
-                                                   PointAdaptor, 3, std::uint32_t>;
+using detail::PointAdaptor;
+using KdTree = detail::PointKdTree;
 
 //! The faces with a vertex within `radius` of a vertex of a crossing face, and the crossing faces.
 std::vector<char> faces_near_crossings(const Mesh& mesh, const std::vector<FacePair>& crossings, double radius)
