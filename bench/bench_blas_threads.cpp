@@ -64,14 +64,14 @@ void Factorise(benchmark::State& state)
   llt.analyzePattern(a);
   double cpu = 0, wall = 0;
   for (auto _ : state) {
-    sdflow::set_blas_threads(threads_of(state));
+    sdflow::set_factorisation_threads(threads_of(state));
     const double cpu_start = process_cpu_seconds();
     const auto start = std::chrono::steady_clock::now();
     llt.factorize(a);
     wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     cpu += process_cpu_seconds() - cpu_start;
   }
-  sdflow::set_blas_threads(1);
+  sdflow::set_factorisation_threads(1);
   state.counters["threads"] = threads_of(state);
   state.counters["cpu_per_wall"] = cpu / wall;
 }

@@ -58,14 +58,25 @@ int blas_threads_for(long unknowns, const BlasThreadPolicy& policy)
   return unknowns < policy.single_thread_below ? 1 : environment.cap;
 }
 
-bool set_blas_threads(int threads)
+bool set_factorisation_threads(int threads)
 {
-  using SetThreads = void (*)(int);
-  // Looked up in the process's global symbols: OpenBLAS is loaded there as CHOLMOD's BLAS.
-  static const auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-  if (set == nullptr)
+  using SetInt = void (*)(int);
+  // Looked up in the process's global symbols: OpenBLAS is loaded there as CHOLMOD's BLAS, and
+  // libgomp as CHOLMOD's OpenMP runtime.
+  static const auto set_blas = reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  static const auto set_levels = reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
+  static const auto set_dynamic = reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "omp_set_dynamic"));
+  threads = std::max(1, threads);
+  // CHOLMOD's OpenMP loops ask for a fixed team of CHOLMOD_OMP_NUM_THREADS (4 in Debian's build),
+  // which no thread-count call overrides: with one thread, no region may be active (level 0), so
+  // each runs on the calling thread; with more, the runtime may shrink the team to the free cores.
+  if (set_levels != nullptr && set_dynamic != nullptr) {
+    set_levels(threads > 1 ? 1 : 0);
+    set_dynamic(threads > 1 ? 1 : 0);
+  }
+  if (set_blas == nullptr)
     return false;
-  set(std::max(1, threads));
+  set_blas(threads);
   return true;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 //! \file blas_threads.h
-//! \brief How many threads the BLAS under CHOLMOD's supernodal factorisation uses (docs/design.md §10).
+//! \brief How many threads CHOLMOD's supernodal factorisation uses, in its BLAS and in its own OpenMP
+//! loops (docs/design.md §10).
 //! A second BLAS thread shortens every factorisation (1.2-1.45x), but a step mostly reuses its
 //! factor, and below about 400 000 vertices the step gains 0-3% while OpenBLAS's workers, which
 //! busy-wait with sched_yield between calls, burn 30-70% more CPU (docs/design.md §10). The policy: one
@@ -20,8 +21,10 @@ struct BlasThreadPolicy {
 //! The thread count for a factorisation of `unknowns` unknowns under `policy` and the environment.
 int blas_threads_for(long unknowns, const BlasThreadPolicy& policy = {});
 
-//! Sets the BLAS's thread count if the loaded BLAS can be told (OpenBLAS's openblas_set_num_threads,
-//! looked up at run time so that any BLAS links); returns false when it cannot.
-bool set_blas_threads(int threads);
+//! Sets the threads of CHOLMOD's numeric factorisation: the BLAS's count if the loaded BLAS can be
+//! told (OpenBLAS's openblas_set_num_threads, looked up at run time so that any BLAS links), and
+//! whether CHOLMOD's own OpenMP loops may run in parallel (serial for one thread). Returns false
+//! when the BLAS cannot be told.
+bool set_factorisation_threads(int threads);
 
 } // namespace sdflow

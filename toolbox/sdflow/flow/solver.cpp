@@ -114,9 +114,9 @@ struct FlowSolver::Impl {
       factorisation_cost = options.factorisation_cost_scale * common.fl / solve_flops;
     }
     factorised = false;
-    set_blas_threads(blas_threads_for(a.rows(), options.blas));
+    set_factorisation_threads(blas_threads_for(a.rows(), options.blas));
     cholesky.factorize(a);
-    set_blas_threads(1);
+    set_factorisation_threads(1);
     if (cholesky.info() != Eigen::Success)
       throw SolverFailure(fmt::format("CHOLMOD factorisation failed on a {}x{} system (not positive definite "
                                       "to working precision: degenerate triangles?)", a.rows(), a.cols()));
@@ -219,9 +219,9 @@ struct FlowSolver::Impl {
       }
     Eigen::VectorXd b = held_rhs(s, rhs).cwiseQuotient(s.areas);
     Eigen::SPQR<SparseMatrix> qr;
-    set_blas_threads(blas_threads_for(a.rows(), options.blas));
+    set_factorisation_threads(blas_threads_for(a.rows(), options.blas));
     qr.compute(a);
-    set_blas_threads(1);
+    set_factorisation_threads(1);
     if (qr.info() != Eigen::Success)
       throw SolverFailure(fmt::format("SuiteSparseQR factorisation failed on a {}x{} system", a.rows(), a.cols()));
     Eigen::VectorXd w = qr.solve(b);
