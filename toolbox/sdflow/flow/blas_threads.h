@@ -2,11 +2,11 @@
 //! \file blas_threads.h
 //! \brief How many threads CHOLMOD's supernodal factorisation uses, in its BLAS and in its own OpenMP
 //! loops (docs/design.md §10).
-//! A second BLAS thread shortens every factorisation (1.2-1.45x), but a step mostly reuses its
-//! factor, and below about 400 000 vertices the step gains 0-3% while OpenBLAS's workers, which
-//! busy-wait with sched_yield between calls, burn 30-70% more CPU (docs/design.md §10). The policy: one
-//! thread below `BlasThreadPolicy::single_thread_below` unknowns, all hardware threads above, and
-//! one thread again for the triangular solves and CG, which are memory-bound.
+//! CHOLMOD's OpenMP loops ask for a fixed team of 4, which oversubscribed small machines: they run
+//! on the calling thread when the count is one. A second BLAS thread gains 3-21% of a factorisation
+//! and 4-16% of a step while burning 1.2-2x the CPU (docs/design.md §10). The policy: one thread
+//! below `BlasThreadPolicy::single_thread_below` unknowns, all hardware threads above, and one
+//! thread again for the triangular solves and CG, which are memory-bound.
 //! Environment overrides: SDFLOW_BLAS_THREADS=n fixes n threads for every factorisation;
 //! OPENBLAS_NUM_THREADS (or OMP_NUM_THREADS) caps the count, as OpenBLAS itself does at start-up.
 
