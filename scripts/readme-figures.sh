@@ -2,7 +2,7 @@
 # Draws README's figures from finished sample runs (samples/reproduce.sh NAME first): for each run in
 # runs/NAME, its plots (sdflow plot) and four snapshots with sdflow render, coloured by H:
 #   docs/images/NAME_start.png         the initial surface
-#   docs/images/NAME_before_event.png  the last snapshot before the first surgery (if any)
+#   docs/images/NAME_before_event.png  the last snapshot before the first topology change (if any)
 #   docs/images/NAME_after_event.png   the first snapshot after it (if any)
 #   docs/images/NAME_end.png           the last snapshot
 # and docs/images/NAME_area_volume.png, NAME_curvature_deviation.png.
@@ -16,9 +16,10 @@ sdflow=${SDFLOW:-$PWD/build/release/cli/sdflow}
 for name in "$@"; do
   run=runs/$name
   [[ -f $run/metrics.csv ]] || { echo "readme-figures: $run/metrics.csv is missing" >&2; exit 1; }
-  # Snapshot steps on disk, and the step of the first surgery in metrics.csv.
+  # Snapshot steps on disk, and the step of the first topology change (components or genus) in
+  # metrics.csv; a surgery that keeps the topology (a crossing of the initial mesh) is not the event.
   mapfile -t steps < <(ls "$run/snapshots" | sed -n 's/^step_0*\([0-9][0-9]*\)\.ply$/\1/p' | sort -n -u)
-  surgery=$(awk -F, 'NR > 1 && $14 ~ /surgery/ { print $1; exit }' "$run/metrics.csv")
+  event=$(awk -F, 'NR == 2 { c = $6; g = $7 } NR > 2 && ($6 != c || $7 != g) { print $1; exit }' "$run/metrics.csv")
   time_of() { awk -F, -v s="$1" 'NR > 1 && $1 == s { printf "%.4g", $2; exit }' "$run/metrics.csv"; }
   draw() { # step, picture name
     local file
@@ -27,10 +28,10 @@ for name in "$@"; do
   }
   draw "${steps[0]}" start
   draw "${steps[-1]}" end
-  if [[ -n $surgery ]]; then
+  if [[ -n $event ]]; then
     before=${steps[0]} after=""
     for s in "${steps[@]}"; do
-      if (( s < surgery )); then before=$s; elif [[ -z $after ]]; then after=$s; fi
+      if (( s < event )); then before=$s; elif [[ -z $after ]]; then after=$s; fi
     done
     draw "$before" before_event
     [[ -n $after ]] && draw "$after" after_event
@@ -39,5 +40,5 @@ for name in "$@"; do
   for plot in area_volume curvature_deviation; do
     cp "$run/plots/$plot.png" "docs/images/${name}_$plot.png"
   done
-  echo "readme-figures: $name (first surgery at step ${surgery:-none})"
+  echo "readme-figures: $name (first topology change at step ${event:-none})"
 done
