@@ -278,6 +278,43 @@ bool new_faces_intersect(const PolygonSoup& soup, std::size_t first_new)
   return !self_intersections(point_rows(points), triangle_rows(triangles)).empty();
 }
 
+//! By vertex of the removal's mesh: whether it lies on a piece that the removal of the
+//! intersecting faces cut off from the cut, in a patch component that reaches the cut. Such a
+//! piece is surface between crossings (the wall of a neck between the two points where it passed
+//! through the axis, a sheet's part inside another), to be dropped, not rebuilt: at a pinch its
+//! points are an inside-out tube thinner than ℓ, which the reconstruction stitches to the two
+//! ends and the hole filling then fills across. A patch component without a cut vertex (a small
+//! component all inside the patch) is rebuilt as before.
+std::vector<char> crossed_over_vertices(const Mesh& patch, const RemovalResult& removal)
+{
+  int patch_count = 0, piece_count = 0;
+  const std::vector<int> patch_component = face_component_ids(patch, &patch_count);
+  const std::vector<int> piece = face_component_ids(removal.mesh, &piece_count);
+  std::vector<char> component_reaches_cut(static_cast<std::size_t>(patch_count), 0);
+  for (const auto f : patch.faces())
+    for (const auto v : patch.fv_range(f))
+      if (patch.is_boundary(v))
+        component_reaches_cut[static_cast<std::size_t>(patch_component[static_cast<std::size_t>(f.idx())])] = 1;
+  std::vector<char> piece_reaches_cut(static_cast<std::size_t>(piece_count), 0), piece_in_cut_component(piece_reaches_cut);
+  for (const auto f : removal.mesh.faces()) {
+    const auto p = static_cast<std::size_t>(piece[static_cast<std::size_t>(f.idx())]);
+    const int origin = removal.face_origin[static_cast<std::size_t>(f.idx())];
+    piece_in_cut_component[p] = component_reaches_cut[static_cast<std::size_t>(patch_component[static_cast<std::size_t>(origin)])];
+    for (const auto v : removal.mesh.fv_range(f))
+      if (patch.is_boundary(patch.vertex_handle(removal.vertex_origin[static_cast<std::size_t>(v.idx())])))
+        piece_reaches_cut[p] = 1;
+  }
+  // A vertex where a crossed-over piece meets a kept one (a pinched vertex) stays.
+  std::vector<char> crossed(removal.mesh.n_vertices(), 1);
+  for (const auto f : removal.mesh.faces()) {
+    const auto p = static_cast<std::size_t>(piece[static_cast<std::size_t>(f.idx())]);
+    if (!piece_in_cut_component[p] || piece_reaches_cut[p])
+      for (const auto v : removal.mesh.fv_range(f))
+        crossed[static_cast<std::size_t>(v.idx())] = 0;
+  }
+  return crossed;
+}
+
 //! One attempt on one patch: rebuild it and put it back, or throw (AttemptFailed or any stage's error).
 RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& selection, const RetriangulationOptions& options,
                                     double ell, int input_boundary_loops, double hole_bound)
@@ -306,27 +343,32 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
   r.removed_faces = static_cast<int>(removal.removed_faces.size());
   r.seconds.intersections = seconds_since(start);
 
-  // Stage 3: the patch's points, then the context's, normals signed by the surface's own orientation.
+  // Stage 3: the patch's points but those crossed over, then the context's, normals signed by the
+  // surface's own orientation.
   start = Clock::now();
-  const auto own = static_cast<Eigen::Index>(removal.mesh.n_vertices());
+  const std::vector<char> crossed = crossed_over_vertices(patch, removal);
+  const auto crossed_count = static_cast<int>(std::count(crossed.begin(), crossed.end(), 1));
+  const auto own = static_cast<Eigen::Index>(removal.mesh.n_vertices()) - crossed_count;
   const auto total = own + static_cast<Eigen::Index>(cut.context.size());
   VertexVectors points(total, 3), reference(total, 3);
   std::vector<char> outer(static_cast<std::size_t>(total), 0);
+  Eigen::Index row = 0;
   for (const auto v : removal.mesh.vertices()) {
+    if (crossed[static_cast<std::size_t>(v.idx())])
+      continue;
     const auto origin = patch.vertex_handle(removal.vertex_origin[static_cast<std::size_t>(v.idx())]);
-    points.row(v.idx()) = to_eigen(patch.point(origin)).transpose();
-    reference.row(v.idx()) = area_normal(patch, origin).transpose();
-    outer[static_cast<std::size_t>(v.idx())] = patch.is_boundary(origin);
+    points.row(row) = to_eigen(patch.point(origin)).transpose();
+    reference.row(row) = area_normal(patch, origin).transpose();
+    outer[static_cast<std::size_t>(row++)] = patch.is_boundary(origin);
   }
-  for (std::size_t i = 0; i < cut.context.size(); ++i) {
-    const auto row = own + static_cast<Eigen::Index>(i);
-    const auto v = mesh.vertex_handle(cut.context[i]);
+  for (const int g : cut.context) {
+    const auto v = mesh.vertex_handle(g);
     points.row(row) = to_eigen(mesh.point(v)).transpose();
     reference.row(row) = area_normal(mesh, v).transpose();
-    outer[static_cast<std::size_t>(row)] = 1;
+    outer[static_cast<std::size_t>(row++)] = 1;
   }
   const OrientedPoints oriented = normals_oriented_by_reference(points, reference, options.normals);
-  r.removed_points = static_cast<int>(oriented.removed.size());
+  r.removed_points = crossed_count + static_cast<int>(oriented.removed.size());
   r.seconds.normals = seconds_since(start);
 
   // Stage 4, then the rebuild trimmed to the triangles that touch neither the cut nor the context.
