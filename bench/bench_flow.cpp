@@ -18,6 +18,7 @@
 
 #include <chrono>
 #include <map>
+#include <utility>
 
 namespace {
 
@@ -123,15 +124,15 @@ void run_steps(benchmark::State& state, sdflow::FactorisationPolicy policy)
     Mesh mesh = sphere(static_cast<int>(state.range(0)));
     const sdflow::CotangentCache cache(mesh);
     sdflow::FlowSolver solver({.policy = policy});
-    Eigen::VectorXd w;
+    Eigen::VectorXd w, earlier_w;
     factorisations = iterations = 0;
     state.ResumeTiming();
     const auto start = std::chrono::steady_clock::now();
     for (int s = 0; s < steps; ++s) {
       const auto op = sdflow::flow_operators(mesh, {}, &cache);
-      auto step = sdflow::solve_step(mesh, op, tau, beta, solver, w);
+      auto step = sdflow::solve_step(mesh, op, tau, beta, solver, sdflow::warm_starts(w, earlier_w));
       sdflow::set_vertex_positions(mesh, step.positions);
-      w = std::move(step.w);
+      earlier_w = std::exchange(w, std::move(step.w));
       factorisations += step.solve.factorised;
       iterations += step.solve.iterations;
     }

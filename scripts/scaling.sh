@@ -6,19 +6,24 @@
 # cpu column, which stays meaningful on a machine other work loads), the factorisation the largest
 # in the run (the first step's), the solve the median after the first; peak memory is the
 # process's maximum resident set (GNU time). Writes build/scaling/results.csv and prints the
-# markdown table with growth exponents between consecutive sizes.
-#   scripts/scaling.sh [--sdflow PATH] [--sizes "100000 400000 1600000"] [--steps N] [--tables-only]
+# markdown table with growth exponents between consecutive sizes. A run of some sizes or kinds
+# replaces those rows of results.csv and keeps the others (a size that fits in memory only for
+# the plain flow is run with --kinds plain).
+#   scripts/scaling.sh [--sdflow PATH] [--sizes "100000 400000 1600000"] [--kinds "plain retriangulating"]
+#                      [--steps N] [--tables-only]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 sdflow=build/release/cli/sdflow
-sizes="100000 400000 1600000 6400000"
+sizes="100000 400000 1600000"
+kinds="plain retriangulating"
 steps=5
 tables_only=0
 while (($#)); do
   case $1 in
     --sdflow) sdflow=$2; shift 2 ;;
     --sizes) sizes=$2; shift 2 ;;
+    --kinds) kinds=$2; shift 2 ;;
     --steps) steps=$2; shift 2 ;;
     --tables-only) tables_only=1; shift ;;
     -h|--help) awk 'NR > 1 && /^#/ {sub(/^# ?/, ""); print; next} NR > 1 {exit}' "$0"; exit 0 ;;
@@ -61,9 +66,20 @@ run_one() { # size, kind (plain|retriangulating)
 }
 
 if ((!tables_only)); then
-  echo "size,kind,vertices,step_s,step_cpu_s,factorisation_s,solve_s,peak_rss_kib,wall_s,user_s,sys_s" > "$results"
+  header="size,kind,vertices,step_s,step_cpu_s,factorisation_s,solve_s,peak_rss_kib,wall_s,user_s,sys_s"
+  # keep the rows of the sizes and kinds not re-run now
+  kept=$(mktemp)
+  trap 'rm -f "$kept"' EXIT
+  if [[ -f $results ]]; then
+    awk -F, -v sizes=" $sizes " -v kinds=" $kinds " \
+      'NR > 1 && !(index(sizes, " " $1 " ") && index(kinds, " " $2 " "))' "$results" > "$kept"
+  fi
+  echo "$header" > "$results"
+  cat "$kept" >> "$results"
   for n in $sizes; do
-    for kind in plain retriangulating; do
+    for kind in $kinds; do
+      [[ $kind == plain || $kind == retriangulating ]] ||
+        { echo "scaling.sh: unknown kind '$kind' (plain or retriangulating)" >&2; exit 2; }
       echo "scaling.sh: $kind flow on a torus of $n vertices ($steps steps)" >&2
       run_one "$n" "$kind"
     done
@@ -72,7 +88,7 @@ fi
 
 python3 - "$results" <<'EOF'
 import csv, math, sys
-rows = list(csv.DictReader(open(sys.argv[1])))
+rows = sorted(csv.DictReader(open(sys.argv[1])), key=lambda r: int(r["size"]))
 print("| flow | vertices | step, wall (median) | step, CPU (median) | factorisation, wall (largest) | solve, wall (median) | peak memory | exponent of step CPU | exponent of memory |")
 print("|---|---|---|---|---|---|---|---|---|")
 for kind in ("plain", "retriangulating"):

@@ -4,7 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <numbers>
+#include <random>
 
 namespace sdflow {
 namespace {
@@ -30,6 +34,22 @@ TEST(Quality, icosahedron_statistics_are_exact)
   EXPECT_NEAR(q.edge_max, edge, 1e-12);
   EXPECT_NEAR(q.edge_stddev, 0.0, 1e-7);
   EXPECT_EQ(q.valence_histogram.at(5), 12);
+}
+
+// smallest_angle_deg measures only the corner facing the shortest side: it must be the smallest of
+// the three corner angles, on slivers, needles and obtuse triangles alike.
+TEST(Quality, smallest_angle_is_the_least_of_the_corner_angles)
+{
+  Mesh mesh = analytic::icosphere(2, 1.0);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> jitter(-0.08, 0.08);
+  for (const auto v : mesh.vertices())
+    mesh.set_point(v, mesh.point(v) + Mesh::Point(jitter(random), jitter(random), jitter(random)));
+  for (const auto f : mesh.faces()) {
+    const std::array<double, 3> angles = corner_angles(mesh, f);
+    const double least = *std::min_element(angles.begin(), angles.end()) * 180 / std::numbers::pi;
+    EXPECT_NEAR(smallest_angle_deg(mesh, f), least, 1e-12) << "face " << f.idx();
+  }
 }
 
 TEST(Quality, disk_reports_boundary_valences_separately)

@@ -20,7 +20,7 @@ namespace {
 static_assert(std::endian::native == std::endian::little, "checkpoints are written on little-endian machines");
 
 constexpr char magic[8] = {'S', 'D', 'F', 'L', 'O', 'W', 'C', 'K'};
-constexpr std::uint32_t version = 4;
+constexpr std::uint32_t version = 5;
 
 std::uint64_t fnv1a(const char* data, std::size_t size)
 {
@@ -167,6 +167,7 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file)
   put_solver(w, {c.half_solver, c.has_half_anchor, c.half_anchor_positions, c.half_anchor_tau_beta});
   w.put<std::int64_t>(c.time_step.table_lag);
   w.put(c.time_step.fallback_left);
+  w.put_doubles(c.earlier_w.data(), static_cast<std::size_t>(c.earlier_w.size()));
   w.put(fnv1a(w.bytes().data(), w.bytes().size()));
   write_atomically(file, [&](std::ostream& out) { out.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size())); });
 }
@@ -231,6 +232,10 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
     if (c.time_step.table_lag < 0 || c.time_step.table_lag > c.step || !(c.time_step.fallback_left >= 0) ||
         !std::isfinite(c.time_step.fallback_left))
       throw IoError(fmt::format("{}: checkpoint's τ table position is corrupt", file.string()));
+  }
+  if (file_version >= 5) {
+    const std::vector<double> earlier = r.get_doubles();
+    c.earlier_w = Eigen::Map<const Eigen::VectorXd>(earlier.data(), static_cast<Eigen::Index>(earlier.size()));
   }
   return c;
 }

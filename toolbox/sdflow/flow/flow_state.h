@@ -16,7 +16,8 @@ struct FlowState {
   double time = 0;
   VertexVectors positions;
   FaceIndices triangles;
-  Eigen::VectorXd previous_w;          //!< warm start of the next solve (empty if none)
+  Eigen::VectorXd previous_w;          //!< w of the last accepted step: a warm start (empty if none)
+  Eigen::VectorXd earlier_w;           //!< w of the step before it, for the extrapolated warm start
   TimeStepState time_step;
   SolverState solver;
   bool has_anchor = false;             //!< a factorisation is being reused

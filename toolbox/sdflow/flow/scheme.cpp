@@ -56,14 +56,21 @@ FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options, con
   return op;
 }
 
+std::array<Eigen::VectorXd, 2> warm_starts(const Eigen::VectorXd& last_w, const Eigen::VectorXd& earlier_w)
+{
+  if (last_w.size() == 0 || earlier_w.size() != last_w.size())
+    return {last_w, Eigen::VectorXd()};
+  return {last_w, 2 * last_w - earlier_w};
+}
+
 StepResult solve_step(const Mesh& mesh, const FlowOperators& op, double tau, double beta, FlowSolver& solver,
-                      const Eigen::VectorXd& guess)
+                      std::span<const Eigen::VectorXd> guesses)
 {
   if (!(tau > 0) || !std::isfinite(tau))
     throw InvalidParameter(fmt::format("flow step: τ must be finite and positive, got {}", tau));
   StepResult result;
   const FlowSystem system{op.laplacian, op.areas, op.held, tau * beta};
-  result.w = solver.solve(system, op.rhs, guess, &result.solve);
+  result.w = solver.solve(system, op.rhs, guesses, &result.solve);
   result.positions = vertex_positions(mesh);
   if (result.solve.factorised) {
     result.factorisations = 1;
@@ -76,9 +83,9 @@ StepResult solve_step(const Mesh& mesh, const FlowOperators& op, double tau, dou
 
 StepResult extrapolated_step(const Mesh& mesh, const FlowOperators& op, double tau, const SchemeOptions& options,
                              FlowSolver& solver, FlowSolver& half_solver, const CotangentCache* cache,
-                             const Eigen::VectorXd& guess)
+                             std::span<const Eigen::VectorXd> guesses)
 {
-  StepResult result = solve_step(mesh, op, tau, options.beta, solver, guess);
+  StepResult result = solve_step(mesh, op, tau, options.beta, solver, guesses);
   const auto absorb = [&result](const StepResult& half) {
     result.solve.analysed |= half.solve.analysed;
     result.solve.iterations += half.solve.iterations;
@@ -93,7 +100,7 @@ StepResult extrapolated_step(const Mesh& mesh, const FlowOperators& op, double t
       result.half_factorised_tau_beta = half.factorised_tau_beta;
     }
   };
-  const StepResult first_half = solve_step(mesh, op, tau / 2, options.beta, half_solver, result.w);
+  const StepResult first_half = solve_step(mesh, op, tau / 2, options.beta, half_solver, {&result.w, 1});
   absorb(first_half);
   Mesh halfway = mesh;
   set_vertex_positions(halfway, first_half.positions);
@@ -101,7 +108,7 @@ StepResult extrapolated_step(const Mesh& mesh, const FlowOperators& op, double t
   const FlowOperators halfway_operators = flow_operators(halfway, options, cache);
   result.operators_seconds = watch.seconds();
   const StepResult second_half =
-      solve_step(halfway, halfway_operators, tau / 2, options.beta, half_solver, first_half.w);
+      solve_step(halfway, halfway_operators, tau / 2, options.beta, half_solver, {&first_half.w, 1});
   absorb(second_half);
   result.error = second_half.positions - result.positions;
   result.positions = second_half.positions + result.error;

@@ -137,11 +137,12 @@ struct FlowSolver::Impl {
     return state.last_iterations > mean_cost;
   }
 
-  //! Preconditioned conjugate gradients with the current factor; false if not converged.
-  bool pcg(const FlowSystem& s, const Eigen::VectorXd& b, Eigen::VectorXd& x, SolveReport& report) const
+  //! Preconditioned conjugate gradients with the current factor from x, whose residual b - A x is r;
+  //! false if not converged.
+  bool pcg(const FlowSystem& s, const Eigen::VectorXd& b, Eigen::VectorXd& x, Eigen::VectorXd r,
+           SolveReport& report) const
   {
     const double b_norm = b.norm();
-    Eigen::VectorXd r = b - apply_flow_matrix(s, x);
     const double target = options.cg_tolerance * b_norm;
     double r_norm = r.norm();
     report.iterations = 0;
@@ -173,7 +174,7 @@ struct FlowSolver::Impl {
     return false;
   }
 
-  Eigen::VectorXd solve_cholmod(const FlowSystem& s, const Eigen::VectorXd& rhs, const Eigen::VectorXd& guess,
+  Eigen::VectorXd solve_cholmod(const FlowSystem& s, const Eigen::VectorXd& rhs, std::span<const Eigen::VectorXd> guesses,
                                 SolveReport& report)
   {
     const Eigen::VectorXd b = held_rhs(s, rhs);
@@ -186,8 +187,17 @@ struct FlowSolver::Impl {
     if (!same_pattern(s.laplacian) || refactor_due()) {
       factorise(s, report);
     } else {
-      Eigen::VectorXd x = guess.size() == b.size() ? guess : Eigen::VectorXd::Zero(b.size());
-      if (pcg(s, b, x, report)) {
+      Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+      Eigen::VectorXd r = b;
+      for (const Eigen::VectorXd& guess : guesses)
+        if (guess.size() == b.size()) {
+          Eigen::VectorXd residual = b - apply_flow_matrix(s, guess);
+          if (residual.squaredNorm() < r.squaredNorm()) {
+            x = guess;
+            r = std::move(residual);
+          }
+        }
+      if (pcg(s, b, x, std::move(r), report)) {
         ++state.solves_since_factorisation;
         state.iterations_since_factorisation += report.iterations;
         state.last_iterations = report.iterations;
@@ -248,8 +258,8 @@ FlowSolver::~FlowSolver() = default;
 FlowSolver::FlowSolver(FlowSolver&&) noexcept = default;
 FlowSolver& FlowSolver::operator=(FlowSolver&&) noexcept = default;
 
-Eigen::VectorXd FlowSolver::solve(const FlowSystem& system, const Eigen::VectorXd& rhs, const Eigen::VectorXd& guess,
-                                  SolveReport* report)
+Eigen::VectorXd FlowSolver::solve(const FlowSystem& system, const Eigen::VectorXd& rhs,
+                                  std::span<const Eigen::VectorXd> guesses, SolveReport* report)
 {
   check_system(system, rhs);
   const Stopwatch watch;
@@ -258,7 +268,7 @@ Eigen::VectorXd FlowSolver::solve(const FlowSystem& system, const Eigen::VectorX
   if (impl_->options.kind == SolverKind::qr) {
     w = impl_->solve_qr(system, rhs, local);
   } else {
-    w = impl_->solve_cholmod(system, rhs, guess, local);
+    w = impl_->solve_cholmod(system, rhs, guesses, local);
   }
   check_finite(w, "the linear solve");
   local.seconds.solve = std::max(0.0, watch.seconds() - local.seconds.assembly - local.seconds.factorisation);

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace sdflow {
@@ -86,10 +87,11 @@ public:
   FlowSolver& operator=(FlowSolver&&) noexcept;
 
   //! Solve (M + τβ L M⁻¹ L) w = rhs (rhs = L H) or, with the QR solver, (I + τβΔ²) w = M⁻¹ rhs.
-  //! `guess` (empty or #V) starts CG. Throws SolverFailure if a factorisation fails or the
-  //! result is not finite, InvalidParameter on inconsistent sizes or a negative τβ.
+  //! CG starts from whichever of `guesses` (each empty or #V; those of another size are skipped) or
+  //! zero has the smallest residual. Throws SolverFailure if a factorisation fails or the result is
+  //! not finite, InvalidParameter on inconsistent sizes or a negative τβ.
   Eigen::VectorXd solve(const FlowSystem& system, const Eigen::VectorXd& rhs,
-                        const Eigen::VectorXd& guess = {}, SolveReport* report = nullptr);
+                        std::span<const Eigen::VectorXd> guesses = {}, SolveReport* report = nullptr);
 
   //! Drop the numeric factor so the next solve factorises (e.g. after connectivity changed).
   void forget_factorisation();

@@ -56,6 +56,7 @@ SurfaceDiffusion::SurfaceDiffusion(const FlowState& state, RunParameters paramet
   renew_connectivity();
   prepare_retriangulation(std::move(retriangulate));
   previous_w_ = state.previous_w;
+  earlier_w_ = state.earlier_w;
   last_w_ = state.previous_w.size() == static_cast<Eigen::Index>(mesh_.n_vertices())
                 ? state.previous_w
                 : Eigen::VectorXd::Zero(mesh_.n_vertices());
@@ -166,7 +167,7 @@ StepRecord SurfaceDiffusion::step()
   if ((fell_back || controller_before.fallback_left > 0) && !controller_.adaptive())
     note(step_, time_, fmt::format("adaptive steps covered the table up to its step {}: the table resumes",
                                    controller_.table_step(step_)));
-  previous_w_ = trial.w;
+  earlier_w_ = std::exchange(previous_w_, trial.w);
   last_w_ = trial.w;
 
   if (retriangulate_) {
@@ -210,6 +211,7 @@ FlowState SurfaceDiffusion::state() const
   s.positions = vertex_positions(mesh_);
   s.triangles = triangles_;
   s.previous_w = previous_w_;
+  s.earlier_w = earlier_w_;
   s.time_step = controller_.state();
   s.solver = solver_.state();
   s.has_anchor = has_anchor_;
@@ -303,6 +305,7 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
   half_solver_.forget_factorisation();
   has_anchor_ = has_half_anchor_ = false;
   previous_w_.resize(0);
+  earlier_w_.resize(0);
   last_w_ = Eigen::VectorXd::Zero(mesh_.n_vertices());
   std::vector<std::string> these;
   for (const auto& [flag, name] : {std::pair{report.remeshed, "remeshed"}, std::pair{report.surgery, "surgery"},
@@ -332,11 +335,12 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
       need_automatic_tau ? automatic_tau(op_.rhs.cwiseQuotient(op_.areas).cwiseAbs(), op_.held, edge_lengths, adaptive)
                          : 0.0;
   const double time_left = std::isfinite(p_.end_time) ? p_.end_time - time_ : std::numeric_limits<double>::infinity();
+  const std::array<Eigen::VectorXd, 2> guesses = warm_starts(previous_w_, earlier_w_);
   for (;;) {
     const double tau = controller_.propose(next_step, automatic, time_left);
     trial = p_.scheme.extrapolate
-                ? extrapolated_step(mesh_, op_, tau, p_.scheme, solver_, half_solver_, &*cache_, previous_w_)
-                : solve_step(mesh_, op_, tau, p_.scheme.beta, solver_, previous_w_);
+                ? extrapolated_step(mesh_, op_, tau, p_.scheme, solver_, half_solver_, &*cache_, guesses)
+                : solve_step(mesh_, op_, tau, p_.scheme.beta, solver_, guesses);
     record.cg_iterations += trial.solve.iterations;
     factorisations_ += trial.factorisations;
     times.operators += trial.operators_seconds;

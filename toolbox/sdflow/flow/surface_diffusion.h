@@ -152,7 +152,7 @@ private:
   double time_ = 0;
   long tolerated_degraded_ = 0;   // see RetriangulationContext
   bool topology_changed_ = false; // with stop_at_topology_change: finished after this step
-  Eigen::VectorXd previous_w_, last_w_;
+  Eigen::VectorXd previous_w_, earlier_w_, last_w_; // w of the last two accepted steps, and the velocity
   bool has_anchor_ = false, has_half_anchor_ = false;
   VertexVectors anchor_positions_, half_anchor_positions_;
   double anchor_tau_beta_ = 0, half_anchor_tau_beta_ = 0;

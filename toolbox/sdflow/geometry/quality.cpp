@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -21,10 +22,18 @@ std::array<double, 3> corner_angles(const Mesh& mesh, Mesh::FaceHandle f)
 
 double smallest_angle_deg(const Mesh& mesh, Mesh::FaceHandle f)
 {
-  double smallest = 180;
-  for (const double angle : corner_angles(mesh, f))
-    smallest = std::min(smallest, angle * 180 / std::numbers::pi);
-  return smallest;
+  // The smallest angle faces the shortest side (law of sines): one atan2 instead of three, as the
+  // per-step look at the surface measures every triangle.
+  const std::array<Eigen::Vector3d, 3> p = triangle_corners(mesh, f).point;
+  int corner = 0;
+  double shortest = std::numeric_limits<double>::infinity();
+  for (int c = 0; c < 3; ++c)
+    if (const double opposite = (p[(c + 2) % 3] - p[(c + 1) % 3]).squaredNorm(); opposite < shortest) {
+      shortest = opposite;
+      corner = c;
+    }
+  const Eigen::Vector3d a = p[(corner + 1) % 3] - p[corner], b = p[(corner + 2) % 3] - p[corner];
+  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / std::numbers::pi;
 }
 
 MeshQuality mesh_quality(const Mesh& mesh)
