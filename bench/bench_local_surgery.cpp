@@ -1,8 +1,8 @@
 //! Surgery at a pinch-off: the local surgery (retri/local_surgery.h) against the whole-surface
 //! pipeline (retri/pipeline.h) on the same self-intersecting dumbbell, its neck pinched through
 //! the axis by a quarter of an edge (a run's steps move vertices by at most 5% of an edge, so the
-//! hook finds crossings that shallow), at about 20k and 100k vertices, and the local surgery at
-//! 150k too, where it still needs more than one rebuild. Wall and process CPU time (all threads).
+//! hook finds crossings that shallow), at about 20k and 100k vertices (the local surgery at 150k
+//! too). Wall and process CPU time (all threads).
 #include "sdflow/geometry/measures.h"
 #include "sdflow/retri/local_surgery.h"
 #include "sdflow/retri/pipeline.h"

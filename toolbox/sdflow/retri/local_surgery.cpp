@@ -23,6 +23,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
 
 namespace sdflow {
 namespace {
@@ -315,6 +316,61 @@ std::vector<char> crossed_over_vertices(const Mesh& patch, const RemovalResult& 
   return crossed;
 }
 
+//! Stage 4 on each piece of the symmetric k-nearest-neighbour graph of the points apart (k as for
+//! the normals; a piece of fewer than k points is left unused, debris): the advancing front then
+//! joins only points that sample one surface at the normals' scale, and cannot bridge two ends a
+//! pinch left a few ℓ apart (the cone tips of a neck drawn through its axis, whose normals still
+//! admit a triangle between them, and whose bridge the hole filling then fills across).
+Reconstruction reconstruct_by_piece(const OrientedPoints& oriented, const RetriangulationOptions& options)
+{
+  const auto n = static_cast<int>(oriented.points.rows());
+  const int k = std::min(options.normals.neighbours, n);
+  std::vector<int> root(static_cast<std::size_t>(n));
+  std::iota(root.begin(), root.end(), 0);
+  const auto find = [&](int i) {
+    while (root[static_cast<std::size_t>(i)] != i)
+      i = root[static_cast<std::size_t>(i)] = root[static_cast<std::size_t>(root[static_cast<std::size_t>(i)])];
+    return i;
+  };
+  const NeighbourTable neighbours = nearest_neighbours(oriented.points, k);
+  for (int i = 0; i < n; ++i)
+    for (Eigen::Index c = 0; c < neighbours.cols(); ++c)
+      root[static_cast<std::size_t>(find(i))] = find(neighbours(i, c));
+  std::map<int, std::vector<int>> pieces;
+  for (int i = 0; i < n; ++i)
+    pieces[find(i)].push_back(i);
+
+  Reconstruction all;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<int, 3>> triangles;
+  for (const auto& [piece_root, members] : pieces) {
+    if (static_cast<int>(members.size()) < k) {
+      all.unused.insert(all.unused.end(), members.begin(), members.end());
+      continue;
+    }
+    VertexVectors x(static_cast<Eigen::Index>(members.size()), 3), normals(x.rows(), 3);
+    for (std::size_t m = 0; m < members.size(); ++m) {
+      x.row(static_cast<Eigen::Index>(m)) = oriented.points.row(members[m]);
+      normals.row(static_cast<Eigen::Index>(m)) = oriented.normals.row(members[m]);
+    }
+    const Reconstruction piece = reconstruct_surface(x, normals, options.reconstruction);
+    const auto offset = static_cast<int>(points.size());
+    for (const auto v : piece.mesh.vertices()) {
+      points.push_back(to_eigen(piece.mesh.point(v)));
+      all.source.push_back(members[static_cast<std::size_t>(piece.source[static_cast<std::size_t>(v.idx())])]);
+    }
+    for (const auto f : piece.mesh.faces()) {
+      const auto c = triangle_corners(piece.mesh, f).index;
+      triangles.push_back({offset + c[0], offset + c[1], offset + c[2]});
+    }
+    for (const int u : piece.unused)
+      all.unused.push_back(members[static_cast<std::size_t>(u)]);
+    all.components += piece.components;
+  }
+  all.mesh = make_mesh(point_rows(points), triangle_rows(triangles));
+  return all;
+}
+
 //! One attempt on one patch: rebuild it and put it back, or throw (AttemptFailed or any stage's error).
 RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& selection, const RetriangulationOptions& options,
                                     double ell, int input_boundary_loops, double hole_bound)
@@ -373,7 +429,7 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
 
   // Stage 4, then the rebuild trimmed to the triangles that touch neither the cut nor the context.
   start = Clock::now();
-  const Reconstruction rebuilt = reconstruct_surface(oriented.points, oriented.normals, options.reconstruction);
+  const Reconstruction rebuilt = reconstruct_by_piece(oriented, options);
   r.unused_points = static_cast<int>(rebuilt.unused.size());
   const auto is_outer = [&](Mesh::VertexHandle v) {
     return outer[static_cast<std::size_t>(
