@@ -350,6 +350,31 @@ TEST(FlowSolver, stale_factor_is_kept_while_it_pays_and_refreshed_when_pattern_c
   EXPECT_TRUE(third.analysed && third.factorised) << "a new connectivity needs a new analysis";
 }
 
+// CG starts from whichever guess has the smaller residual, in any order, and a guess of another
+// size (a re-triangulated surface's) is skipped rather than refused.
+TEST(FlowSolver, cg_starts_from_the_guess_with_the_smaller_residual)
+{
+  const Mesh mesh = analytic::ellipsoid(2, 5, 4, 3);
+  const auto op = flow_operators(mesh);
+  const FlowSystem before{op.laplacian, op.areas, op.held, 0.01}, now{op.laplacian, op.areas, op.held, 0.011};
+  const Eigen::VectorXd exact = FlowSolver({.policy = FactorisationPolicy::every_step}).solve(now, op.rhs);
+  const Eigen::VectorXd poor = 3 * exact, wrong_size = Eigen::VectorXd::Ones(exact.size() + 5);
+  const auto iterations = [&](std::vector<Eigen::VectorXd> guesses) {
+    FlowSolver solver; // the same history each time: a factor of `before`, then CG on `now`
+    solver.solve(before, op.rhs);
+    SolveReport report;
+    solver.solve(now, op.rhs, guesses, &report);
+    EXPECT_FALSE(report.factorised);
+    return report.iterations;
+  };
+  const int from_exact = iterations({exact}), from_poor = iterations({poor});
+  EXPECT_LT(from_exact, from_poor);
+  EXPECT_EQ(iterations({poor, exact}), from_exact);
+  EXPECT_EQ(iterations({exact, poor}), from_exact);
+  EXPECT_EQ(iterations({wrong_size, exact}), from_exact);
+  EXPECT_EQ(iterations({wrong_size}), iterations({}));
+}
+
 TEST(FlowStep, explicit_scheme_moves_by_the_laplacian_of_curvature)
 {
   constexpr double tolerance = 1e-13;
