@@ -23,6 +23,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
 
 namespace sdflow {
 namespace {
@@ -278,6 +279,98 @@ bool new_faces_intersect(const PolygonSoup& soup, std::size_t first_new)
   return !self_intersections(point_rows(points), triangle_rows(triangles)).empty();
 }
 
+//! By vertex of the removal's mesh: whether it lies on a piece that the removal of the
+//! intersecting faces cut off from the cut, in a patch component that reaches the cut. Such a
+//! piece is surface between crossings (the wall of a neck between the two points where it passed
+//! through the axis, a sheet's part inside another), to be dropped, not rebuilt: at a pinch its
+//! points are an inside-out tube thinner than ℓ, which the reconstruction stitches to the two
+//! ends and the hole filling then fills across. A patch component without a cut vertex (a small
+//! component all inside the patch) is rebuilt as before.
+std::vector<char> crossed_over_vertices(const Mesh& patch, const RemovalResult& removal)
+{
+  int patch_count = 0, piece_count = 0;
+  const std::vector<int> patch_component = face_component_ids(patch, &patch_count);
+  const std::vector<int> piece = face_component_ids(removal.mesh, &piece_count);
+  std::vector<char> component_reaches_cut(static_cast<std::size_t>(patch_count), 0);
+  for (const auto f : patch.faces())
+    for (const auto v : patch.fv_range(f))
+      if (patch.is_boundary(v))
+        component_reaches_cut[static_cast<std::size_t>(patch_component[static_cast<std::size_t>(f.idx())])] = 1;
+  std::vector<char> piece_reaches_cut(static_cast<std::size_t>(piece_count), 0), piece_in_cut_component(piece_reaches_cut);
+  for (const auto f : removal.mesh.faces()) {
+    const auto p = static_cast<std::size_t>(piece[static_cast<std::size_t>(f.idx())]);
+    const int origin = removal.face_origin[static_cast<std::size_t>(f.idx())];
+    piece_in_cut_component[p] = component_reaches_cut[static_cast<std::size_t>(patch_component[static_cast<std::size_t>(origin)])];
+    for (const auto v : removal.mesh.fv_range(f))
+      if (patch.is_boundary(patch.vertex_handle(removal.vertex_origin[static_cast<std::size_t>(v.idx())])))
+        piece_reaches_cut[p] = 1;
+  }
+  // A vertex where a crossed-over piece meets a kept one (a pinched vertex) stays.
+  std::vector<char> crossed(removal.mesh.n_vertices(), 1);
+  for (const auto f : removal.mesh.faces()) {
+    const auto p = static_cast<std::size_t>(piece[static_cast<std::size_t>(f.idx())]);
+    if (!piece_in_cut_component[p] || piece_reaches_cut[p])
+      for (const auto v : removal.mesh.fv_range(f))
+        crossed[static_cast<std::size_t>(v.idx())] = 0;
+  }
+  return crossed;
+}
+
+//! Stage 4 on each piece of the symmetric k-nearest-neighbour graph of the points apart (k as for
+//! the normals; a piece of fewer than k points is left unused, debris): the advancing front then
+//! joins only points that sample one surface at the normals' scale, and cannot bridge two ends a
+//! pinch left a few ℓ apart (the cone tips of a neck drawn through its axis, whose normals still
+//! admit a triangle between them, and whose bridge the hole filling then fills across).
+Reconstruction reconstruct_by_piece(const OrientedPoints& oriented, const RetriangulationOptions& options)
+{
+  const auto n = static_cast<int>(oriented.points.rows());
+  const int k = std::min(options.normals.neighbours, n);
+  std::vector<int> root(static_cast<std::size_t>(n));
+  std::iota(root.begin(), root.end(), 0);
+  const auto find = [&](int i) {
+    while (root[static_cast<std::size_t>(i)] != i)
+      i = root[static_cast<std::size_t>(i)] = root[static_cast<std::size_t>(root[static_cast<std::size_t>(i)])];
+    return i;
+  };
+  const NeighbourTable neighbours = nearest_neighbours(oriented.points, k);
+  for (int i = 0; i < n; ++i)
+    for (Eigen::Index c = 0; c < neighbours.cols(); ++c)
+      root[static_cast<std::size_t>(find(i))] = find(neighbours(i, c));
+  std::map<int, std::vector<int>> pieces;
+  for (int i = 0; i < n; ++i)
+    pieces[find(i)].push_back(i);
+
+  Reconstruction all;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<int, 3>> triangles;
+  for (const auto& [piece_root, members] : pieces) {
+    if (static_cast<int>(members.size()) < k) {
+      all.unused.insert(all.unused.end(), members.begin(), members.end());
+      continue;
+    }
+    VertexVectors x(static_cast<Eigen::Index>(members.size()), 3), normals(x.rows(), 3);
+    for (std::size_t m = 0; m < members.size(); ++m) {
+      x.row(static_cast<Eigen::Index>(m)) = oriented.points.row(members[m]);
+      normals.row(static_cast<Eigen::Index>(m)) = oriented.normals.row(members[m]);
+    }
+    const Reconstruction piece = reconstruct_surface(x, normals, options.reconstruction);
+    const auto offset = static_cast<int>(points.size());
+    for (const auto v : piece.mesh.vertices()) {
+      points.push_back(to_eigen(piece.mesh.point(v)));
+      all.source.push_back(members[static_cast<std::size_t>(piece.source[static_cast<std::size_t>(v.idx())])]);
+    }
+    for (const auto f : piece.mesh.faces()) {
+      const auto c = triangle_corners(piece.mesh, f).index;
+      triangles.push_back({offset + c[0], offset + c[1], offset + c[2]});
+    }
+    for (const int u : piece.unused)
+      all.unused.push_back(members[static_cast<std::size_t>(u)]);
+    all.components += piece.components;
+  }
+  all.mesh = make_mesh(point_rows(points), triangle_rows(triangles));
+  return all;
+}
+
 //! One attempt on one patch: rebuild it and put it back, or throw (AttemptFailed or any stage's error).
 RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& selection, const RetriangulationOptions& options,
                                     double ell, int input_boundary_loops, double hole_bound)
@@ -306,32 +399,37 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
   r.removed_faces = static_cast<int>(removal.removed_faces.size());
   r.seconds.intersections = seconds_since(start);
 
-  // Stage 3: the patch's points, then the context's, normals signed by the surface's own orientation.
+  // Stage 3: the patch's points but those crossed over, then the context's, normals signed by the
+  // surface's own orientation.
   start = Clock::now();
-  const auto own = static_cast<Eigen::Index>(removal.mesh.n_vertices());
+  const std::vector<char> crossed = crossed_over_vertices(patch, removal);
+  const auto crossed_count = static_cast<int>(std::count(crossed.begin(), crossed.end(), 1));
+  const auto own = static_cast<Eigen::Index>(removal.mesh.n_vertices()) - crossed_count;
   const auto total = own + static_cast<Eigen::Index>(cut.context.size());
   VertexVectors points(total, 3), reference(total, 3);
   std::vector<char> outer(static_cast<std::size_t>(total), 0);
+  Eigen::Index row = 0;
   for (const auto v : removal.mesh.vertices()) {
+    if (crossed[static_cast<std::size_t>(v.idx())])
+      continue;
     const auto origin = patch.vertex_handle(removal.vertex_origin[static_cast<std::size_t>(v.idx())]);
-    points.row(v.idx()) = to_eigen(patch.point(origin)).transpose();
-    reference.row(v.idx()) = area_normal(patch, origin).transpose();
-    outer[static_cast<std::size_t>(v.idx())] = patch.is_boundary(origin);
+    points.row(row) = to_eigen(patch.point(origin)).transpose();
+    reference.row(row) = area_normal(patch, origin).transpose();
+    outer[static_cast<std::size_t>(row++)] = patch.is_boundary(origin);
   }
-  for (std::size_t i = 0; i < cut.context.size(); ++i) {
-    const auto row = own + static_cast<Eigen::Index>(i);
-    const auto v = mesh.vertex_handle(cut.context[i]);
+  for (const int g : cut.context) {
+    const auto v = mesh.vertex_handle(g);
     points.row(row) = to_eigen(mesh.point(v)).transpose();
     reference.row(row) = area_normal(mesh, v).transpose();
-    outer[static_cast<std::size_t>(row)] = 1;
+    outer[static_cast<std::size_t>(row++)] = 1;
   }
   const OrientedPoints oriented = normals_oriented_by_reference(points, reference, options.normals);
-  r.removed_points = static_cast<int>(oriented.removed.size());
+  r.removed_points = crossed_count + static_cast<int>(oriented.removed.size());
   r.seconds.normals = seconds_since(start);
 
   // Stage 4, then the rebuild trimmed to the triangles that touch neither the cut nor the context.
   start = Clock::now();
-  const Reconstruction rebuilt = reconstruct_surface(oriented.points, oriented.normals, options.reconstruction);
+  const Reconstruction rebuilt = reconstruct_by_piece(oriented, options);
   r.unused_points = static_cast<int>(rebuilt.unused.size());
   const auto is_outer = [&](Mesh::VertexHandle v) {
     return outer[static_cast<std::size_t>(

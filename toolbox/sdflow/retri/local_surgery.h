@@ -2,9 +2,10 @@
 //! \file local_surgery.h
 //! \brief The surgery of the re-triangulation pipeline (pipeline.h, paper §3.2.1) done only around
 //! the faces that intersect: the patch of faces near them is cut out (surgery_patch.h), remeshed
-//! with its cut fixed, stripped of its intersecting faces, rebuilt from its points by advancing
-//! front (the kept surface's vertices beyond the cut lend their points and normals so the rebuild
-//! is not ragged at the cut), trimmed back from the cut, zipped to the cut loops by a strip
+//! with its cut fixed, stripped of its intersecting faces and of the pieces that this leaves
+//! without a cut vertex (surface between crossings), rebuilt from its points by advancing
+//! front, each piece of their k-NN graph apart (the kept surface's vertices beyond the cut lend
+//! their points and normals so the rebuild is not ragged at the cut), trimmed back from the cut, zipped to the cut loops by a strip
 //! (zip_loops.h), its inner holes filled, and remeshed with the cut fixed. Every face of the kept
 //! surface stays as it was, bit for bit. The result is checked (a valid oriented manifold, no
 //! self-intersection near the new faces, as many boundary loops as the input, no debris); a

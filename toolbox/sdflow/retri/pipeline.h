@@ -65,7 +65,7 @@ struct RetriangulationResult {
   int intersecting_pairs = 0;   //!< stage 2
   int removed_faces = 0;        //!< stage 2
   bool rebuilt = false;         //!< stages 3–5 ran
-  int removed_points = 0;       //!< stage 3: inconsistently oriented
+  int removed_points = 0;       //!< stage 3: inconsistently oriented (local surgery: or crossed over)
   int unused_points = 0;        //!< stage 4: points no triangle uses
   int filled_holes = 0;         //!< stage 5
   int open_holes = 0;           //!< stage 5: boundary loops left open (true boundaries included)

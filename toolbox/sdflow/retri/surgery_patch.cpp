@@ -3,6 +3,7 @@
 #include "sdflow/spatial/detail/point_kd_tree.h"
 
 #include <cstdint>
+#include <numbers>
 #include <vector>
 
 namespace sdflow {
@@ -10,6 +11,11 @@ namespace {
 
 using detail::PointAdaptor;
 using KdTree = detail::PointKdTree;
+
+//! The narrowest corner the kept surface may make at a cut vertex: a straight cut across an
+//! equilateral mesh turns by 2π/3 at every other vertex, any sharper corner is a tooth of kept
+//! faces reaching into the patch.
+constexpr double kMinKeptCornerAngle = 2 * std::numbers::pi / 3;
 
 //! The faces with a vertex within `radius` of a vertex of a crossing face, and the crossing faces.
 std::vector<char> faces_near_crossings(const Mesh& mesh, const std::vector<FacePair>& crossings, double radius)
@@ -107,6 +113,58 @@ bool absorb_small_kept_components(const Mesh& mesh, std::vector<char>& in_patch,
   return changed;
 }
 
+//! The angle the kept faces span at v (the sum of their corner angles there), or a negative value
+//! when v is not on the cut (no kept face, or no patch face).
+double kept_corner_angle(const Mesh& mesh, Mesh::VertexHandle v, const std::vector<char>& in_patch)
+{
+  double kept = 0;
+  bool has_kept = false, has_patch = false;
+  for (const auto h : mesh.vih_range(v)) {
+    const auto f = mesh.face_handle(h);
+    if (!f.is_valid())
+      continue;
+    if (in_patch[static_cast<std::size_t>(f.idx())]) {
+      has_patch = true;
+      continue;
+    }
+    has_kept = true;
+    kept += mesh.calc_sector_angle(h);
+  }
+  return has_kept && has_patch ? kept : -1;
+}
+
+//! Moves into the patch every face of a cut vertex where the kept faces span less than
+//! kMinKeptCornerAngle, until there is none; returns whether any face moved. Such teeth appear
+//! where the mesh is stretched (the slivers of a neck drawn in without remeshing make a cut
+//! zigzag by two edge lengths across a width of half one): the rebuild, sampled at ℓ, runs past
+//! their tips, and no strip from its rim to the cut can avoid them.
+bool absorb_sharp_kept_corners(const Mesh& mesh, std::vector<char>& in_patch)
+{
+  std::vector<int> candidates;
+  for (const auto f : mesh.faces())
+    if (in_patch[static_cast<std::size_t>(f.idx())])
+      for (const auto v : mesh.fv_range(f))
+        candidates.push_back(v.idx());
+  bool moved = false;
+  while (!candidates.empty()) {
+    const auto v = mesh.vertex_handle(candidates.back());
+    candidates.pop_back();
+    const double angle = kept_corner_angle(mesh, v, in_patch);
+    if (angle < 0 || angle >= kMinKeptCornerAngle)
+      continue;
+    for (const auto f : mesh.vf_range(v)) {
+      char& member = in_patch[static_cast<std::size_t>(f.idx())];
+      if (member)
+        continue;
+      member = 1;
+      moved = true;
+      for (const auto w : mesh.fv_range(f))
+        candidates.push_back(w.idx());
+    }
+  }
+  return moved;
+}
+
 } // namespace
 
 bool separate_split_fans(const Mesh& mesh, std::vector<char>& in_patch)
@@ -133,6 +191,7 @@ SurgeryPatch surgery_patch(const Mesh& mesh, const std::vector<FacePair>& crossi
   bool changed = true;
   while (changed) {
     changed = separate_split_fans(mesh, patch.in_patch);
+    changed = absorb_sharp_kept_corners(mesh, patch.in_patch) || changed;
     changed = absorb_small_kept_components(mesh, patch.in_patch, min_kept_faces) || changed;
   }
   for (const auto f : mesh.faces()) {

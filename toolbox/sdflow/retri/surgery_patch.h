@@ -2,7 +2,7 @@
 //! \file surgery_patch.h
 //! \brief The patch a local surgery cuts out and rebuilds (local_surgery.h): the faces near the
 //! self-intersecting ones, grown until the surface kept around it is a manifold whose cut is a
-//! set of simple loops.
+//! set of simple loops without sharp teeth.
 
 #include "sdflow/mesh.h"
 #include "sdflow/spatial/intersect.h"
@@ -21,8 +21,10 @@ struct SurgeryPatch {
 //! The faces with a vertex within `radius` (Euclidean) of a vertex of a face in `crossings`, the
 //! crossing faces themselves included; then, until nothing changes, every face of a vertex around
 //! which the kept faces form more than one fan (so that the cut is a set of simple loops and the
-//! patch a manifold) and every kept component of fewer than `min_kept_faces` faces (islands
-//! left between crossing sites). The mesh must carry no deleted elements.
+//! patch a manifold), every face of a cut vertex where the kept faces span less than 2π/3 (a
+//! tooth of kept faces, sharper than a straight cut across an equilateral mesh ever turns: the
+//! rebuild could not pass beside it) and every kept component of fewer than `min_kept_faces`
+//! faces (islands left between crossing sites). The mesh must carry no deleted elements.
 SurgeryPatch surgery_patch(const Mesh& mesh, const std::vector<FacePair>& crossings, double radius,
                            int min_kept_faces);
 
