@@ -5,12 +5,13 @@
 //! with its cut fixed, stripped of its intersecting faces and of the pieces that this leaves
 //! without a cut vertex (surface between crossings), rebuilt from its points by advancing
 //! front, each piece of their k-NN graph apart (the kept surface's vertices beyond the cut lend
-//! their points and normals so the rebuild is not ragged at the cut), trimmed back from the cut, zipped to the cut loops by a strip
-//! (zip_loops.h), its inner holes filled, and remeshed with the cut fixed. Every face of the kept
-//! surface stays as it was, bit for bit. The result is checked (a valid oriented manifold, no
-//! self-intersection near the new faces, as many boundary loops as the input, no debris); a
-//! patch whose rebuild fails is rebuilt once more without remeshing it first, then a larger one
-//! is tried, and when every one fails the caller runs the whole-surface pipeline.
+//! their points and normals so the rebuild is not ragged at the cut), trimmed back from the cut,
+//! zipped to the cut loops by a strip (zip_loops.h), its inner holes filled, and remeshed with the
+//! cut fixed. Every face of the kept surface stays as it was, bit for bit. The result is checked
+//! (a valid oriented manifold, no self-intersection near the new faces, as many boundary loops as
+//! the input, no debris); a patch whose rebuild fails is rebuilt once more without remeshing it
+//! first, then a larger one is tried, and when every one fails the caller runs the whole-surface
+//! pipeline.
 //!
 //! Stage 0 (components that intersect each other, surface_union.h) is not done locally: a
 //! crossing between two components makes the surgery decline.
