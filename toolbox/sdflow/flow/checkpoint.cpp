@@ -20,7 +20,7 @@ namespace {
 static_assert(std::endian::native == std::endian::little, "checkpoints are written on little-endian machines");
 
 constexpr char magic[8] = {'S', 'D', 'F', 'L', 'O', 'W', 'C', 'K'};
-constexpr std::uint32_t version = 5;
+constexpr std::uint32_t version = 6;
 
 std::uint64_t fnv1a(const char* data, std::size_t size)
 {
@@ -44,6 +44,11 @@ public:
   {
     put<std::uint64_t>(count);
     bytes_.append(reinterpret_cast<const char*>(data), count * sizeof(double));
+  }
+  void put_ints(const std::vector<int>& values)
+  {
+    put<std::uint64_t>(values.size());
+    bytes_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(int));
   }
   void put_string(const std::string& s)
   {
@@ -73,6 +78,15 @@ public:
       truncated();
     std::vector<double> values(count);
     take(values.data(), count * sizeof(double));
+    return values;
+  }
+  std::vector<int> get_ints()
+  {
+    const auto count = get<std::uint64_t>();
+    if (count > (bytes_.size() - at_) / sizeof(int))
+      truncated();
+    std::vector<int> values(count);
+    take(values.data(), count * sizeof(int));
     return values;
   }
   std::string get_string()
@@ -168,6 +182,10 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file)
   w.put<std::int64_t>(c.time_step.table_lag);
   w.put(c.time_step.fallback_left);
   w.put_doubles(c.earlier_w.data(), static_cast<std::size_t>(c.earlier_w.size()));
+  for (const SolverState* s : {&c.solver, &c.half_solver}) {
+    w.put_ints(s->ordering);
+    w.put(s->fresh_fill);
+  }
   w.put(fnv1a(w.bytes().data(), w.bytes().size()));
   write_atomically(file, [&](std::ostream& out) { out.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size())); });
 }
@@ -237,6 +255,14 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
     const std::vector<double> earlier = r.get_doubles();
     c.earlier_w = Eigen::Map<const Eigen::VectorXd>(earlier.data(), static_cast<Eigen::Index>(earlier.size()));
   }
+  if (file_version >= 6)
+    for (SolverState* s : {&c.solver, &c.half_solver}) {
+      s->ordering = r.get_ints();
+      s->fresh_fill = r.get<double>();
+      if (!s->ordering.empty() && s->ordering.size() != static_cast<std::size_t>(c.positions.rows()))
+        throw IoError(fmt::format("{}: checkpoint's Cholesky ordering has {} entries for {} vertices", file.string(),
+                                  s->ordering.size(), c.positions.rows()));
+    }
   return c;
 }
 

@@ -22,7 +22,7 @@ void write_checkpoint(const Checkpoint& checkpoint, const std::filesystem::path&
 
 //! Read a checkpoint (this version or an older one: version 1 had no re-triangulation state,
 //! versions 1 and 2 no half-step solver, versions 1 to 3 no τ table position, versions 1 to 4 no
-//! second w for the extrapolated warm start); throws
+//! second w for the extrapolated warm start, versions 1 to 5 no Cholesky orderings); throws
 //! IoError if the file is missing, truncated, of another version or fails its checksum.
 Checkpoint read_checkpoint(const std::filesystem::path& file);
 

@@ -1,9 +1,11 @@
 #include "sdflow/flow/solver.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/flow/carried_ordering.h"
+#include "sdflow/flow/supernodal_cholesky.h"
+#include "sdflow/log.h"
 #include "sdflow/stopwatch.h"
 
-#include <Eigen/CholmodSupport>
 #include <Eigen/SPQRSupport>
 #include <fmt/format.h>
 
@@ -80,7 +82,7 @@ SparseMatrix flow_matrix(const FlowSystem& s)
 
 struct FlowSolver::Impl {
   SolverOptions options;
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> cholesky;
+  SupernodalCholesky cholesky;
   bool analysed = false, factorised = false;
   // The pattern of M + τβ L M⁻¹ L is determined by L's, so L's pattern identifies the analysis.
   std::vector<int> laplacian_outer, laplacian_inner;
@@ -95,6 +97,31 @@ struct FlowSolver::Impl {
            std::equal(laplacian_inner.begin(), laplacian_inner.end(), l.innerIndexPtr());
   }
 
+  //! Symbolic analysis with the carried ordering if it keeps the fill near that of a fresh one,
+  //! else with CHOLMOD's own; the state then holds the analysis's ordering.
+  void analyse(const SparseMatrix& a)
+  {
+    const double unknowns = static_cast<double>(a.rows());
+    bool fresh = state.ordering.size() != static_cast<std::size_t>(a.rows());
+    if (!fresh) {
+      cholesky.analyse(a, state.ordering);
+      const double fill = cholesky.factor_nonzeros() / unknowns;
+      fresh = fill > options.carried_fill_tolerance * state.fresh_fill;
+      logger().debug("Cholesky analysis: the carried ordering fills {:.1f} non-zeros per unknown (the last fresh "
+                     "one {:.1f}): {}", fill, state.fresh_fill, fresh ? "ordering afresh" : "kept");
+    }
+    if (fresh) {
+      cholesky.analyse(a);
+      const double fill = cholesky.factor_nonzeros() / unknowns;
+      state.fresh_fill = cholesky.partitioned() ? fill : 0.0;
+      logger().debug("Cholesky analysis: a fresh ordering ({}) fills {:.1f} non-zeros per unknown",
+                     cholesky.partitioned() ? "graph partitioning" : "minimum degree", fill);
+    }
+    state.ordering = cholesky.ordering();
+    const double solve_flops = 4.0 * std::max(1.0, cholesky.factor_nonzeros());
+    factorisation_cost = options.factorisation_cost_scale * cholesky.factorisation_flops() / solve_flops;
+  }
+
   //! Symbolic analysis when L's pattern is new, then the numeric factorisation.
   void factorise(const FlowSystem& s, SolveReport& report)
   {
@@ -102,28 +129,27 @@ struct FlowSolver::Impl {
     const SparseMatrix a = flow_matrix(s);
     report.seconds.assembly += watch.restart();
     if (!same_pattern(s.laplacian)) {
-      cholesky.analyzePattern(a);
-      if (cholesky.info() != Eigen::Success)
-        throw SolverFailure(fmt::format("CHOLMOD symbolic analysis failed on a {}x{} system", a.rows(), a.cols()));
+      if (analysed) // the pattern changed without carry_ordering: nothing to carry
+        state.ordering.clear();
+      analysed = false;
+      analyse(a);
       laplacian_outer.assign(s.laplacian.outerIndexPtr(), s.laplacian.outerIndexPtr() + s.laplacian.outerSize() + 1);
       laplacian_inner.assign(s.laplacian.innerIndexPtr(), s.laplacian.innerIndexPtr() + s.laplacian.nonZeros());
       analysed = true;
       report.analysed = true;
-      const cholmod_common& common = cholesky.cholmod();
-      const double solve_flops = 4.0 * std::max(1.0, common.lnz);
-      factorisation_cost = options.factorisation_cost_scale * common.fl / solve_flops;
     }
     factorised = false;
     set_factorisation_threads(blas_threads_for(a.rows(), options.blas));
-    cholesky.factorize(a);
+    const bool positive_definite = cholesky.factorise(a);
     set_factorisation_threads(1);
-    if (cholesky.info() != Eigen::Success)
+    if (!positive_definite)
       throw SolverFailure(fmt::format("CHOLMOD factorisation failed on a {}x{} system (not positive definite "
                                       "to working precision: degenerate triangles?)", a.rows(), a.cols()));
     factorised = true;
     report.factorised = true;
     report.seconds.factorisation += watch.seconds();
-    state = {};
+    state.solves_since_factorisation = state.iterations_since_factorisation = 0;
+    state.last_iterations = 0;
   }
 
   bool refactor_due() const
@@ -279,6 +305,16 @@ Eigen::VectorXd FlowSolver::solve(const FlowSystem& system, const Eigen::VectorX
 
 void FlowSolver::forget_factorisation() { impl_->factorised = false; }
 
+void FlowSolver::carry_ordering(std::span<const int> nearest_old, const SparseMatrix& laplacian)
+{
+  Impl& m = *impl_;
+  m.factorised = false;
+  m.state.ordering = m.analysed && m.state.fresh_fill > 0
+                         ? carried_ordering(m.cholesky.elimination_tree(), nearest_old, laplacian)
+                         : std::vector<int>{};
+  m.analysed = false;
+}
+
 SolverState FlowSolver::state() const { return impl_->state; }
 
 void FlowSolver::restore(const FlowSystem& anchor, const SolverState& state)
@@ -287,9 +323,19 @@ void FlowSolver::restore(const FlowSystem& anchor, const SolverState& state)
     impl_->state = state;
     return;
   }
+  impl_->state = state;
+  impl_->analysed = false;
   SolveReport report;
   impl_->factorise(anchor, report);
+  impl_->state.solves_since_factorisation = state.solves_since_factorisation;
+  impl_->state.iterations_since_factorisation = state.iterations_since_factorisation;
+  impl_->state.last_iterations = state.last_iterations;
+}
+
+void FlowSolver::restore(const SolverState& state)
+{
   impl_->state = state;
+  impl_->analysed = impl_->factorised = false;
 }
 
 const SolverOptions& FlowSolver::options() const { return impl_->options; }

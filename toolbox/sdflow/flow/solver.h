@@ -51,6 +51,10 @@ struct SolverOptions {
   double factorisation_cost_scale = 0.12;
   //! BLAS threads of the numeric factorisation (blas_threads.h); solves run on one thread.
   BlasThreadPolicy blas;
+  //! An ordering carried from a re-triangulated surface (carry_ordering) is kept while its factor
+  //! has at most this many times the non-zeros per unknown of the last ordering CHOLMOD chose
+  //! itself; beyond it the system is ordered afresh.
+  double carried_fill_tolerance = 1.1;
 };
 
 //! What one solve did.
@@ -71,6 +75,13 @@ struct SolverState {
   long solves_since_factorisation = 0;
   long iterations_since_factorisation = 0;
   int last_iterations = 0;
+  //! The fill-reducing ordering of the current analysis, or the one carried to a re-triangulated
+  //! surface for its next analysis; empty: CHOLMOD orders afresh.
+  std::vector<int> ordering;
+  //! Factor non-zeros per unknown of the last ordering CHOLMOD chose itself, if it partitioned the
+  //! graph (METIS at 100k vertices costs twice a factorisation); 0 if none yet or if it was AMD's,
+  //! cheap enough to recompute, so that orderings are then not carried.
+  double fresh_fill = 0;
 };
 
 //! Solves the step's system, keeping CHOLMOD's symbolic analysis while the sparsity pattern is
@@ -96,12 +107,20 @@ public:
   //! Drop the numeric factor so the next solve factorises (e.g. after connectivity changed).
   void forget_factorisation();
 
+  //! After a re-triangulation to a surface with Laplacian `laplacian`: the next analysis takes the
+  //! ordering carried from the surface analysed so far (carried_ordering.h; `nearest_old[v]` is new
+  //! vertex v's nearest old vertex) instead of ordering afresh, and the factor is dropped. Without
+  //! a current analysis, or when CHOLMOD's own choice was the cheap AMD, the next one orders afresh.
+  void carry_ordering(std::span<const int> nearest_old, const SparseMatrix& laplacian);
+
   //! Counters of the reuse rule, for checkpoints.
   SolverState state() const;
 
-  //! Factorise `anchor` (the system of the last factorisation) and set the counters, so that
-  //! the solver continues exactly as before a checkpoint.
+  //! Factorise `anchor` (the system of the last factorisation) with the state's ordering and set
+  //! the counters, so that the solver continues exactly as before a checkpoint.
   void restore(const FlowSystem& anchor, const SolverState& state);
+  //! The state of a solver that keeps no factorisation (a checkpoint just after a re-triangulation).
+  void restore(const SolverState& state);
 
   const SolverOptions& options() const;
 

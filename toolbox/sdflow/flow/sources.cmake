@@ -1,5 +1,6 @@
 target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/blas_threads.cpp
+  sdflow/flow/carried_ordering.cpp
   sdflow/flow/checkpoint.cpp
   sdflow/flow/degraded_elements.cpp
   sdflow/flow/intersection_guard.cpp
@@ -10,6 +11,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/scheme.cpp
   sdflow/flow/simulation.cpp
   sdflow/flow/solver.cpp
+  sdflow/flow/supernodal_cholesky.cpp
   sdflow/flow/surface_diffusion.cpp
   sdflow/flow/time_step.cpp
   sdflow/flow/volume.cpp)

@@ -5,6 +5,7 @@
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/log.h"
+#include "sdflow/spatial/nearest_points.h"
 #include "sdflow/stopwatch.h"
 
 #include <fmt/format.h>
@@ -76,6 +77,10 @@ SurfaceDiffusion::SurfaceDiffusion(const FlowState& state, RunParameters paramet
     half_anchor_positions_ = state.half_anchor_positions;
     half_anchor_tau_beta_ = state.half_anchor_tau_beta;
   }
+  if (!state.has_anchor)
+    solver_.restore(state.solver);
+  if (!state.has_half_anchor)
+    half_solver_.restore(state.half_solver);
   op_ = flow_operators(mesh_, p_.scheme, &*cache_);
 }
 
@@ -123,10 +128,10 @@ StepRecord SurfaceDiffusion::step()
       if (retriangulate_ && !forced) {
         forced = true;
         note(next_step, time_, fmt::format("no acceptable step ({}): re-triangulating, then trying again", e.what()));
+        const VertexVectors before = vertex_positions(mesh_);
         const RetriangulationReport report = call_retriangulation(true, record.times);
         if (report.changed()) {
-          adopt_retriangulation(report, events);
-          renew_operators(record.times);
+          adopt_retriangulation(report, before, events, record.times);
           restart_controller();
           continue;
         }
@@ -171,11 +176,15 @@ StepRecord SurfaceDiffusion::step()
   last_w_ = trial.w;
 
   if (retriangulate_) {
+    const VertexVectors before = vertex_positions(mesh_);
     const RetriangulationReport report = call_retriangulation(false, record.times);
     if (report.changed())
-      adopt_retriangulation(report, events);
+      adopt_retriangulation(report, before, events, record.times);
+    else
+      renew_operators(record.times);
+  } else {
+    renew_operators(record.times);
   }
-  renew_operators(record.times);
 
   record.step = step_;
   record.time = time_;
@@ -293,16 +302,22 @@ RetriangulationReport SurfaceDiffusion::call_retriangulation(bool force, StepTim
   }
 }
 
-//! Take the re-triangulated mesh: new connectivity, fresh factorisations, its events.
-void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report, std::vector<std::string>& events)
+//! Take the re-triangulated mesh: new connectivity and operators, fresh factorisations with the
+//! orderings carried from the surface `before` it (carried_ordering.h), its events.
+void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report, const VertexVectors& before,
+                                             std::vector<std::string>& events, StepTimes& times)
 {
   const int components = topology_.count, genus = topology_.genus;
   mesh_ = canonical(mesh_);
   renew_connectivity();
   topology_changed_ =
       topology_changed_ || (p_.stop_at_topology_change && (topology_.count != components || topology_.genus != genus));
-  solver_.forget_factorisation();
-  half_solver_.forget_factorisation();
+  renew_operators(times);
+  const Stopwatch watch;
+  const std::vector<int> nearest_old = nearest_points(before, vertex_positions(mesh_));
+  solver_.carry_ordering(nearest_old, op_.laplacian);
+  half_solver_.carry_ordering(nearest_old, op_.laplacian);
+  times.factorisation += watch.seconds();
   has_anchor_ = has_half_anchor_ = false;
   previous_w_.resize(0);
   earlier_w_.resize(0);

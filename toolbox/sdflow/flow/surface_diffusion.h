@@ -132,7 +132,8 @@ private:
   void restore_solver(FlowSolver& solver, const VertexVectors& positions, const FaceIndices& triangles, double tau_beta,
                       const SolverState& state);
   RetriangulationReport call_retriangulation(bool force, StepTimes& times);
-  void adopt_retriangulation(const RetriangulationReport& report, std::vector<std::string>& events);
+  void adopt_retriangulation(const RetriangulationReport& report, const VertexVectors& before,
+                             std::vector<std::string>& events, StepTimes& times);
   void renew_operators(StepTimes& times);
   double trial_step(long next_step, StepResult& trial, StepRecord& record, int& rejections,
                     std::vector<double>& volumes);
