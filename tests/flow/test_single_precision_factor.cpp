@@ -123,9 +123,11 @@ TEST(SinglePrecisionFactor, preconditioned_cg_reaches_double_accuracy_in_few_ite
   EXPECT_LE(iterations, 4) << "a fresh factor's only error is float rounding";
 }
 
-TEST(SinglePrecisionFactor, stale_factor_needs_no_more_iterations_in_float_than_in_double)
+TEST(SinglePrecisionFactor, stale_factor_costs_at_most_one_more_iteration_in_float)
 {
-  // The factor of a step whose τβ is 10% larger, as when the solver keeps an older factor.
+  // The factor of a step whose τβ is 10% larger, as when the solver keeps an older factor. On the
+  // flowing 100k sphere a factor 10 steps old needs 3 iterations in double and 4 in float, one with
+  // τβ 10% off 6 in both (bench_flow StaleFactorCg): float rounding costs at most one iteration.
   const SparseMatrix a = step_matrix(tau_beta);
   const SupernodalLLT stale(step_matrix(1.1 * tau_beta));
   const SinglePrecisionFactor single(stale.factor());

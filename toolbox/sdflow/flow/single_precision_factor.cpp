@@ -5,12 +5,44 @@
 #include <cholmod.h>
 #include <fmt/format.h>
 
+#include <sys/mman.h>
+
 #include <algorithm>
+#include <cstdint>
 
 namespace sdflow {
 namespace {
 
-using FloatBlock = Eigen::Map<const Eigen::MatrixXf>;
+// The solve reads each column of a supernode in one contiguous stream, but columns are short
+// (about 170 floats at 100k vertices) and the backward pass walks them in descending order, so
+// the hardware prefetcher restarts at nearly every column: the values are prefetched this many
+// floats ahead in the pass's direction. Measured on bench_flow FactorApplication/100000 (4 KiB
+// pages): 12 ms without, 8.0-8.5 ms with 2048 to 8192 floats (8-32 KiB) ahead.
+constexpr Eigen::Index prefetch_distance = 4096;
+
+//! Prefetches values[first, first + count) clipped to [0, size) into the cache, a cache line at a time.
+void prefetch(const float* values, Eigen::Index size, Eigen::Index first, Eigen::Index count)
+{
+  constexpr Eigen::Index floats_per_line = 16; // 64-byte lines
+  const Eigen::Index begin = std::max<Eigen::Index>(first, 0), end = std::min(first + count, size);
+  for (Eigen::Index i = begin; i < end; i += floats_per_line)
+    __builtin_prefetch(values + i);
+}
+
+//! Asks Linux for transparent huge pages (2 MiB) on the aligned interior of [data, data + bytes),
+//! to be called before the memory is first written: streaming the factor through 4 KiB pages costs
+//! a TLB miss every 1024 floats (FactorApplication/100000: 8.3 ms with 4 KiB pages, 7.5 ms with 2 MiB).
+void advise_huge_pages([[maybe_unused]] const void* data, [[maybe_unused]] std::size_t bytes)
+{
+#ifdef MADV_HUGEPAGE
+  constexpr std::uintptr_t huge_page = std::uintptr_t{2} << 20;
+  const std::uintptr_t begin = reinterpret_cast<std::uintptr_t>(data);
+  const std::uintptr_t first = (begin + huge_page - 1) / huge_page * huge_page;
+  const std::uintptr_t last = (begin + bytes) / huge_page * huge_page;
+  if (last > first)
+    madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE); // advice only: failure is harmless
+#endif
+}
 
 //! The `count` ints at `data` (a CHOLMOD array), copied.
 std::vector<int> copy_ints(const void* data, std::size_t count)
@@ -51,10 +83,20 @@ SinglePrecisionFactor::SinglePrecisionFactor(const cholmod_factor& factor)
   rows_ = copy_ints(factor.s, static_cast<std::size_t>(row_start_.back()));
   permutation_ = copy_ints(factor.Perm, factor.n);
   const double* x = static_cast<const double*>(factor.x);
-  values_.assign(x, x + value_start_.back());
+  const std::size_t value_count = static_cast<std::size_t>(value_start_.back());
+  values_.reserve(value_count);
+  advise_huge_pages(values_.data(), value_count * sizeof(float));
+  values_.assign(x, x + value_count);
+  // The diagonal entries are stored inverted: a multiplication instead of a division on the solve's
+  // critical path, once per column and pass.
   for (std::size_t s = 0; s < supernodes; ++s) {
-    const int rows_below = (row_start_[s + 1] - row_start_[s]) - (first_column_[s + 1] - first_column_[s]);
-    max_rows_below_ = std::max<Eigen::Index>(max_rows_below_, rows_below);
+    const std::size_t rows = static_cast<std::size_t>(row_start_[s + 1] - row_start_[s]);
+    const std::size_t columns = static_cast<std::size_t>(first_column_[s + 1] - first_column_[s]);
+    for (std::size_t j = 0; j < columns; ++j) {
+      float& diagonal = values_[static_cast<std::size_t>(value_start_[s]) + j * (rows + 1)];
+      diagonal = 1.0f / diagonal;
+    }
+    max_rows_ = std::max(max_rows_, static_cast<Eigen::Index>(rows));
   }
 }
 
@@ -68,44 +110,63 @@ Eigen::VectorXd SinglePrecisionFactor::solve(const Eigen::VectorXd& b) const
   Eigen::VectorXf y(n);
   for (Eigen::Index k = 0; k < n; ++k)
     y[k] = static_cast<float>(b[permutation_[k]]);
-
-  Eigen::VectorXf work(max_rows_below_);
+  // Each supernode's entries are gathered into a dense local vector, so that each column of its
+  // block is read once, in one contiguous stream: forward as an axpy, backward as a dot product.
+  Eigen::VectorXf local(max_rows_);
   const Eigen::Index supernodes = static_cast<Eigen::Index>(first_column_.size()) - 1;
-  // Forward, L z = P b: solve with the diagonal block, then subtract the rows below from the
-  // entries they touch.
-  for (Eigen::Index s = 0; s < supernodes; ++s) {
-    const Eigen::Index first = first_column_[s], columns = first_column_[s + 1] - first;
-    const Eigen::Index rows = row_start_[s + 1] - row_start_[s], below = rows - columns;
-    const FloatBlock block(values_.data() + value_start_[s], rows, columns);
-    auto z = y.segment(first, columns);
-    block.topRows(columns).triangularView<Eigen::Lower>().solveInPlace(z);
-    if (below == 0)
-      continue;
-    work.head(below).noalias() = block.bottomRows(below) * z;
-    const int* row = rows_.data() + row_start_[s] + columns;
-    for (Eigen::Index i = 0; i < below; ++i)
-      y[row[i]] -= work[i];
-  }
-  // Backward, Lᵀ v = z, in reverse order: gather the entries below, subtract, solve with the
-  // transposed diagonal block.
-  for (Eigen::Index s = supernodes - 1; s >= 0; --s) {
-    const Eigen::Index first = first_column_[s], columns = first_column_[s + 1] - first;
-    const Eigen::Index rows = row_start_[s + 1] - row_start_[s], below = rows - columns;
-    const FloatBlock block(values_.data() + value_start_[s], rows, columns);
-    auto v = y.segment(first, columns);
-    if (below > 0) {
-      const int* row = rows_.data() + row_start_[s] + columns;
-      for (Eigen::Index i = 0; i < below; ++i)
-        work[i] = y[row[i]];
-      v.noalias() -= block.bottomRows(below).transpose() * work.head(below);
-    }
-    block.topRows(columns).transpose().triangularView<Eigen::Upper>().solveInPlace(v);
-  }
-
+  for (Eigen::Index s = 0; s < supernodes; ++s)
+    forward_supernode(s, y, local);
+  for (Eigen::Index s = supernodes - 1; s >= 0; --s)
+    backward_supernode(s, y, local);
   Eigen::VectorXd x(n);
   for (Eigen::Index k = 0; k < n; ++k)
     x[permutation_[k]] = y[k];
   return x;
+}
+
+void SinglePrecisionFactor::forward_supernode(Eigen::Index s, Eigen::VectorXf& y, Eigen::VectorXf& local) const
+{
+  const Eigen::Index first = first_column_[s], columns = first_column_[s + 1] - first;
+  const Eigen::Index rows = row_start_[s + 1] - row_start_[s];
+  const Eigen::Index start = value_start_[s], size = static_cast<Eigen::Index>(values_.size());
+  const int* row = rows_.data() + row_start_[s];
+  float* const z = local.data();
+  std::copy_n(y.data() + first, columns, z);
+  std::fill(z + columns, z + rows, 0.0f);
+  for (Eigen::Index j = 0; j < columns; ++j) {
+    const Eigen::Index diagonal = start + j * rows + j;
+    prefetch(values_.data(), size, diagonal + prefetch_distance, rows - j);
+    const float* column = values_.data() + diagonal - j;
+    const float zj = z[j] * column[j]; // the inverted diagonal
+    z[j] = zj;
+    for (Eigen::Index i = j + 1; i < rows; ++i)
+      z[i] -= column[i] * zj;
+  }
+  std::copy_n(z, columns, y.data() + first);
+  for (Eigen::Index i = columns; i < rows; ++i)
+    y[row[i]] += z[i];
+}
+
+void SinglePrecisionFactor::backward_supernode(Eigen::Index s, Eigen::VectorXf& y, Eigen::VectorXf& local) const
+{
+  const Eigen::Index first = first_column_[s], columns = first_column_[s + 1] - first;
+  const Eigen::Index rows = row_start_[s + 1] - row_start_[s];
+  const Eigen::Index start = value_start_[s], size = static_cast<Eigen::Index>(values_.size());
+  const int* row = rows_.data() + row_start_[s];
+  float* const z = local.data();
+  std::copy_n(y.data() + first, columns, z);
+  for (Eigen::Index i = columns; i < rows; ++i)
+    z[i] = y[row[i]];
+  for (Eigen::Index j = columns - 1; j >= 0; --j) {
+    const Eigen::Index diagonal = start + j * rows + j;
+    prefetch(values_.data(), size, diagonal - prefetch_distance, rows - j);
+    const Eigen::Index below = rows - j - 1;
+    const float dot = below > 0 ? Eigen::Map<const Eigen::VectorXf>(values_.data() + diagonal + 1, below)
+                                      .dot(Eigen::Map<const Eigen::VectorXf>(z + j + 1, below))
+                                : 0.0f;
+    z[j] = (z[j] - dot) * values_[static_cast<std::size_t>(diagonal)];
+  }
+  std::copy_n(z, columns, y.data() + first);
 }
 
 std::size_t SinglePrecisionFactor::bytes() const

@@ -3,11 +3,15 @@
 //! \brief A single-precision copy of a CHOLMOD supernodal Cholesky factor L (P A Pᵀ = L Lᵀ), applied
 //! as A⁻¹ ≈ Pᵀ L⁻ᵀ L⁻¹ P in float: a preconditioner for conjugate gradients that reads half the
 //! bytes of the double factor. The triangular solves are memory-bound (the factor is read once
-//! forward and once backward), so halving the bytes nearly halves their time; CG itself stays in
-//! double, so its converged answer does not depend on the preconditioner's precision.
-//! The solve follows CHOLMOD's own supernodal solves (cholmod_super_lsolve / ltsolve; Chen, Davis,
-//! Hager, Rajamanickam 2008): per supernode a dense triangular solve on the diagonal block and a
-//! matrix-vector product with the rows below it, gathered and scattered through its row indices.
+//! forward and once backward); CG itself stays in double, so its converged answer does not depend
+//! on the preconditioner's precision, only its iteration count may (by float's rounding, relative
+//! 1e-6 at 100k-400k vertices on the flow step's matrix: bench_flow FactorApplication).
+//! The structure is CHOLMOD's (cholmod_super_lsolve / ltsolve; Chen, Davis, Hager, Rajamanickam
+//! 2008): supernode s has columns super[s] .. super[s+1]-1 and row indices s[pi[s] .. pi[s+1]-1]
+//! (its own columns first); its values are a column-major rows × columns block at x[px[s]], the
+//! dense lower triangle on top. Each supernode's entries are gathered into a dense vector and its
+//! block is read one column at a time, in one contiguous stream per column: an axpy forward, a dot
+//! product backward, each with the triangular part and the rows below fused.
 
 #include <Eigen/Core>
 
@@ -41,13 +45,20 @@ public:
   std::size_t bytes() const;
 
 private:
+  //! Forward substitution through supernode s (L z = y on its columns, then the rows below updated),
+  //! in place in y; `local` holds at least max_rows_ floats of workspace.
+  void forward_supernode(Eigen::Index s, Eigen::VectorXf& y, Eigen::VectorXf& local) const;
+  //! Backward substitution through supernode s (Lᵀ z = y on its columns given the rows below), in
+  //! place in y; `local` as in forward_supernode.
+  void backward_supernode(Eigen::Index s, Eigen::VectorXf& y, Eigen::VectorXf& local) const;
+
   std::vector<int> first_column_; //!< super: supernode s has columns first_column_[s] .. [s+1]-1
   std::vector<int> row_start_;    //!< pi: its row indices are rows_[row_start_[s] .. [s+1]-1]
   std::vector<int> value_start_;  //!< px: its column-major nrows × ncols block starts at values_[value_start_[s]]
   std::vector<int> rows_;         //!< s: row indices, the supernode's own columns first
   std::vector<int> permutation_;  //!< Perm: L Lᵀ = A(Perm, Perm)
-  std::vector<float> values_;     //!< x, rounded to float
-  Eigen::Index max_rows_below_ = 0; //!< the largest off-diagonal row count of a supernode (workspace)
+  std::vector<float> values_;     //!< x rounded to float, the diagonal entries inverted
+  Eigen::Index max_rows_ = 0; //!< the largest row count of a supernode (workspace)
 };
 
 } // namespace sdflow
