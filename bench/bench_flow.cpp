@@ -1,5 +1,7 @@
 //! The flow step's cost on geodesic spheres of 10k, 100k and 400k vertices (docs/design.md §2):
 //! operators, assembly, CHOLMOD factorisation and solve, and a full step amortised over a run.
+//! FactorApplication and StaleFactorCg compare CHOLMOD's double factor with its single-precision
+//! copy (flow/single_precision_factor.h): one application, and CG with a stale factor.
 //!   bench_flow --benchmark_filter=Step --benchmark_repetitions=3
 //! PaperQrStep is the paper's solver on the same spheres (slow: minutes at 10k vertices).
 //! Reported times are per step; `factorisations` and `cg_iterations` are per run.
@@ -22,6 +24,7 @@
 
 #include <chrono>
 #include <map>
+#include <stdexcept>
 #include <utility>
 
 namespace {
@@ -133,6 +136,8 @@ Eigen::VectorXd cholmod_double_solve(ExposedLLT& llt, const Eigen::VectorXd& b)
   Eigen::VectorXd in = b;
   cholmod_dense view = Eigen::viewAsCholmod(in);
   cholmod_dense* x = cholmod_solve(CHOLMOD_A, &llt.factor(), &view, &llt.cholmod());
+  if (x == nullptr)
+    throw std::runtime_error("cholmod_solve failed");
   Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(x->x), b.size());
   cholmod_free_dense(&x, &llt.cholmod());
   return out;
