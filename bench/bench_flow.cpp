@@ -1,13 +1,18 @@
 //! The flow step's cost on geodesic spheres of 10k, 100k and 400k vertices (docs/design.md §2):
 //! operators, assembly, CHOLMOD factorisation and solve, and a full step amortised over a run.
+//! FactorApplication and StaleFactorCg compare CHOLMOD's double factor with its single-precision
+//! copy (flow/single_precision_factor.h): one application, and CG with a stale factor.
 //!   bench_flow --benchmark_filter=Step --benchmark_repetitions=3
 //! PaperQrStep is the paper's solver on the same spheres (slow: minutes at 10k vertices).
-//! Reported times are per step; `factorisations` and `cg_iterations` are per run.
+//! Step benchmarks report times per step (`factorisations` and `cg_iterations` per run); the others
+//! say what their time covers.
 
 #include "flow_meshes.h"
 
+#include "sdflow/flow/blas_threads.h"
 #include "sdflow/flow/carried_ordering.h"
 #include "sdflow/flow/scheme.h"
+#include "sdflow/flow/single_precision_factor.h"
 #include "sdflow/flow/supernodal_cholesky.h"
 #include "sdflow/flow/solver.h"
 #include "sdflow/geometry/laplacian.h"
@@ -21,8 +26,11 @@
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseQR>
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <map>
+#include <stdexcept>
 #include <utility>
 
 namespace {
@@ -167,6 +175,116 @@ void CholmodSolve(benchmark::State& state)
     benchmark::DoNotOptimize(Eigen::VectorXd(llt.solve(op.rhs)));
 }
 
+//! Eigen's supernodal LLᵀ with its CHOLMOD factor shown (a protected member in Eigen 3.4).
+struct ExposedLLT : Eigen::CholmodSupernodalLLT<sdflow::SparseMatrix, Eigen::Lower> {
+  using CholmodSupernodalLLT::CholmodSupernodalLLT;
+  cholmod_factor& factor() const { return *m_cholmodFactor; }
+};
+
+//! Bytes of the double factor's values, the part a triangular solve streams.
+double factor_value_bytes(const cholmod_factor& factor) { return static_cast<double>(factor.xsize) * sizeof(double); }
+
+//! A⁻¹ b through the double factor by cholmod_solve(CHOLMOD_A), as Eigen's solve calls it.
+Eigen::VectorXd cholmod_double_solve(ExposedLLT& llt, const Eigen::VectorXd& b)
+{
+  Eigen::VectorXd in = b;
+  cholmod_dense view = Eigen::viewAsCholmod(in);
+  cholmod_dense* x = cholmod_solve(CHOLMOD_A, &llt.factor(), &view, &llt.cholmod());
+  if (x == nullptr)
+    throw std::runtime_error("cholmod_solve failed");
+  Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(x->x), b.size());
+  cholmod_free_dense(&x, &llt.cholmod());
+  return out;
+}
+
+//! One application of the step matrix's factor (a forward and a backward triangular solve):
+//! variant 0 = CHOLMOD's double cholmod_solve, 1 = its single-precision copy (SinglePrecisionFactor).
+//! Counters: the bytes each variant holds (factor_MB), bytes processed = the values read twice, and
+//! the float solve's relative difference from the double one (float_error).
+void FactorApplication(benchmark::State& state)
+{
+  const int vertices = static_cast<int>(state.range(0));
+  const bool single = state.range(1) == 1;
+  const sdflow::SparseMatrix a = step_matrix(vertices);
+  ExposedLLT llt(a);
+  const sdflow::SinglePrecisionFactor single_factor(llt.factor());
+  sdflow::set_factorisation_threads(1); // solves run on one thread, as FlowSolver runs them
+  const auto op = sdflow::flow_operators(sphere(vertices));
+  const cholmod_factor& factor = llt.factor();
+  const double structure_bytes =
+      static_cast<double>(3 * (factor.nsuper + 1) + factor.ssize + factor.n) * sizeof(int);
+  const double value_bytes = single ? factor_value_bytes(factor) / 2 : factor_value_bytes(factor);
+  for (auto _ : state) {
+    if (single)
+      benchmark::DoNotOptimize(single_factor.solve(op.rhs));
+    else
+      benchmark::DoNotOptimize(cholmod_double_solve(llt, op.rhs));
+  }
+  const Eigen::VectorXd exact = cholmod_double_solve(llt, op.rhs);
+  state.counters["float_error"] = (single_factor.solve(op.rhs) - exact).norm() / exact.norm();
+  state.counters["factor_MB"] =
+      (single ? static_cast<double>(single_factor.bytes()) : value_bytes + structure_bytes) * 1e-6;
+  state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * 2 * value_bytes));
+  state.SetLabel(single ? "float" : "double cholmod_solve");
+}
+
+//! Conjugate gradients on a step's system of the flowing sphere, preconditioned by a stale factor,
+//! from zero to FlowSolver's tolerance 1e-10 on the residual; time per CG solve.
+//! range(1): 0 = CHOLMOD's double solve, 1 = its float copy (SinglePrecisionFactor).
+//! range(2): the stale factor is 0 = the factor of the surface 10 steps earlier, 1 = the factor of
+//! the same surface with τβ 10% larger. Counters: iterations, the final true relative residual.
+void StaleFactorCg(benchmark::State& state)
+{
+  constexpr int stale_steps = 10;
+  constexpr double tolerance = 1e-10;
+  const int vertices = static_cast<int>(state.range(0));
+  const bool single = state.range(1) == 1;
+  const bool earlier_surface = state.range(2) == 0;
+  Mesh mesh = sphere(vertices);
+  const sdflow::CotangentCache cache(mesh);
+  if (earlier_surface) {
+    sdflow::FlowSolver solver;
+    for (int s = 0; s < stale_steps; ++s) {
+      const auto op = sdflow::flow_operators(mesh, {}, &cache);
+      sdflow::set_vertex_positions(mesh, sdflow::solve_step(mesh, op, tau, beta, solver).positions);
+    }
+  }
+  const auto op = sdflow::flow_operators(mesh, {}, &cache);
+  const sdflow::SparseMatrix a = sdflow::flow_matrix({op.laplacian, op.areas, op.held, tau * beta});
+  const auto stale_op = sdflow::flow_operators(sphere(vertices), {}, &cache);
+  ExposedLLT llt(sdflow::flow_matrix({stale_op.laplacian, stale_op.areas, stale_op.held,
+                                      (earlier_surface ? 1.0 : 1.1) * tau * beta}));
+  const sdflow::SinglePrecisionFactor single_factor(llt.factor());
+  sdflow::set_factorisation_threads(1);
+  const auto precondition = [&](const Eigen::VectorXd& r) {
+    return single ? single_factor.solve(r) : cholmod_double_solve(llt, r);
+  };
+  const Eigen::VectorXd& b = op.rhs;
+  int iterations = 0;
+  double residual = 0;
+  for (auto _ : state) {
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size()), r = b, z = precondition(r), p = z;
+    double rz = r.dot(z);
+    for (iterations = 1; iterations <= 100; ++iterations) {
+      const Eigen::VectorXd ap = a * p;
+      const double alpha = rz / p.dot(ap);
+      x += alpha * p;
+      r -= alpha * ap;
+      if (r.norm() <= tolerance * b.norm())
+        break;
+      z = precondition(r);
+      const double rz_next = r.dot(z);
+      p = z + (rz_next / rz) * p;
+      rz = rz_next;
+    }
+    residual = (b - a * x).norm() / b.norm();
+  }
+  state.counters["cg_iterations"] = iterations;
+  state.counters["relative_residual"] = residual;
+  state.SetLabel(fmt::format("{}; factor of {}", single ? "float" : "double cholmod_solve",
+                             earlier_surface ? "10 steps earlier" : "1.1 tau*beta"));
+}
+
 //! `steps` full steps (operators + solve + update) on a copy of the sphere, as the driver runs them
 //! (kept pattern of L, one solver, warm-started solves); time per step.
 void run_steps(benchmark::State& state, sdflow::FactorisationPolicy policy)
@@ -220,6 +338,8 @@ BENCHMARK(CholmodFactorise)->Arg(10'000)->Arg(100'000)->Arg(400'000)->Unit(bench
 BENCHMARK(CholmodAnalyse)->ArgsProduct({{10'000, 100'000, 400'000}, {0, 1, 2}})->Unit(benchmark::kMillisecond);
 BENCHMARK(CarriedOrdering)->ArgsProduct({{10'000, 100'000, 400'000}, {0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
 BENCHMARK(CholmodSolve)->Arg(10'000)->Arg(100'000)->Arg(400'000)->Unit(benchmark::kMillisecond);
+BENCHMARK(FactorApplication)->ArgsProduct({{25'000, 100'000}, {0, 1}})->Unit(benchmark::kMillisecond);
+BENCHMARK(StaleFactorCg)->ArgsProduct({{25'000, 100'000}, {0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
 BENCHMARK(StepReuse)->Args({10'000, 100})->Args({100'000, 100})->Args({400'000, 30})
     ->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(StepEveryStep)->Args({10'000, 20})->Args({100'000, 5})->Args({400'000, 3})

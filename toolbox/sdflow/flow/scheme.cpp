@@ -18,10 +18,11 @@ FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options, con
   if (mesh.n_vertices() == 0 || mesh.n_faces() == 0)
     throw InvalidMesh("flow step: the mesh has no triangles");
   FlowOperators op;
-  op.normals = vertex_normals(mesh, options.normals);
   if (cache) {
-    cache->assemble(mesh, op.laplacian, op.areas);
+    cache->assemble(mesh, op.laplacian, op.areas); // checks that the cache fits the mesh
+    op.normals = vertex_normals(mesh, cache->triangles(), options.normals);
   } else {
+    op.normals = vertex_normals(mesh, options.normals);
     op.laplacian = cotangent_laplacian(mesh);
     op.areas = mixed_voronoi_areas(mesh);
   }

@@ -2,6 +2,7 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/flow/carried_ordering.h"
+#include "sdflow/flow/single_precision_factor.h"
 #include "sdflow/flow/supernodal_cholesky.h"
 #include "sdflow/log.h"
 #include "sdflow/stopwatch.h"
@@ -11,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace sdflow {
 namespace {
@@ -35,14 +37,23 @@ void check_system(const FlowSystem& s, const Eigen::VectorXd& rhs)
 //! A w for the SPD form, without assembling L M⁻¹ L: two products with L.
 Eigen::VectorXd apply_flow_matrix(const FlowSystem& s, const Eigen::VectorXd& x)
 {
-  Eigen::VectorXd free_x = x;
+  Eigen::VectorXd lx;
+  if (s.held.empty()) {
+    lx.noalias() = s.laplacian * x;
+  } else {
+    Eigen::VectorXd free_x = x;
+    for (Eigen::Index i = 0; i < x.size(); ++i)
+      if (s.held[i])
+        free_x[i] = 0;
+    lx.noalias() = s.laplacian * free_x;
+  }
+  lx.array() /= s.areas.array();
+  Eigen::VectorXd y;
+  y.noalias() = s.laplacian * lx;
+  y.array() = s.tau_beta * y.array() + s.areas.array() * x.array();
   for (Eigen::Index i = 0; i < x.size(); ++i)
     if (is_held(s.held, i))
-      free_x[i] = 0;
-  const Eigen::VectorXd lx = s.laplacian * free_x;
-  Eigen::VectorXd y = s.tau_beta * (s.laplacian * lx.cwiseQuotient(s.areas));
-  for (Eigen::Index i = 0; i < x.size(); ++i)
-    y[i] = is_held(s.held, i) ? s.areas[i] * x[i] : y[i] + s.areas[i] * x[i];
+      y[i] = s.areas[i] * x[i];
   return y;
 }
 
@@ -83,6 +94,8 @@ SparseMatrix flow_matrix(const FlowSystem& s)
 struct FlowSolver::Impl {
   SolverOptions options;
   SupernodalCholesky cholesky;
+  //! The factor in float: CG's preconditioner, read at half the bytes (single_precision_factor.h).
+  std::optional<SinglePrecisionFactor> preconditioner;
   bool analysed = false, factorised = false;
   // The pattern of M + τβ L M⁻¹ L is determined by L's, so L's pattern identifies the analysis.
   std::vector<int> laplacian_outer, laplacian_inner;
@@ -139,12 +152,15 @@ struct FlowSolver::Impl {
       report.analysed = true;
     }
     factorised = false;
+    preconditioner.reset();
     set_factorisation_threads(blas_threads_for(a.rows(), options.blas));
     const bool positive_definite = cholesky.factorise(a);
     set_factorisation_threads(1);
     if (!positive_definite)
       throw SolverFailure(fmt::format("CHOLMOD factorisation failed on a {}x{} system (not positive definite "
                                       "to working precision: degenerate triangles?)", a.rows(), a.cols()));
+    if (options.policy == FactorisationPolicy::reuse)
+      preconditioner.emplace(cholesky.factor());
     factorised = true;
     report.factorised = true;
     report.seconds.factorisation += watch.seconds();
@@ -176,7 +192,7 @@ struct FlowSolver::Impl {
       report.relative_residual = r_norm / b_norm;
       return true;
     }
-    Eigen::VectorXd z = cholesky.solve(r);
+    Eigen::VectorXd z = preconditioner->solve(r);
     Eigen::VectorXd p = z;
     double rz = r.dot(z);
     for (int k = 1; k <= options.max_cg_iterations; ++k) {
@@ -192,7 +208,7 @@ struct FlowSolver::Impl {
         report.relative_residual = r_norm / b_norm;
         return true;
       }
-      z = cholesky.solve(r);
+      z = preconditioner->solve(r);
       const double rz_next = r.dot(z);
       p = z + (rz_next / rz) * p;
       rz = rz_next;

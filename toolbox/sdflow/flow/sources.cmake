@@ -10,6 +10,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/run_lock.cpp
   sdflow/flow/scheme.cpp
   sdflow/flow/simulation.cpp
+  sdflow/flow/single_precision_factor.cpp
   sdflow/flow/solver.cpp
   sdflow/flow/supernodal_cholesky.cpp
   sdflow/flow/surface_diffusion.cpp

@@ -25,6 +25,9 @@ public:
   //! Throws InvalidParameter if the mesh does not fit, InvalidMesh on a zero-area triangle.
   void assemble(const Mesh& mesh, SparseMatrix& laplacian, Eigen::VectorXd& areas) const;
 
+  //! The recorded triangles' vertex indices, face by face.
+  const std::vector<std::array<int, 3>>& triangles() const { return triangles_; }
+
 private:
   std::vector<std::array<int, 3>> triangles_;
   std::vector<std::array<int, 12>> slots_; //!< per corner c: (j,k), (k,j), (j,j), (k,k) in L's values

@@ -6,28 +6,46 @@
 
 #include <array>
 #include <cmath>
+#include <vector>
 
 namespace sdflow {
 
 VertexVectors vertex_normals(const Mesh& mesh, const NormalOptions& options)
 {
-  VertexVectors n = VertexVectors::Zero(mesh.n_vertices(), 3);
-  VertexVectors boundary_sum = VertexVectors::Zero(mesh.n_vertices(), 3);
-  const bool equal_weights = options.boundary == BoundaryNormalRule::equal_weights;
+  std::vector<std::array<int, 3>> triangles;
+  triangles.reserve(mesh.n_faces());
+  for (auto f : mesh.faces())
+    triangles.push_back(triangle_corners(mesh, f).index);
+  return vertex_normals(mesh, triangles, options);
+}
 
-  for (auto f : mesh.faces()) {
-    const auto [idx, p] = triangle_corners(mesh, f);
-    for (int c = 0; c < 3; ++c) {
-      // Around corner c the star order is e_i = next - p, e_{i+1} = prev - p.
-      const Eigen::Vector3d ei = p[(c + 1) % 3] - p[c];
-      const Eigen::Vector3d ej = p[(c + 2) % 3] - p[c];
-      const Eigen::Vector3d cross = ei.cross(ej);
-      n.row(idx[c]) += (cross / (ei.squaredNorm() * ej.squaredNorm())).transpose();
-      if (equal_weights) {
-        const double len = cross.norm();
-        if (len > 0)
+VertexVectors vertex_normals(const Mesh& mesh, std::span<const std::array<int, 3>> triangles,
+                             const NormalOptions& options)
+{
+  VertexVectors n = VertexVectors::Zero(mesh.n_vertices(), 3);
+  const bool equal_weights = options.boundary == BoundaryNormalRule::equal_weights;
+  VertexVectors boundary_sum = equal_weights ? VertexVectors::Zero(mesh.n_vertices(), 3) : VertexVectors();
+
+  const Mesh::Point* points = mesh.points();
+  const auto vertices = static_cast<unsigned>(mesh.n_vertices());
+  for (const auto& idx : triangles) {
+    if (static_cast<unsigned>(idx[0]) >= vertices || static_cast<unsigned>(idx[1]) >= vertices ||
+        static_cast<unsigned>(idx[2]) >= vertices)
+      throw InvalidParameter(fmt::format("vertex normals: a triangle ({}, {}, {}) names a vertex outside the mesh's {}",
+                                         idx[0], idx[1], idx[2], vertices));
+    const std::array<Eigen::Vector3d, 3> p{to_eigen(points[idx[0]]), to_eigen(points[idx[1]]), to_eigen(points[idx[2]])};
+    // Every corner's e_i × e_{i+1} is the face's (p1 - p0) × (p2 - p0); the corner at p_c divides it
+    // by the squared lengths of its two sides, those opposite p_{c+2} and p_{c+1}.
+    const Eigen::Vector3d cross = (p[1] - p[0]).cross(p[2] - p[0]);
+    const std::array<double, 3> opposite{(p[2] - p[1]).squaredNorm(), (p[0] - p[2]).squaredNorm(),
+                                         (p[1] - p[0]).squaredNorm()};
+    for (int c = 0; c < 3; ++c)
+      n.row(idx[c]) += (cross / (opposite[(c + 2) % 3] * opposite[(c + 1) % 3])).transpose();
+    if (equal_weights) {
+      const double len = cross.norm();
+      if (len > 0)
+        for (int c = 0; c < 3; ++c)
           boundary_sum.row(idx[c]) += (cross / len).transpose();
-      }
     }
   }
 

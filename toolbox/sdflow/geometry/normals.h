@@ -4,6 +4,9 @@
 
 #include "sdflow/mesh.h"
 
+#include <array>
+#include <span>
+
 namespace sdflow {
 
 //! How normals are averaged at boundary vertices.
@@ -20,5 +23,10 @@ struct NormalOptions {
 //! Outward on closed components oriented as docs/design.md §1 requires.
 //! Throws InvalidMesh if a vertex has no triangles or its normal is undefined (degenerate star).
 VertexVectors vertex_normals(const Mesh& mesh, const NormalOptions& options = {});
+
+//! The same with the triangles' vertex indices given (those of `mesh`, e.g. CotangentCache's), which
+//! spares the walk around every face.
+VertexVectors vertex_normals(const Mesh& mesh, std::span<const std::array<int, 3>> triangles,
+                             const NormalOptions& options = {});
 
 } // namespace sdflow
