@@ -156,7 +156,8 @@ StepRecord SurfaceDiffusion::step()
     accepted = vertex_positions(mesh_);
   set_vertex_positions(mesh_, trial.positions);
   if (p_.conserve_volume)
-    set_vertex_positions(mesh_, restore_volumes(mesh_, volumes).positions);
+    set_vertex_positions(
+        mesh_, restore_volumes(mesh_, volumes, {triangles_, topology_.face_component, topology_.closed}).positions);
   if (guard_) {
     const Stopwatch check;
     try {

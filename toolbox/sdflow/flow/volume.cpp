@@ -37,16 +37,29 @@ VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& t
 {
   int count = 0;
   const std::vector<int> component = face_component_ids(mesh, &count);
+  std::vector<bool> closed;
+  for (const ComponentTopology& c : component_topology(mesh))
+    closed.push_back(c.closed());
+  return restore_volumes(mesh, target_volumes, {face_indices(mesh), component, closed});
+}
+
+VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& target_volumes,
+                                  const MeshComponents& components)
+{
+  const FaceIndices& faces = components.triangles;
+  const std::vector<int>& component = components.face_component;
+  const int count = static_cast<int>(components.closed.size());
   if (static_cast<int>(target_volumes.size()) != count)
     throw InvalidParameter(fmt::format("restore_volumes: {} target volumes for {} components", target_volumes.size(),
                                        count));
-  const std::vector<ComponentTopology> topology = component_topology(mesh);
-  const VertexVectors normals = vertex_normals(mesh);
-  const FaceIndices faces = face_indices(mesh);
+  if (faces.rows() != static_cast<Eigen::Index>(mesh.n_faces()) || component.size() != mesh.n_faces())
+    throw InvalidParameter(fmt::format("restore_volumes: {} triangles and {} face components for a mesh of {} faces",
+                                       faces.rows(), component.size(), mesh.n_faces()));
+  const VertexVectors normals = vertex_normals(mesh, faces);
   std::vector<int> vertex_component(mesh.n_vertices(), -1);
-  for (auto f : mesh.faces())
-    for (auto v : f.vertices())
-      vertex_component[v.idx()] = component[f.idx()];
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      vertex_component[static_cast<std::size_t>(faces(f, c))] = component[static_cast<std::size_t>(f)];
 
   VolumeRestoration result;
   result.positions = vertex_positions(mesh);
@@ -59,7 +72,7 @@ VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& t
     volumes_and_rates(result.positions, normals, faces, component, volume, rate);
     bool converged = true;
     for (int k = 0; k < count; ++k) {
-      if (!topology[k].closed())
+      if (!components.closed[static_cast<std::size_t>(k)])
         continue;
       const double error = volume[k] - target_volumes[k];
       if (std::abs(error) <= round_off * std::abs(target_volumes[k]))
@@ -77,7 +90,7 @@ VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& t
   }
   volumes_and_rates(result.positions, normals, faces, component, volume, rate);
   for (int k = 0; k < count; ++k)
-    if (topology[k].closed())
+    if (components.closed[static_cast<std::size_t>(k)])
       result.max_relative_error =
           std::max(result.max_relative_error, std::abs(volume[k] - target_volumes[k]) / std::abs(target_volumes[k]));
   return result;

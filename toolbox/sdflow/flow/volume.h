@@ -22,6 +22,19 @@ struct VolumeRestoration {
 //! the volume cannot be restored (a component with zero volume gradient).
 VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& target_volumes);
 
+//! A mesh's triangles (face_indices) and components (face_component_ids and whether each is closed),
+//! as a flow keeps them while its connectivity holds.
+struct MeshComponents {
+  const FaceIndices& triangles;
+  const std::vector<int>& face_component;
+  const std::vector<bool>& closed;
+};
+
+//! The same with the mesh's triangles and components given, so that a step does not find them
+//! again. Throws InvalidParameter also when they do not match the mesh's face count.
+VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& target_volumes,
+                                  const MeshComponents& components);
+
 //! Offset the components of `after`, a re-triangulation of `before`, so that volume lost or gained
 //! by the re-triangulation is given back. Each component of `after` belongs to the components of
 //! `before` its vertices lie nearest to (10% of its vertices or more); components so linked form

@@ -6,21 +6,15 @@
 
 #include <array>
 #include <cmath>
-#include <vector>
 
 namespace sdflow {
 
-VertexVectors vertex_normals(const Mesh& mesh, const NormalOptions& options)
-{
-  std::vector<std::array<int, 3>> triangles;
-  triangles.reserve(mesh.n_faces());
-  for (auto f : mesh.faces())
-    triangles.push_back(triangle_corners(mesh, f).index);
-  return vertex_normals(mesh, triangles, options);
-}
+namespace {
 
-VertexVectors vertex_normals(const Mesh& mesh, std::span<const std::array<int, 3>> triangles,
-                             const NormalOptions& options)
+//! Eq. (8) over the triangles `corners(f)`, f = 0 .. count-1, each three vertex indices of `mesh`.
+template <class Corners>
+VertexVectors normals_of_triangles(const Mesh& mesh, Eigen::Index count, const Corners& corners,
+                                   const NormalOptions& options)
 {
   VertexVectors n = VertexVectors::Zero(mesh.n_vertices(), 3);
   const bool equal_weights = options.boundary == BoundaryNormalRule::equal_weights;
@@ -28,7 +22,8 @@ VertexVectors vertex_normals(const Mesh& mesh, std::span<const std::array<int, 3
 
   const Mesh::Point* points = mesh.points();
   const auto vertices = static_cast<unsigned>(mesh.n_vertices());
-  for (const auto& idx : triangles) {
+  for (Eigen::Index f = 0; f < count; ++f) {
+    const std::array<int, 3> idx = corners(f);
     if (static_cast<unsigned>(idx[0]) >= vertices || static_cast<unsigned>(idx[1]) >= vertices ||
         static_cast<unsigned>(idx[2]) >= vertices)
       throw InvalidParameter(fmt::format("vertex normals: a triangle ({}, {}, {}) names a vertex outside the mesh's {}",
@@ -60,6 +55,27 @@ VertexVectors vertex_normals(const Mesh& mesh, std::span<const std::array<int, 3
     n.row(i) /= len;
   }
   return n;
+}
+
+} // namespace
+
+VertexVectors vertex_normals(const Mesh& mesh, const NormalOptions& options)
+{
+  return vertex_normals(mesh, face_indices(mesh), options);
+}
+
+VertexVectors vertex_normals(const Mesh& mesh, std::span<const std::array<int, 3>> triangles,
+                             const NormalOptions& options)
+{
+  return normals_of_triangles(mesh, static_cast<Eigen::Index>(triangles.size()),
+                              [&](Eigen::Index f) { return triangles[static_cast<std::size_t>(f)]; }, options);
+}
+
+VertexVectors vertex_normals(const Mesh& mesh, const FaceIndices& triangles, const NormalOptions& options)
+{
+  return normals_of_triangles(mesh, triangles.rows(), [&](Eigen::Index f) {
+    return std::array<int, 3>{triangles(f, 0), triangles(f, 1), triangles(f, 2)};
+  }, options);
 }
 
 } // namespace sdflow

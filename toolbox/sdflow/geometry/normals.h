@@ -24,9 +24,11 @@ struct NormalOptions {
 //! Throws InvalidMesh if a vertex has no triangles or its normal is undefined (degenerate star).
 VertexVectors vertex_normals(const Mesh& mesh, const NormalOptions& options = {});
 
-//! The same with the triangles' vertex indices given (those of `mesh`, e.g. CotangentCache's), which
-//! spares the walk around every face.
+//! The same with the triangles' vertex indices given (those of `mesh` in its face order, e.g.
+//! CotangentCache's or face_indices'), which spares the walk around every face. Throws
+//! InvalidParameter if a triangle names a vertex the mesh does not have.
 VertexVectors vertex_normals(const Mesh& mesh, std::span<const std::array<int, 3>> triangles,
                              const NormalOptions& options = {});
+VertexVectors vertex_normals(const Mesh& mesh, const FaceIndices& triangles, const NormalOptions& options = {});
 
 } // namespace sdflow
