@@ -10,13 +10,16 @@
 #include "sdflow/stopwatch.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <exception>
 #include <memory>
-#include <optional>
 #include <numbers>
+#include <optional>
+#include <utility>
 
 namespace sdflow {
 namespace {
@@ -65,12 +68,28 @@ Verdict look_at_surface(const Mesh& mesh, const RetriangulationSchedule& s, long
     v.reason = "scheduled";
     return v;
   }
-  if (const std::size_t pairs = watch.count(mesh); pairs > 0) {
+  // The two looks read the surface independently, so they overlap on two cores; each answer is the
+  // one it would be alone. The degraded elements (and a failure to find them, on a surface whose
+  // crossing left a degenerate triangle) count only when nothing intersects.
+  std::size_t pairs = 0;
+  DegradedElements degraded;
+  std::exception_ptr degraded_failure;
+  tbb::parallel_invoke([&] { pairs = watch.count(mesh); },
+                       [&] {
+                         try {
+                           degraded = degraded_elements(mesh, s);
+                         } catch (...) {
+                           degraded_failure = std::current_exception();
+                         }
+                       });
+  if (pairs > 0) {
     v.reason = fmt::format("{} intersecting face pairs", pairs);
     v.intersecting = true;
     return v;
   }
-  v.degraded = degraded_elements(mesh, s);
+  if (degraded_failure)
+    std::rethrow_exception(degraded_failure);
+  v.degraded = std::move(degraded);
   const DegradedElements& d = v.degraded;
   const double allowed = std::max(s.degraded_fraction * static_cast<double>(mesh.n_faces()),
                                   static_cast<double>(tolerated));
