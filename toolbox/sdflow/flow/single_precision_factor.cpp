@@ -124,12 +124,17 @@ Eigen::VectorXd SinglePrecisionFactor::solve(const Eigen::VectorXd& b) const
   return x;
 }
 
+SinglePrecisionFactor::Block SinglePrecisionFactor::block(Eigen::Index s) const
+{
+  const Eigen::Index first = first_column_[s];
+  return {first, first_column_[s + 1] - first, row_start_[s + 1] - row_start_[s], value_start_[s],
+          rows_.data() + row_start_[s]};
+}
+
 void SinglePrecisionFactor::forward_supernode(Eigen::Index s, Eigen::VectorXf& y, Eigen::VectorXf& local) const
 {
-  const Eigen::Index first = first_column_[s], columns = first_column_[s + 1] - first;
-  const Eigen::Index rows = row_start_[s + 1] - row_start_[s];
-  const Eigen::Index start = value_start_[s], size = static_cast<Eigen::Index>(values_.size());
-  const int* row = rows_.data() + row_start_[s];
+  const auto [first, columns, rows, start, row] = block(s);
+  const Eigen::Index size = static_cast<Eigen::Index>(values_.size());
   float* const z = local.data();
   std::copy_n(y.data() + first, columns, z);
   std::fill(z + columns, z + rows, 0.0f);
@@ -149,10 +154,8 @@ void SinglePrecisionFactor::forward_supernode(Eigen::Index s, Eigen::VectorXf& y
 
 void SinglePrecisionFactor::backward_supernode(Eigen::Index s, Eigen::VectorXf& y, Eigen::VectorXf& local) const
 {
-  const Eigen::Index first = first_column_[s], columns = first_column_[s + 1] - first;
-  const Eigen::Index rows = row_start_[s + 1] - row_start_[s];
-  const Eigen::Index start = value_start_[s], size = static_cast<Eigen::Index>(values_.size());
-  const int* row = rows_.data() + row_start_[s];
+  const auto [first, columns, rows, start, row] = block(s);
+  const Eigen::Index size = static_cast<Eigen::Index>(values_.size());
   float* const z = local.data();
   std::copy_n(y.data() + first, columns, z);
   for (Eigen::Index i = columns; i < rows; ++i)

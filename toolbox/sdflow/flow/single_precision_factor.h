@@ -45,6 +45,14 @@ public:
   std::size_t bytes() const;
 
 private:
+  //! Where supernode s lies: its columns first .. first + columns - 1, its row count, the start of
+  //! its values, its row indices.
+  struct Block {
+    Eigen::Index first, columns, rows, start;
+    const int* row;
+  };
+  Block block(Eigen::Index s) const;
+
   //! Forward substitution through supernode s (L z = y on its columns, then the rows below updated),
   //! in place in y; `local` holds at least max_rows_ floats of workspace.
   void forward_supernode(Eigen::Index s, Eigen::VectorXf& y, Eigen::VectorXf& local) const;

@@ -325,11 +325,12 @@ void FlowSolver::carry_ordering(std::span<const int> nearest_old, const SparseMa
 {
   Impl& m = *impl_;
   m.factorised = false;
-  m.state.ordering = m.analysed && m.state.fresh_fill > 0
-                         ? carried_ordering(m.cholesky.elimination_tree(), nearest_old, laplacian)
-                         : std::vector<int>{};
+  m.state.ordering = carries_ordering() ? carried_ordering(m.cholesky.elimination_tree(), nearest_old, laplacian)
+                                        : std::vector<int>{};
   m.analysed = false;
 }
+
+bool FlowSolver::carries_ordering() const { return impl_->analysed && impl_->state.fresh_fill > 0; }
 
 SolverState FlowSolver::state() const { return impl_->state; }
 

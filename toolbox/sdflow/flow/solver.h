@@ -113,6 +113,9 @@ public:
   //! a current analysis, or when CHOLMOD's own choice was the cheap AMD, the next one orders afresh.
   void carry_ordering(std::span<const int> nearest_old, const SparseMatrix& laplacian);
 
+  //! Whether carry_ordering would use its nearest vertices (else they may be left empty).
+  bool carries_ordering() const;
+
   //! Counters of the reuse rule, for checkpoints.
   SolverState state() const;
 

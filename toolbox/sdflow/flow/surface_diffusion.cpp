@@ -315,7 +315,8 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
       topology_changed_ || (p_.stop_at_topology_change && (topology_.count != components || topology_.genus != genus));
   renew_operators(times);
   const Stopwatch watch;
-  const std::vector<int> nearest_old = nearest_points(before, vertex_positions(mesh_));
+  const bool carried = solver_.carries_ordering() || half_solver_.carries_ordering();
+  const std::vector<int> nearest_old = carried ? nearest_points(before, vertex_positions(mesh_)) : std::vector<int>{};
   solver_.carry_ordering(nearest_old, op_.laplacian);
   half_solver_.carry_ordering(nearest_old, op_.laplacian);
   times.factorisation += watch.seconds();
