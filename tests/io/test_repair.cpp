@@ -243,6 +243,22 @@ TEST(Repair, two_bodies_on_one_edge_come_apart)
     EXPECT_GT(v, 0);
 }
 
+TEST(Repair, bodies_split_apart_where_one_touches_the_other_are_final)
+{
+  // Two tetrahedra on the edge from (0, 0, 0) to (0, 0, -1) (found by fuzz_repair): split apart, the
+  // copy of one's vertex lies on the other's face, where the winding number is 1/2. Whether one
+  // body is a cavity of the other must not hang on which vertex is asked first, or a second repair
+  // of the result flips a body back.
+  PolygonSoup soup;
+  soup.points = {{1, 2, 0}, {0, 0, 0}, {4, 1, 0}, {0, 0, -1}, {0, -1, 0}, {-1, -1, -1}, {0, 0, -1}};
+  soup.polygons = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {0, 4, 5}, {0, 6, 4}, {0, 5, 6}, {4, 6, 5}};
+  const RepairResult r = repair_soup(soup, "touching");
+  const RepairResult again = repair_soup(soup_of(r.mesh), "repaired");
+  EXPECT_TRUE(again.repairs.empty()) << ::testing::PrintToString(counts(again));
+  for (const double v : component_volumes(r.mesh))
+    EXPECT_GT(v, 0);
+}
+
 TEST(Repair, a_fin_on_an_edge_is_cut_off)
 {
   // A third face on an edge of a tetrahedron, as in `sdflow stats`'s example of three faces on one edge.

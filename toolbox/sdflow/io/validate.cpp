@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstring>
 #include <iterator>
+#include <limits>
 #include <numbers>
 #include <numeric>
 #include <span>
@@ -480,40 +481,70 @@ std::vector<double> signed_volumes(const std::vector<Eigen::Vector3d>& points, c
 
 //! How many other closed components enclose each closed component (0 for open ones): a point of
 //! the component is inside another when that one's winding number there (its triangles' solid
-//! angles, Van Oosterom & Strackee 1983, over 4π) is ±1 rather than 0. Components that cross each
-//! other have no well-defined inside; for the others one point decides for the whole component.
+//! angles, Van Oosterom & Strackee 1983, over 4π) is ±1 rather than 0. The point asked is the
+//! component's lexicographically largest vertex, so the answer does not depend on the order of
+//! vertices or faces. Where that point lies on the other surface (winding near ±1/2, as where
+//! repaired components touch), its extreme vertices in the other five directions (lexicographic in
+//! the coordinates' rotations, either sign) are asked in turn, and the first off that surface decides.
 std::vector<int> nesting_depths(const std::vector<Eigen::Vector3d>& points, const std::vector<Triangle>& triangles,
                                 const Components& components)
 {
   std::vector<int> depth(components.count, 0);
   if (components.count < 2)
     return depth;
-  std::vector<int> probe(components.count, -1);
+  constexpr int probes = 6;
+  const auto key = [&](int v, int k) {
+    const Eigen::Vector3d& p = points[v];
+    const int r = k / 2;
+    const double sign = k % 2 ? -1.0 : 1.0;
+    return std::array{sign * p[r], sign * p[(r + 1) % 3], sign * p[(r + 2) % 3]};
+  };
+  std::vector<std::array<int, probes>> probe(components.count);
+  std::vector<std::vector<int>> triangles_of(components.count);
   std::vector<Eigen::AlignedBox3d> box(components.count);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     const int c = components.of_triangle[t];
-    if (probe[c] < 0)
-      probe[c] = triangles[t].v[0];
-    for (const int v : triangles[t].v)
+    for (const int v : triangles[t].v) {
       box[c].extend(points[v]);
+      for (int k = 0; k < probes; ++k)
+        if (triangles_of[c].empty() || key(probe[c][k], k) < key(v, k))
+          probe[c][k] = v;
+    }
+    triangles_of[c].push_back(static_cast<int>(t));
   }
-  std::vector<double> winding(components.count);
-  for (int c = 0; c < components.count; ++c) {
-    if (components.open[c])
-      continue;
-    const Eigen::Vector3d& p = points[probe[c]];
-    std::fill(winding.begin(), winding.end(), 0.0);
-    for (std::size_t t = 0; t < triangles.size(); ++t) {
-      const int d = components.of_triangle[t];
-      if (d == c || components.open[d] || !box[d].contains(p))
-        continue;
+  // |4π × winding number| of component d at p, or NaN when p is on one of d's triangles: in its
+  // plane (to rounding) and not clearly outside it, where the solid angle jumps by 4π.
+  const auto winding_angle = [&](const Eigen::Vector3d& p, int d) {
+    constexpr double coplanar = 1e-10;
+    double angle = 0;
+    for (const int t : triangles_of[d]) {
       const Eigen::Vector3d a = points[triangles[t].v[0]] - p, b = points[triangles[t].v[1]] - p,
                             e = points[triangles[t].v[2]] - p;
       const double la = a.norm(), lb = b.norm(), le = e.norm();
-      winding[d] += 2 * std::atan2(a.dot(b.cross(e)), la * lb * le + a.dot(b) * le + a.dot(e) * lb + b.dot(e) * la);
+      const double scale = la * lb * le, det = a.dot(b.cross(e));
+      const double cosine_part = scale + a.dot(b) * le + a.dot(e) * lb + b.dot(e) * la;
+      if (std::abs(det) <= coplanar * scale && cosine_part <= coplanar * scale)
+        return std::numeric_limits<double>::quiet_NaN();
+      angle += 2 * std::atan2(det, cosine_part);
     }
-    for (int d = 0; d < components.count; ++d)
-      depth[c] += std::abs(winding[d]) > 2 * std::numbers::pi;
+    return std::abs(angle);
+  };
+  constexpr double pi = std::numbers::pi;
+  for (int c = 0; c < components.count; ++c) {
+    if (components.open[c])
+      continue;
+    for (int d = 0; d < components.count; ++d) {
+      if (d == c || components.open[d])
+        continue;
+      for (int k = 0; k < probes; ++k) {
+        const Eigen::Vector3d& p = points[probe[c][k]];
+        const double angle = box[d].contains(p) ? winding_angle(p, d) : 0.0;
+        if (angle < pi || angle > 3 * pi) { // NaN (on the surface) abstains
+          depth[c] += angle > 3 * pi;
+          break;
+        }
+      }
+    }
   }
   return depth;
 }
