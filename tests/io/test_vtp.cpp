@@ -214,6 +214,11 @@ TEST(Vtp, bad_files_are_refused_with_the_reason)
                                              "</DataArray><DataArray type=\"Int32\" Name=\"offsets\">2 4</DataArray>"
                                              "</Polys>"),
                  "polygon 0 spans connectivity [0, 2)");
+  // An offset far below the last one (found by fuzz_read_vtp: the span's length overflowed).
+  expect_refused(document("", ascii_points + "<Polys><DataArray type=\"Int64\" Name=\"connectivity\">0 1 2 0 2 3"
+                                             "</DataArray><DataArray type=\"Int64\" Name=\"offsets\">3 "
+                                             "-9223372036854775808</DataArray></Polys>"),
+                 "polygon 1 spans connectivity [3, -9223372036854775808)");
   expect_refused(document("", ascii_points + "<Polys><DataArray type=\"Float32\" Name=\"connectivity\">0 1 2 0 2 3"
                                              "</DataArray><DataArray type=\"Int32\" Name=\"offsets\">3 6</DataArray>"
                                              "</Polys>"),

@@ -1,29 +1,36 @@
 #include "sdflow/geometry/topology.h"
 
+#include <algorithm>
+#include <numeric>
 #include <vector>
 
 namespace sdflow {
 
 std::vector<int> face_component_ids(const Mesh& mesh, int* component_count)
 {
-  std::vector<int> id(mesh.n_faces(), -1);
-  std::vector<Mesh::FaceHandle> stack;
-  int count = 0;
-  for (auto seed : mesh.faces()) {
-    if (id[seed.idx()] >= 0)
-      continue;
-    id[seed.idx()] = count;
-    stack.push_back(seed);
-    while (!stack.empty()) {
-      const auto f = stack.back();
-      stack.pop_back();
-      for (auto g : mesh.ff_range(f))
-        if (id[g.idx()] < 0) {
-          id[g.idx()] = count;
-          stack.push_back(g);
-        }
+  // Union-find over the edges in storage order (this runs several times per re-triangulation on
+  // surfaces of 10^5 faces, where a search across faces is bound by cache misses).
+  std::vector<int> parent(mesh.n_faces());
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&parent](int f) {
+    while (parent[f] != f)
+      f = parent[f] = parent[parent[f]];
+    return f;
+  };
+  for (auto e : mesh.edges()) {
+    const Mesh::FaceHandle f = mesh.face_handle(mesh.halfedge_handle(e, 0));
+    const Mesh::FaceHandle g = mesh.face_handle(mesh.halfedge_handle(e, 1));
+    if (f.is_valid() && g.is_valid()) {
+      const int a = root(f.idx()), b = root(g.idx());
+      if (a != b)
+        parent[std::max(a, b)] = std::min(a, b);
     }
-    ++count;
+  }
+  std::vector<int> id(mesh.n_faces(), -1);
+  int count = 0;
+  for (auto f : mesh.faces()) {
+    const int r = root(f.idx());
+    id[f.idx()] = r == f.idx() ? count++ : id[r];
   }
   if (component_count)
     *component_count = count;

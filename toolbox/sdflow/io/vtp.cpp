@@ -416,7 +416,7 @@ PolygonSoup read_vtp(std::string_view bytes, const std::filesystem::path& file)
   long long begin = 0;
   soup.polygons.reserve(ends.size());
   for (std::size_t c = 0; c < ends.size(); ++c) {
-    if (ends[c] - begin < 3 || ends[c] > static_cast<long long>(corners.size()))
+    if (ends[c] < begin + 3 || ends[c] > static_cast<long long>(corners.size())) // begin ≤ size: no overflow
       fail(file, offsets->line, fmt::format("polygon {} spans connectivity [{}, {}) of {} entries: a polygon needs 3 or "
                                             "more vertices within the array", c, begin, ends[c], corners.size()));
     soup.polygons.emplace_back(corners.begin() + begin, corners.begin() + ends[c]);

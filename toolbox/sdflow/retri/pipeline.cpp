@@ -76,9 +76,11 @@ double automatic_hole_bound(const Mesh& remeshed)
 //! reached). Returns the number of components merged away.
 int merge_intersecting_components(Mesh& mesh)
 {
-  std::vector<Mesh> parts = split_components(mesh);
-  if (parts.size() < 2)
+  int count = 0;
+  face_component_ids(mesh, &count);
+  if (count < 2)
     return 0;
+  std::vector<Mesh> parts = split_components(mesh);
   int merged = 0;
   bool changed = true;
   while (changed) {
