@@ -37,18 +37,18 @@ Reconstruction reconstruct_apart(const VertexVectors& points, const VertexVector
   for (int i = 0; i < n; ++i)
     if (group[static_cast<std::size_t>(i)] < 0)
       all.unused.push_back(i);
-  std::vector<Eigen::Vector3d> kept;
+  std::vector<Eigen::Vector3d> vertices;
   std::vector<std::array<int, 3>> triangles;
   for (const std::vector<int>& members : groups) {
-    VertexVectors x(static_cast<Eigen::Index>(members.size()), 3), n_x(x.rows(), 3);
+    VertexVectors group_points(static_cast<Eigen::Index>(members.size()), 3), group_normals(group_points.rows(), 3);
     for (std::size_t m = 0; m < members.size(); ++m) {
-      x.row(static_cast<Eigen::Index>(m)) = points.row(members[m]);
-      n_x.row(static_cast<Eigen::Index>(m)) = normals.row(members[m]);
+      group_points.row(static_cast<Eigen::Index>(m)) = points.row(members[m]);
+      group_normals.row(static_cast<Eigen::Index>(m)) = normals.row(members[m]);
     }
-    const Reconstruction piece = reconstruct_surface(x, n_x, options);
-    const auto offset = static_cast<int>(kept.size());
+    const Reconstruction piece = reconstruct_surface(group_points, group_normals, options);
+    const auto offset = static_cast<int>(vertices.size());
     for (const auto v : piece.mesh.vertices()) {
-      kept.push_back(to_eigen(piece.mesh.point(v)));
+      vertices.push_back(to_eigen(piece.mesh.point(v)));
       all.source.push_back(members[static_cast<std::size_t>(piece.source[static_cast<std::size_t>(v.idx())])]);
     }
     for (const auto f : piece.mesh.faces()) {
@@ -59,7 +59,7 @@ Reconstruction reconstruct_apart(const VertexVectors& points, const VertexVector
       all.unused.push_back(members[static_cast<std::size_t>(u)]);
     all.components += piece.components;
   }
-  all.mesh = make_mesh(point_rows(kept), triangle_rows(triangles));
+  all.mesh = make_mesh(point_rows(vertices), triangle_rows(triangles));
   return all;
 }
 
