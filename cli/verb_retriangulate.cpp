@@ -51,6 +51,7 @@ void report_json(const RetriangulateArguments& args, const BuiltMesh& input, con
                    {"intersecting_pairs", r.intersecting_pairs},
                    {"removed_faces", r.removed_faces},
                    {"rebuilt", r.rebuilt},
+                   {"rebuilt_apart", r.rebuilt_apart},
                    {"removed_points", r.removed_points},
                    {"unused_points", r.unused_points},
                    {"filled_holes", r.filled_holes},
@@ -77,8 +78,9 @@ void report_text(const RetriangulateArguments& args, const BuiltMesh& input, con
   if (r.rebuilt) {
     std::cout << fmt::format("  3. {} inconsistently oriented points dropped ({:.3f} s)\n", r.removed_points,
                              r.seconds.normals);
-    std::cout << fmt::format("  4. surface rebuilt from the points, {} unused ({:.3f} s)\n", r.unused_points,
-                             r.seconds.reconstruction);
+    std::cout << fmt::format("  4. surface rebuilt from the points{}, {} unused ({:.3f} s)\n",
+                             r.rebuilt_apart ? ", each piece apart (together they bridged a cut)" : "",
+                             r.unused_points, r.seconds.reconstruction);
     std::cout << fmt::format("  5. {} hole(s) filled ({:.3f} s)\n", r.filled_holes, r.seconds.holes);
   } else {
     std::cout << "  3-5. nothing intersects: the remeshed surface is kept\n";

@@ -130,6 +130,7 @@ void bind_retri(py::module_& m)
         info["intersecting_pairs"] = r.intersecting_pairs;
         info["removed_faces"] = r.removed_faces;
         info["rebuilt"] = r.rebuilt;
+        info["rebuilt_apart"] = r.rebuilt_apart;
         info["removed_points"] = r.removed_points;
         info["unused_points"] = r.unused_points;
         info["filled_holes"] = r.filled_holes;

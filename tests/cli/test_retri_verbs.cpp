@@ -116,6 +116,19 @@ TEST_F(RetriCommands, retriangulate_joins_overlapping_bodies_and_reports_each_st
   EXPECT_NE(text.output.find("0. 1 intersecting component(s) joined"), std::string::npos) << text.output;
 }
 
+TEST_F(RetriCommands, retriangulate_splits_a_neck_crossed_at_its_pinch_and_says_it_rebuilt_each_piece_apart)
+{
+  const std::string crossed = std::string(SDFLOW_SOURCE_DIR) + "/tests/data/dumbbell-crossed-at-its-pinch.ply";
+  const auto r =
+      analytic::run_sdflow("retriangulate " + crossed + " -o " + path("two.ply") + " --edge-length 0.5 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* key : {"\"rebuilt_apart\" : true", "\"components_before\" : 1", "\"components_after\" : 2"})
+    EXPECT_NE(r.output.find(key), std::string::npos) << key << " in " << r.output;
+  const auto text = analytic::run_sdflow("retriangulate " + crossed + " -o " + path("two.off") + " --edge-length 0.5");
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("each piece apart"), std::string::npos) << text.output;
+}
+
 TEST_F(RetriCommands, retriangulate_refuses_bad_input_and_options_without_writing)
 {
   write_mesh(analytic::icosphere(1), path("sphere.off"));

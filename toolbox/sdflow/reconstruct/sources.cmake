@@ -2,4 +2,5 @@
 target_sources(sdflow_toolbox PRIVATE
   sdflow/reconstruct/point_normals.cpp
   sdflow/reconstruct/advancing_front.cpp
-  sdflow/reconstruct/holes.cpp)
+  sdflow/reconstruct/holes.cpp
+  sdflow/reconstruct/reconstruct_apart.cpp)

@@ -9,6 +9,7 @@
 #include "sdflow/reconstruct/advancing_front.h"
 #include "sdflow/reconstruct/holes.h"
 #include "sdflow/reconstruct/point_normals.h"
+#include "sdflow/reconstruct/reconstruct_apart.h"
 #include "sdflow/remesh/remesh.h"
 #include "sdflow/retri/components.h"
 #include "sdflow/retri/remove_intersections.h"
@@ -339,36 +340,11 @@ Reconstruction reconstruct_by_piece(const OrientedPoints& oriented, const Retria
   std::map<int, std::vector<int>> pieces;
   for (int i = 0; i < n; ++i)
     pieces[find(i)].push_back(i);
-
-  Reconstruction all;
-  std::vector<Eigen::Vector3d> points;
-  std::vector<std::array<int, 3>> triangles;
-  for (const auto& [piece_root, members] : pieces) {
-    if (static_cast<int>(members.size()) < k) {
-      all.unused.insert(all.unused.end(), members.begin(), members.end());
-      continue;
-    }
-    VertexVectors x(static_cast<Eigen::Index>(members.size()), 3), normals(x.rows(), 3);
-    for (std::size_t m = 0; m < members.size(); ++m) {
-      x.row(static_cast<Eigen::Index>(m)) = oriented.points.row(members[m]);
-      normals.row(static_cast<Eigen::Index>(m)) = oriented.normals.row(members[m]);
-    }
-    const Reconstruction piece = reconstruct_surface(x, normals, options.reconstruction);
-    const auto offset = static_cast<int>(points.size());
-    for (const auto v : piece.mesh.vertices()) {
-      points.push_back(to_eigen(piece.mesh.point(v)));
-      all.source.push_back(members[static_cast<std::size_t>(piece.source[static_cast<std::size_t>(v.idx())])]);
-    }
-    for (const auto f : piece.mesh.faces()) {
-      const auto c = triangle_corners(piece.mesh, f).index;
-      triangles.push_back({offset + c[0], offset + c[1], offset + c[2]});
-    }
-    for (const int u : piece.unused)
-      all.unused.push_back(members[static_cast<std::size_t>(u)]);
-    all.components += piece.components;
-  }
-  all.mesh = make_mesh(point_rows(points), triangle_rows(triangles));
-  return all;
+  std::vector<std::vector<int>> groups;
+  for (auto& [piece_root, members] : pieces)
+    if (static_cast<int>(members.size()) >= k)
+      groups.push_back(std::move(members));
+  return reconstruct_apart(oriented.points, oriented.normals, groups, options.reconstruction);
 }
 
 //! One attempt on one patch: rebuild it and put it back, or throw (AttemptFailed or any stage's error).

@@ -6,10 +6,12 @@
 #include "sdflow/io/soup.h"
 #include "sdflow/io/validate.h"
 #include "sdflow/log.h"
+#include "sdflow/reconstruct/reconstruct_apart.h"
 #include "sdflow/retri/components.h"
 #include "sdflow/retri/remove_intersections.h"
 #include "sdflow/retri/surface_union.h"
 #include "sdflow/spatial/intersect.h"
+#include "sdflow/spatial/nearest_points.h"
 
 #include <fmt/format.h>
 
@@ -164,6 +166,56 @@ SizingField adapted_sizing(const Mesh& clean, const std::vector<FacePair>& cross
   return nearest_vertex_sizing(clean, std::move(target));
 }
 
+//! How far from the intersecting faces, in units of ℓ, a piece stage 2 left must reach not to be
+//! taken for surface between crossings (the local surgery's first patch radius).
+constexpr double kBetweenCrossingsReach = 3;
+
+//! The rows of `oriented` (points of removal.mesh, what stage 2 left of `remeshed`) grouped by the
+//! piece of removal.mesh (component through edges) they lie on, in piece order. Left out, as the
+//! local surgery leaves them out: pieces of fewer than `min_faces` triangles, which stage 6 would
+//! drop, and pieces with no vertex farther than `reach` from every vertex of a removed face,
+//! surface between crossings (the spindle between the two points where a neck's walls crossed its
+//! axis, the part of a torus's inner wall that crossed the axis); then groups of fewer than
+//! `min_points` points, too few to sample a surface at the normals' scale. A vertex where pieces
+//! meet at it alone goes with the piece of its first face. No group when fewer than two pieces have
+//! `min_faces` triangles: there is nothing to keep apart.
+std::vector<std::vector<int>> points_by_piece(const Mesh& remeshed, const RemovalResult& removal,
+                                              const OrientedPoints& oriented, double reach, int min_faces,
+                                              int min_points)
+{
+  const Mesh& remaining = removal.mesh;
+  int count = 0;
+  const std::vector<int> piece = face_component_ids(remaining, &count);
+  std::vector<int> faces(static_cast<std::size_t>(count), 0);
+  for (const int p : piece)
+    ++faces[static_cast<std::size_t>(p)];
+  if (std::count_if(faces.begin(), faces.end(), [min_faces](int n) { return n >= min_faces; }) < 2)
+    return {};
+  std::vector<char> reaches_out(static_cast<std::size_t>(count), removal.removed_faces.empty());
+  if (!removal.removed_faces.empty()) {
+    std::vector<Eigen::Vector3d> crossing;
+    for (const int f : removal.removed_faces)
+      for (const auto v : remeshed.fv_range(remeshed.face_handle(f)))
+        crossing.push_back(to_eigen(remeshed.point(v)));
+    const VertexVectors sites = point_rows(crossing), points = vertex_positions(remaining);
+    const std::vector<int> nearest = nearest_points(sites, points);
+    for (const auto f : remaining.faces())
+      for (const auto v : remaining.fv_range(f))
+        if ((points.row(v.idx()) - sites.row(nearest[static_cast<std::size_t>(v.idx())])).norm() > reach)
+          reaches_out[static_cast<std::size_t>(piece[static_cast<std::size_t>(f.idx())])] = 1;
+  }
+  std::vector<std::vector<int>> groups(static_cast<std::size_t>(count));
+  for (std::size_t row = 0; row < oriented.source.size(); ++row) {
+    const auto v = remaining.vertex_handle(oriented.source[row]);
+    const auto p = static_cast<std::size_t>(piece[static_cast<std::size_t>(remaining.vf_range(v).begin()->idx())]);
+    if (faces[p] >= min_faces && reaches_out[p])
+      groups[p].push_back(static_cast<int>(row));
+  }
+  std::erase_if(groups,
+                [min_points](const std::vector<int>& group) { return static_cast<int>(group.size()) < min_points; });
+  return groups;
+}
+
 //! The pipeline with the given options, once.
 RetriangulationResult retriangulate_once(const Mesh& input, const RetriangulationOptions& options)
 {
@@ -217,6 +269,17 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
 
     start = Clock::now();
     Reconstruction rebuilt = reconstruct_surface(oriented.points, oriented.normals, options.reconstruction);
+    // Stage 2 cut the surface where it crossed itself. A rebuild that joins two pieces it left
+    // apart bridged a cut: the two ends of a neck pinched through its axis, less than ℓ apart,
+    // whose rims' normals admit a tube between them. Then each piece is rebuilt on its own.
+    const std::vector<std::vector<int>> removal_pieces =
+        points_by_piece(mesh, removal, oriented, kBetweenCrossingsReach * r.edge_length, options.min_component_faces,
+                        options.normals.neighbours);
+    if (removal_pieces.size() > 1 &&
+        joins_groups(rebuilt, removal_pieces, static_cast<int>(oriented.points.rows()))) {
+      rebuilt = reconstruct_apart(oriented.points, oriented.normals, removal_pieces, options.reconstruction);
+      r.rebuilt_apart = true;
+    }
     r.unused_points = static_cast<int>(rebuilt.unused.size());
     r.seconds.reconstruction = seconds_since(start);
     // Debris first, so that no hole of a stray piece is filled.
@@ -262,8 +325,9 @@ std::string retriangulation_summary(const RetriangulationResult& r)
   if (r.merged_components > 0)
     s += fmt::format("; {} intersecting components joined", r.merged_components);
   if (r.rebuilt)
-    s += fmt::format("; {} intersecting pairs, {} faces removed, {} points dropped, rebuilt, {} holes filled",
-                     r.intersecting_pairs, r.removed_faces, r.removed_points, r.filled_holes);
+    s += fmt::format("; {} intersecting pairs, {} faces removed, {} points dropped, rebuilt{}, {} holes filled",
+                     r.intersecting_pairs, r.removed_faces, r.removed_points,
+                     r.rebuilt_apart ? " (each piece apart: together they bridged a cut)" : "", r.filled_holes);
   if (r.patch_faces > 0)
     s += fmt::format(" (locally: a patch of {} faces)", r.patch_faces);
   if (r.uniform_fallback)

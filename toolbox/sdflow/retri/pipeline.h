@@ -7,6 +7,8 @@
 //! 2. the self-intersecting faces are removed, then the vertices left without a face (remove_intersections.h);
 //! 3. jet normals oriented by a minimum spanning tree; inconsistently oriented points are dropped (reconstruct/point_normals.h);
 //! 4. the surface is rebuilt from the oriented points by advancing front (reconstruct/advancing_front.h);
+//!    when that joins two pieces stage 2 left apart (a bridge across the cut at a pinch), each piece
+//!    is rebuilt on its own (reconstruct/reconstruct_apart.h);
 //! 5. holes shorter than a bound are filled (reconstruct/holes.h);
 //! 6. debris is dropped: components with fewer triangles than a bound, and closed components that
 //!    enclose almost no volume (a collapsed double sheet), both before and after stage 5 (components.h).
@@ -65,6 +67,8 @@ struct RetriangulationResult {
   int intersecting_pairs = 0;   //!< stage 2
   int removed_faces = 0;        //!< stage 2
   bool rebuilt = false;         //!< stages 3–5 ran
+  //! Stage 4 rebuilt each piece stage 2 left apart: rebuilt together, two were joined across a cut.
+  bool rebuilt_apart = false;
   int removed_points = 0;       //!< stage 3: inconsistently oriented (local surgery: or crossed over)
   int unused_points = 0;        //!< stage 4: points no triangle uses
   int filled_holes = 0;         //!< stage 5
