@@ -7,22 +7,27 @@
 #   scripts/fuzz.sh --seconds 600    longer runs (README: "Fuzzing")
 #   scripts/fuzz.sh --only ply       one harness (fuzz_read_ply); --jobs N builds with N jobs
 #   scripts/fuzz.sh --no-build       run what build/fuzz already holds
+#   scripts/fuzz.sh --seed N         libFuzzer's random seed (default: a new one each run); CI fixes
+#                                    it, so that a clean checkout fuzzes the same inputs each time
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=10
 only=""
 jobs=$(nproc)
 build=1
+seed=0
 while (($#)); do
   case "$1" in
     --seconds) seconds=$2; shift 2 ;;
     --only) only=$2; shift 2 ;;
     --jobs) jobs=$2; shift 2 ;;
     --no-build) build=0; shift ;;
+    --seed) seed=$2; shift 2 ;;
     *) echo "fuzz.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
 
+[[ $seed =~ ^[0-9]+$ ]] || { echo "fuzz.sh: --seed takes a non-negative integer, got '$seed'" >&2; exit 2; }
 dir=build/fuzz
 harnesses=(read_off read_obj read_ply read_stl read_vtp validate repair scenario schedule checkpoint)
 if [[ -n $only ]]; then harnesses=("$only"); fi
@@ -43,7 +48,7 @@ for h in "${harnesses[@]}"; do
   mkdir -p "$work" "$findings"
   cp -n "$seeds"/* "$work"/ 2>/dev/null || true
   log=$dir/fuzz_$h.log
-  if "$dir/fuzz/fuzz_$h" -max_total_time="$seconds" -max_len=4096 -rss_limit_mb=2048 -timeout=10 \
+  if "$dir/fuzz/fuzz_$h" -seed="$seed" -max_total_time="$seconds" -max_len=4096 -rss_limit_mb=2048 -timeout=10 \
        -artifact_prefix="$findings/" -print_final_stats=1 "$work" > "$log" 2>&1; then
     runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo '?')
     echo "fuzz.sh: fuzz_$h: $runs executions in ${seconds} s, no finding"

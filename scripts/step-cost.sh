@@ -2,8 +2,9 @@
 # What re-triangulation adds to the steps of a run (issue 17's stage-1 target): from the run's
 # timings.csv, the mean wall and CPU time per step over steps FIRST..LAST, against the median of
 # those steps of the same stretch that did not re-triangulate (the plain steps on the same mesh),
-# and their ratio. A step re-triangulated when any pipeline stage or the volume restoration took
-# time.
+# and their ratio; then that ratio for the plain steps alone (what re-triangulating at no extra
+# cost would give) and where a re-triangulating step's time goes. A step re-triangulated when any
+# pipeline stage or the volume restoration took time.
 #   scripts/step-cost.sh RUN_DIR [FIRST [LAST]]     e.g. scripts/step-cost.sh runs/spheres_on_plane 1 400
 set -euo pipefail
 if [[ $# -lt 1 || $1 == -h || $1 == --help ]]; then
@@ -26,5 +27,13 @@ median = lambda key, rs: statistics.median(float(r[key]) for r in rs)
 print(f"steps {first}..{last}: {len(rows)} steps, {len(rows) - len(plain)} re-triangulated")
 for key, label in (("total", "wall"), ("cpu", "CPU")):
     m, p = mean(key, rows), median(key, plain)
-    print(f"{label}: mean {m:.3g} s a step; plain steps (median) {p:.3g} s; ratio {m / p:.2f}")
+    print(f"{label}: mean {m:.3g} s a step; plain steps (median) {p:.3g} s; ratio {m / p:.2f}; "
+          f"the plain steps' own mean over their median {mean(key, plain) / p:.2f} (the ratio if "
+          f"re-triangulating cost nothing more than a plain step)")
+retri = [r for r in rows if r not in plain]
+if retri:
+    columns = [c for c in rows[0] if c not in ("step", "total", "cpu")]
+    parts = sorted(((mean(c, retri), c) for c in columns), reverse=True)
+    print(f"a re-triangulating step: {mean('cpu', retri):.3g} s CPU, {mean('total', retri):.3g} s wall: "
+          + ", ".join(f"{c} {t:.3f}" for t, c in parts if t >= 0.0005) + " (wall, mean)")
 EOF
