@@ -483,9 +483,10 @@ std::vector<double> signed_volumes(const std::vector<Eigen::Vector3d>& points, c
 //! the component is inside another when that one's winding number there (its triangles' solid
 //! angles, Van Oosterom & Strackee 1983, over 4π) is ±1 rather than 0. The point asked is the
 //! component's lexicographically largest vertex, so the answer does not depend on the order of
-//! vertices or faces. Where that point lies on the other surface (winding near ±1/2, as where
-//! repaired components touch), its extreme vertices in the other five directions (lexicographic in
-//! the coordinates' rotations, either sign) are asked in turn, and the first off that surface decides.
+//! vertices or faces. Where that point lies on the other surface (on one of its triangles, where
+//! the solid angle jumps by 4π, as where repaired components touch), its extreme vertices in the
+//! other five directions (lexicographic in the coordinates' rotations, either sign) are asked in
+//! turn, and the first off that surface decides.
 std::vector<int> nesting_depths(const std::vector<Eigen::Vector3d>& points, const std::vector<Triangle>& triangles,
                                 const Components& components)
 {
@@ -500,6 +501,8 @@ std::vector<int> nesting_depths(const std::vector<Eigen::Vector3d>& points, cons
     return std::array{sign * p[r], sign * p[(r + 1) % 3], sign * p[(r + 2) % 3]};
   };
   std::vector<std::array<int, probes>> probe(components.count);
+  for (auto& p : probe)
+    p.fill(-1);
   std::vector<std::vector<int>> triangles_of(components.count);
   std::vector<Eigen::AlignedBox3d> box(components.count);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
@@ -507,7 +510,7 @@ std::vector<int> nesting_depths(const std::vector<Eigen::Vector3d>& points, cons
     for (const int v : triangles[t].v) {
       box[c].extend(points[v]);
       for (int k = 0; k < probes; ++k)
-        if (triangles_of[c].empty() || key(probe[c][k], k) < key(v, k))
+        if (probe[c][k] < 0 || key(probe[c][k], k) < key(v, k))
           probe[c][k] = v;
     }
     triangles_of[c].push_back(static_cast<int>(t));
