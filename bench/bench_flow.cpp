@@ -175,27 +175,18 @@ void CholmodSolve(benchmark::State& state)
     benchmark::DoNotOptimize(Eigen::VectorXd(llt.solve(op.rhs)));
 }
 
-//! Eigen's supernodal LLᵀ with its CHOLMOD factor shown (a protected member in Eigen 3.4).
-struct ExposedLLT : Eigen::CholmodSupernodalLLT<sdflow::SparseMatrix, Eigen::Lower> {
-  using CholmodSupernodalLLT::CholmodSupernodalLLT;
-  cholmod_factor& factor() const { return *m_cholmodFactor; }
-};
+//! The step matrix's supernodal factor as FlowSolver makes it (CHOLMOD's own choice of ordering).
+sdflow::SupernodalCholesky factorised(const sdflow::SparseMatrix& a)
+{
+  sdflow::SupernodalCholesky cholesky;
+  cholesky.analyse(a);
+  if (!cholesky.factorise(a))
+    throw std::runtime_error("the step matrix is not positive definite");
+  return cholesky;
+}
 
 //! Bytes of the double factor's values, the part a triangular solve streams.
 double factor_value_bytes(const cholmod_factor& factor) { return static_cast<double>(factor.xsize) * sizeof(double); }
-
-//! A⁻¹ b through the double factor by cholmod_solve(CHOLMOD_A), as Eigen's solve calls it.
-Eigen::VectorXd cholmod_double_solve(ExposedLLT& llt, const Eigen::VectorXd& b)
-{
-  Eigen::VectorXd in = b;
-  cholmod_dense view = Eigen::viewAsCholmod(in);
-  cholmod_dense* x = cholmod_solve(CHOLMOD_A, &llt.factor(), &view, &llt.cholmod());
-  if (x == nullptr)
-    throw std::runtime_error("cholmod_solve failed");
-  Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(x->x), b.size());
-  cholmod_free_dense(&x, &llt.cholmod());
-  return out;
-}
 
 //! One application of the step matrix's factor (a forward and a backward triangular solve):
 //! variant 0 = CHOLMOD's double cholmod_solve, 1 = its single-precision copy (SinglePrecisionFactor).
@@ -206,11 +197,11 @@ void FactorApplication(benchmark::State& state)
   const int vertices = static_cast<int>(state.range(0));
   const bool single = state.range(1) == 1;
   const sdflow::SparseMatrix a = step_matrix(vertices);
-  ExposedLLT llt(a);
-  const sdflow::SinglePrecisionFactor single_factor(llt.factor());
+  const sdflow::SupernodalCholesky cholesky = factorised(a);
+  const sdflow::SinglePrecisionFactor single_factor(cholesky.factor());
   sdflow::set_factorisation_threads(1); // solves run on one thread, as FlowSolver runs them
   const auto op = sdflow::flow_operators(sphere(vertices));
-  const cholmod_factor& factor = llt.factor();
+  const cholmod_factor& factor = cholesky.factor();
   const double structure_bytes =
       static_cast<double>(3 * (factor.nsuper + 1) + factor.ssize + factor.n) * sizeof(int);
   const double value_bytes = single ? factor_value_bytes(factor) / 2 : factor_value_bytes(factor);
@@ -218,9 +209,9 @@ void FactorApplication(benchmark::State& state)
     if (single)
       benchmark::DoNotOptimize(single_factor.solve(op.rhs));
     else
-      benchmark::DoNotOptimize(cholmod_double_solve(llt, op.rhs));
+      benchmark::DoNotOptimize(cholesky.solve(op.rhs));
   }
-  const Eigen::VectorXd exact = cholmod_double_solve(llt, op.rhs);
+  const Eigen::VectorXd exact = cholesky.solve(op.rhs);
   state.counters["float_error"] = (single_factor.solve(op.rhs) - exact).norm() / exact.norm();
   state.counters["factor_MB"] =
       (single ? static_cast<double>(single_factor.bytes()) : value_bytes + structure_bytes) * 1e-6;
@@ -252,12 +243,12 @@ void StaleFactorCg(benchmark::State& state)
   const auto op = sdflow::flow_operators(mesh, {}, &cache);
   const sdflow::SparseMatrix a = sdflow::flow_matrix({op.laplacian, op.areas, op.held, tau * beta});
   const auto stale_op = sdflow::flow_operators(sphere(vertices), {}, &cache);
-  ExposedLLT llt(sdflow::flow_matrix({stale_op.laplacian, stale_op.areas, stale_op.held,
-                                      (earlier_surface ? 1.0 : 1.1) * tau * beta}));
-  const sdflow::SinglePrecisionFactor single_factor(llt.factor());
+  const sdflow::SupernodalCholesky cholesky = factorised(sdflow::flow_matrix(
+      {stale_op.laplacian, stale_op.areas, stale_op.held, (earlier_surface ? 1.0 : 1.1) * tau * beta}));
+  const sdflow::SinglePrecisionFactor single_factor(cholesky.factor());
   sdflow::set_factorisation_threads(1);
   const auto precondition = [&](const Eigen::VectorXd& r) {
-    return single ? single_factor.solve(r) : cholmod_double_solve(llt, r);
+    return single ? single_factor.solve(r) : cholesky.solve(r);
   };
   const Eigen::VectorXd& b = op.rhs;
   int iterations = 0;
