@@ -2,6 +2,8 @@
 #include "sdflow/errors.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
+#include "sdflow/io/soup.h"
+#include "sdflow/io/validate.h"
 #include "sdflow/retri/pipeline.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/mesher.h"
@@ -44,6 +46,47 @@ TEST(Pipeline, clean_sphere_is_only_remeshed)
   EXPECT_GE(in_band, 0.9 * r.mesh.n_edges());
   EXPECT_NEAR(enclosed_volume(r.mesh), enclosed_volume(sphere), 0.01 * enclosed_volume(sphere));
   EXPECT_EQ(checks::self_intersecting_pairs(r.mesh), 0);
+}
+
+//! A remeshing's output is not sent through build_mesh when it is plainly valid; what comes out
+//! must still be a mesh that validation leaves as it is, vertex for vertex and corner for corner
+//! (no vertex dropped or renumbered, no face turned), here for a closed and an open surface.
+TEST(Pipeline, a_remeshed_surface_comes_out_as_validation_assembles_it)
+{
+  const Mesh sphere = analytic::icosphere(3);
+  Mesh cap = sphere;
+  for (const auto f : cap.faces())
+    if (cap.calc_face_centroid(f)[2] > 0.5)
+      cap.delete_face(f, true);
+  cap.garbage_collection();
+  for (const Mesh& input : {sphere, cap}) {
+    const RetriangulationResult r = retriangulate(input, {.edge_length = 0.15});
+    ASSERT_FALSE(r.rebuilt);
+    PolygonSoup soup;
+    for (const auto v : r.mesh.vertices())
+      soup.points.push_back(to_eigen(r.mesh.point(v)));
+    for (const auto f : r.mesh.faces()) {
+      std::vector<long long> polygon;
+      for (const auto v : r.mesh.fv_range(f))
+        polygon.push_back(v.idx());
+      soup.polygons.push_back(std::move(polygon));
+    }
+    const Mesh assembled = build_mesh(soup, "remeshed").mesh;
+    EXPECT_EQ(vertex_positions(r.mesh), vertex_positions(assembled));
+    EXPECT_EQ(face_indices(r.mesh), face_indices(assembled));
+  }
+}
+
+TEST(Pipeline, an_inside_out_sphere_is_remeshed_and_turned_outward)
+{
+  const Mesh outward = analytic::icosphere(3);
+  FaceIndices flipped = face_indices(outward);
+  flipped.col(1).swap(flipped.col(2));
+  const Mesh inside_out = make_mesh(vertex_positions(outward), flipped);
+  ASSERT_LT(enclosed_volume(inside_out), 0);
+  const RetriangulationResult r = retriangulate(inside_out, {.edge_length = 0.15});
+  EXPECT_FALSE(r.rebuilt);
+  EXPECT_NEAR(enclosed_volume(r.mesh), enclosed_volume(outward), 0.02 * enclosed_volume(outward));
 }
 
 TEST(Pipeline, default_edge_length_is_the_input_mean)

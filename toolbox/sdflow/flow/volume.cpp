@@ -123,22 +123,29 @@ VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after)
       i = parent[i] = parent[parent[i]];
     return i;
   };
-  const ClosestPointGrid grid(before);
-  std::vector<std::vector<int>> votes(new_count, std::vector<int>(old_count, 0));
-  std::vector<int> vertex_count(new_count, 0);
-  for (auto v : after.vertices()) {
-    const int k = vertex_component[v.idx()];
-    if (k < 0)
-      continue;
-    const int face = grid.closest_point(to_eigen(after.point(v))).face;
-    if (face >= 0)
-      ++votes[k][old_component[face]];
-    ++vertex_count[k];
+  if (old_count == 1) {
+    // Every vertex's closest face is on the one old component, so every new component joins it:
+    // the vote below would say so after a closest-point query per vertex.
+    for (int k = 0; k < new_count; ++k)
+      parent[find(old_count + k)] = find(0);
+  } else {
+    const ClosestPointGrid grid(before);
+    std::vector<std::vector<int>> votes(new_count, std::vector<int>(old_count, 0));
+    std::vector<int> vertex_count(new_count, 0);
+    for (auto v : after.vertices()) {
+      const int k = vertex_component[v.idx()];
+      if (k < 0)
+        continue;
+      const int face = grid.closest_point(to_eigen(after.point(v))).face;
+      if (face >= 0)
+        ++votes[k][old_component[face]];
+      ++vertex_count[k];
+    }
+    for (int k = 0; k < new_count; ++k)
+      for (int j = 0; j < old_count; ++j)
+        if (votes[k][j] > 0 && 10 * votes[k][j] >= vertex_count[k])
+          parent[find(old_count + k)] = find(j);
   }
-  for (int k = 0; k < new_count; ++k)
-    for (int j = 0; j < old_count; ++j)
-      if (votes[k][j] > 0 && 10 * votes[k][j] >= vertex_count[k])
-        parent[find(old_count + k)] = find(j);
 
   struct Group {
     double old_volume = 0, new_volume = 0, new_area = 0;

@@ -110,6 +110,38 @@ int merge_intersecting_components(Mesh& mesh)
 
 //! The mesh rebuilt through validation: closed components oriented outward, degenerate faces and
 //! non-manifold configurations reported as InvalidMesh.
+Mesh validated(const Mesh& mesh);
+
+//! validated(mesh) for the output of a remeshing alone (no rebuild from points), which is
+//! manifold and keeps its input's orientation by construction: when it is one component, closed
+//! with a positive volume or open, every vertex on a face and no triangle degenerate, the mesh
+//! build_mesh would assemble from it (the same vertices and corners), without its soup and its
+//! checks (0.08 s of the 1.6 s of a re-triangulating step of the spheres scene, 94k vertices). In
+//! any other case, validated(mesh), which reports what is wrong.
+Mesh validated_remeshing(const Mesh& mesh)
+{
+  int count = 0;
+  face_component_ids(mesh, &count);
+  const bool one_body = count == 1 && (component_topology(mesh).front().closed() ? enclosed_volume(mesh) > 0 : true);
+  const bool every_vertex_used = std::all_of(mesh.vertices_begin(), mesh.vertices_end(),
+                                             [&](Mesh::VertexHandle v) { return !mesh.is_isolated(v); });
+  if (!one_body || !every_vertex_used)
+    return validated(mesh);
+  try {
+    check_geometry(mesh, "re-triangulated surface");
+  } catch (const InvalidMesh&) {
+    return validated(mesh);
+  }
+  // Corners in the order build_mesh takes them (the face's vertex circulator).
+  FaceIndices corners(static_cast<Eigen::Index>(mesh.n_faces()), 3);
+  for (const auto f : mesh.faces()) {
+    int k = 0;
+    for (const auto v : mesh.fv_range(f))
+      corners(f.idx(), k++) = v.idx();
+  }
+  return make_mesh(vertex_positions(mesh), corners);
+}
+
 Mesh validated(const Mesh& mesh)
 {
   PolygonSoup soup;
@@ -307,7 +339,7 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
     throw InvalidMesh(fmt::format("re-triangulation: nothing is left: every component has fewer than {} triangles "
                                   "or encloses almost no volume",
                                   options.min_component_faces));
-  r.mesh = validated(selection.mesh);
+  r.mesh = r.rebuilt ? validated(selection.mesh) : validated_remeshing(selection.mesh);
   face_component_ids(r.mesh, &count);
   r.components_after = count;
   r.open_holes = static_cast<int>(boundary_loop_lengths(r.mesh).size());
