@@ -7,6 +7,7 @@
 #include "sdflow/retri/pipeline.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/mesher.h"
+#include "sdflow/spatial/intersect.h"
 #include "support/analytic_meshes.h"
 #include "support/mesh_checks.h"
 #include "support/test_meshes.h"
@@ -193,6 +194,29 @@ TEST(Pipeline, torus_whose_hole_closed_through_itself_becomes_a_sphere)
   EXPECT_EQ(closed_genera(r.mesh), std::vector<int>{0});
   EXPECT_EQ(checks::self_intersecting_pairs(r.mesh), 0);
   EXPECT_TRUE(checks::is_two_manifold(r.mesh));
+}
+
+//! Crossings handed in by a caller that found them (the run's look) give the result the pipeline
+//! gives when it looks itself, on a clean sphere and on a torus whose hole closed through itself;
+//! a surface with deleted faces is refused with them (their indices would no longer match).
+TEST(Pipeline, crossings_given_by_the_caller_change_nothing)
+{
+  const Mesh crossed = test::mapped(analytic::conformal_torus(24, 6, 3), [](const Eigen::Vector3d& p) {
+    const double rho = std::hypot(p.x(), p.y());
+    const double scale = (rho - 3.4) / rho;
+    return Eigen::Vector3d(p.x() * scale, p.y() * scale, p.z());
+  });
+  for (const Mesh& input : {analytic::icosphere(3), crossed}) {
+    const RetriangulationOptions options{.remesh_iterations = 1};
+    const RetriangulationResult looked = retriangulate(input, options);
+    const RetriangulationResult given = retriangulate(input, options, self_intersections(input));
+    EXPECT_EQ(vertex_positions(given.mesh), vertex_positions(looked.mesh));
+    EXPECT_EQ(face_indices(given.mesh), face_indices(looked.mesh));
+  }
+  ASSERT_FALSE(self_intersections(crossed).empty());
+  Mesh holed = crossed;
+  holed.delete_face(Mesh::FaceHandle(0), false);
+  EXPECT_THROW(retriangulate(holed, {}, self_intersections(crossed)), InvalidMesh);
 }
 
 TEST(Pipeline, small_components_are_dropped)

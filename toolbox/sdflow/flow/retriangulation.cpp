@@ -54,6 +54,7 @@ struct Verdict {
   std::string reason;
   bool local = false;        //!< only degraded elements call for it, and the schedule allows a local remeshing
   bool intersecting = false; //!< the surface intersects itself (the watch holds the pairs)
+  bool watched = false;      //!< the watch counted this surface's pairs (none when not intersecting)
   DegradedElements degraded; //!< found when nothing intersects
 };
 
@@ -82,6 +83,7 @@ Verdict look_at_surface(const Mesh& mesh, const RetriangulationSchedule& s, long
                            degraded_failure = std::current_exception();
                          }
                        });
+  v.watched = true;
   if (pairs > 0) {
     v.reason = fmt::format("{} intersecting face pairs", pairs);
     v.intersecting = true;
@@ -260,7 +262,11 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
       if (!surgery)
         fallback = fmt::format("the local surgery declined or failed ({}), so the whole pipeline ran; ", attempt.failure);
     }
-    RetriangulationResult r = surgery ? std::move(*surgery) : retriangulate(mesh, schedule.pipeline);
+    // The watch's pairs are this surface's unless a local remeshing gave it another one to count.
+    const bool pairs_known = verdict.watched && !verdict.local;
+    RetriangulationResult r = surgery       ? std::move(*surgery)
+                              : pairs_known ? retriangulate(mesh, schedule.pipeline, watch->pairs())
+                                            : retriangulate(mesh, schedule.pipeline);
     const RetriangulationResult::Seconds local = report.pipeline_seconds; // of a local remeshing given up
     report.pipeline_seconds = r.seconds;
     report.pipeline_seconds.remesh += local.remesh;

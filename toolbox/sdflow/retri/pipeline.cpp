@@ -248,8 +248,10 @@ std::vector<std::vector<int>> points_by_piece(const Mesh& remeshed, const Remova
   return groups;
 }
 
-//! The pipeline with the given options, once.
-RetriangulationResult retriangulate_once(const Mesh& input, const RetriangulationOptions& options)
+//! The pipeline with the given options, once; `known_crossings`, when given, are the input's
+//! self-intersections.
+RetriangulationResult retriangulate_once(const Mesh& input, const RetriangulationOptions& options,
+                                         const std::vector<FacePair>* known_crossings)
 {
   if (input.n_faces() == 0)
     throw InvalidMesh("re-triangulation: the surface has no triangles");
@@ -274,8 +276,11 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
     remesh.iterations = options.remesh_iterations;
     mesh.garbage_collection();
     // Where sheets cross, their normals describe no smooth surface: project onto the flat triangles.
-    const std::vector<FacePair> crossings =
-        options.curved_projection || options.edges_per_radius > 0 ? self_intersections(mesh) : std::vector<FacePair>{};
+    // Stage 0 left the input as it was unless it joined components.
+    const bool looked_for = options.curved_projection || options.edges_per_radius > 0;
+    const std::vector<FacePair> crossings = !looked_for ? std::vector<FacePair>{}
+                                            : known_crossings && r.merged_components == 0 ? *known_crossings
+                                                                                           : self_intersections(mesh);
     remesh.curved_projection = options.curved_projection && crossings.empty();
     if (options.edges_per_radius > 0)
       remesh.sizing = adapted_sizing(mesh, crossings, options, r.edge_length);
@@ -370,24 +375,44 @@ std::string retriangulation_summary(const RetriangulationResult& r)
   return s;
 }
 
-RetriangulationResult retriangulate(const Mesh& input, const RetriangulationOptions& options)
+namespace {
+
+RetriangulationResult retriangulate_with(const Mesh& input, const RetriangulationOptions& options,
+                                         const std::vector<FacePair>* known_crossings)
 {
   validate_retriangulation_options(options);
   if (options.edges_per_radius == 0)
-    return retriangulate_once(input, options);
+    return retriangulate_once(input, options, known_crossings);
   // Adapted edge lengths help a pinch or a seal through; where they leave the rebuild with
   // sheets that still cross, or with nothing, the uniform ℓ is tried instead.
   RetriangulationOptions uniform = options;
   uniform.edges_per_radius = 0;
   try {
-    RetriangulationResult r = retriangulate_once(input, options);
+    RetriangulationResult r = retriangulate_once(input, options, known_crossings);
     if (!r.rebuilt || self_intersections(r.mesh).empty())
       return r;
   } catch (const InvalidMesh&) {
   }
-  RetriangulationResult r = retriangulate_once(input, uniform);
+  RetriangulationResult r = retriangulate_once(input, uniform, known_crossings);
   r.uniform_fallback = true;
   return r;
+}
+
+} // namespace
+
+RetriangulationResult retriangulate(const Mesh& input, const RetriangulationOptions& options)
+{
+  return retriangulate_with(input, options, nullptr);
+}
+
+RetriangulationResult retriangulate(const Mesh& input, const RetriangulationOptions& options,
+                                    const std::vector<FacePair>& crossings)
+{
+  const auto faces = input.all_faces();
+  if (std::any_of(faces.begin(), faces.end(), [&](Mesh::FaceHandle f) { return input.status(f).deleted(); }))
+    throw InvalidMesh("re-triangulation: the surface given with its crossings has deleted faces; garbage-collect it "
+                      "and find its crossings again");
+  return retriangulate_with(input, options, &crossings);
 }
 
 } // namespace sdflow

@@ -20,8 +20,10 @@
 #include "sdflow/reconstruct/holes.h"
 #include "sdflow/reconstruct/point_normals.h"
 #include "sdflow/remesh/remesh.h"
+#include "sdflow/spatial/intersect.h"
 
 #include <string>
+#include <vector>
 
 namespace sdflow {
 
@@ -96,5 +98,11 @@ std::string retriangulation_summary(const RetriangulationResult& result);
 //! Re-triangulate `mesh` by the pipeline above. Throws InvalidParameter for options out of range,
 //! InvalidMesh when nothing is left (every component dropped) or the result is not a valid mesh.
 RetriangulationResult retriangulate(const Mesh& mesh, const RetriangulationOptions& options = {});
+
+//! The same, for a caller that has found the self-intersections of `mesh` already (`crossings`,
+//! as self_intersections(mesh) gives them; `mesh` without deleted faces): stage 1 does not look
+//! for them again. The result is the one retriangulate(mesh, options) gives.
+RetriangulationResult retriangulate(const Mesh& mesh, const RetriangulationOptions& options,
+                                    const std::vector<FacePair>& crossings);
 
 } // namespace sdflow
