@@ -9,6 +9,7 @@
 #include "sdflow/stopwatch.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <cmath>
@@ -309,14 +310,24 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
                                              std::vector<std::string>& events, StepTimes& times)
 {
   const int components = topology_.count, genus = topology_.genus;
-  mesh_ = canonical(mesh_);
-  renew_connectivity();
+  // The old vertex nearest each new one, for the carried orderings, on the other core while the
+  // new connectivity and operators are made (it reads only positions, which these keep).
+  const bool carried = solver_.carries_ordering() || half_solver_.carries_ordering();
+  const VertexVectors after = carried ? vertex_positions(mesh_) : VertexVectors{};
+  std::vector<int> nearest_old;
+  tbb::parallel_invoke(
+    [&] {
+      mesh_ = canonical(mesh_);
+      renew_connectivity();
+      renew_operators(times);
+    },
+    [&] {
+      if (carried)
+        nearest_old = nearest_points(before, after);
+    });
   topology_changed_ =
       topology_changed_ || (p_.stop_at_topology_change && (topology_.count != components || topology_.genus != genus));
-  renew_operators(times);
   const Stopwatch watch;
-  const bool carried = solver_.carries_ordering() || half_solver_.carries_ordering();
-  const std::vector<int> nearest_old = carried ? nearest_points(before, vertex_positions(mesh_)) : std::vector<int>{};
   solver_.carry_ordering(nearest_old, op_.laplacian);
   half_solver_.carry_ordering(nearest_old, op_.laplacian);
   times.factorisation += watch.seconds();

@@ -15,6 +15,7 @@
 #include <nanoflann.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -683,22 +684,39 @@ RemeshResult isotropic_remesh(const Mesh& input, const RemeshOptions& options)
   // Default targets: the input surface itself (exact closest points, closest_point_grid.h) and
   // its boundary polylines (closest points around the nearest boundary vertices). Both may be
   // called from several threads; a caller's projections are called from one at a time.
+  // The grid, the normals and the boundary's stars read the same mesh: they are built side by side.
   const bool own_projections = !options.project && !options.project_boundary;
+  const Mesh& surface = result.mesh;
+  const bool has_boundary = std::any_of(surface.halfedges_begin(), surface.halfedges_end(),
+                                        [&](auto h) { return surface.is_boundary(h); });
+  std::shared_ptr<const ClosestPointGrid> grid;
+  VertexVectors normals;
+  std::shared_ptr<const StarProjection> boundary_reference;
+  tbb::parallel_invoke(
+    [&] {
+      if (!options.project)
+        grid = std::make_shared<const ClosestPointGrid>(surface);
+    },
+    [&] {
+      if (!options.project && options.curved_projection)
+        normals = vertex_normals(surface);
+    },
+    [&] {
+      if (!options.project_boundary && has_boundary) // a closed surface never asks for one
+        boundary_reference = std::make_shared<const StarProjection>(surface);
+    });
   PointProjection project = options.project;
   if (!project) {
-    auto grid = std::make_shared<const ClosestPointGrid>(result.mesh);
     if (options.curved_projection)
-      project = curved_projection(result.mesh, vertex_normals(result.mesh), std::move(grid));
+      project = curved_projection(surface, std::move(normals), std::move(grid));
     else
       project = [grid](const Eigen::Vector3d& p) { return grid->closest_point(p).point; };
   }
   PointProjection project_boundary = options.project_boundary;
-  const bool has_boundary = std::any_of(result.mesh.halfedges_begin(), result.mesh.halfedges_end(),
-                                        [&](auto h) { return result.mesh.is_boundary(h); });
-  if (!project_boundary && has_boundary) { // a closed surface never asks for one
-    auto reference = std::make_shared<const StarProjection>(result.mesh);
-    project_boundary = [reference](const Eigen::Vector3d& p) { return reference->closest_boundary_point(p); };
-  }
+  if (boundary_reference)
+    project_boundary = [boundary_reference](const Eigen::Vector3d& p) {
+      return boundary_reference->closest_boundary_point(p);
+    };
 
   Remesher remesher(result.mesh, options, ell, std::move(project), std::move(project_boundary), own_projections);
   result.statistics = remesher.run();

@@ -527,12 +527,16 @@ struct SelfIntersectionTracker::State {
     bvh.refit(Eigen::Map<const VertexVectors>(points.data(), bvh.vertex_count(), 3));
     reference = points;
     candidates.clear();
-    bvh.for_each_overlapping_pair(
-      [&](int s, int t) {
-        if (!tester.adjacent(s, t))
-          candidates.push_back({std::min(s, t), std::max(s, t)});
-      },
-      margin);
+    // Seeds split the traversal into independent parts, as in tree_self_intersections; the sort
+    // makes the list independent of how they were shared out.
+    const auto seeds = bvh.traversal_seeds(execution == Execution::parallel ? 256 : 1, margin);
+    collect_blocks(execution, seeds.size(), [&](std::size_t begin, std::size_t end, std::vector<FacePair>& found) {
+      for (std::size_t i = begin; i < end; ++i)
+        bvh.for_each_overlapping_pair(seeds[i], [&](int s, int t) {
+          if (!tester.adjacent(s, t))
+            found.push_back({std::min(s, t), std::max(s, t)});
+        }, margin);
+    }, candidates);
     std::sort(candidates.begin(), candidates.end());
     ++collections;
   }
