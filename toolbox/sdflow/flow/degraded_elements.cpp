@@ -3,6 +3,10 @@
 #include "sdflow/geometry/quality.h"
 #include "sdflow/remesh/remesh.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -13,11 +17,24 @@ DegradedElements degraded_elements(const Mesh& mesh, const RetriangulationSchedu
   const RetriangulationOptions& pipeline = s.pipeline;
   const double ell = pipeline.edge_length;
   DegradedElements d;
-  // The targets the pipeline's remesher would aim at: a closing neck asks for shorter edges.
-  d.targets = pipeline.edges_per_radius > 0
-                  ? radius_targets(mesh, {.edges_per_radius = pipeline.edges_per_radius,
-                                          .min_length = pipeline.min_edge_fraction * ell, .max_length = ell})
-                  : std::vector<double>(mesh.n_vertices(), ell);
+  // The targets the pipeline's remesher would aim at (a closing neck asks for shorter edges), and
+  // beside them, on the other core, every triangle's smallest angle: the run looks after each step.
+  std::vector<double> smallest_angle(mesh.n_faces(), 0.0);
+  tbb::parallel_invoke(
+    [&] {
+      d.targets = pipeline.edges_per_radius > 0
+                      ? radius_targets(mesh, {.edges_per_radius = pipeline.edges_per_radius,
+                                              .min_length = pipeline.min_edge_fraction * ell, .max_length = ell})
+                      : std::vector<double>(mesh.n_vertices(), ell);
+    },
+    [&] {
+      tbb::parallel_for(tbb::blocked_range<int>(0, static_cast<int>(mesh.n_faces()), 4096),
+                        [&](const tbb::blocked_range<int>& r) {
+                          for (int i = r.begin(); i < r.end(); ++i)
+                            if (const Mesh::FaceHandle f(i); !mesh.status(f).deleted())
+                              smallest_angle[i] = smallest_angle_deg(mesh, f);
+                        });
+    });
   // 2: degraded, 1: worn (halfway to degraded), 0: neither.
   std::vector<char> state(mesh.n_faces(), 0);
   const auto mark = [&state](Mesh::FaceHandle f, char level) {
@@ -36,7 +53,7 @@ DegradedElements degraded_elements(const Mesh& mesh, const RetriangulationSchedu
     mark(e.h1().face(), degraded ? 2 : 1);
   }
   for (const auto f : mesh.faces()) {
-    const double angle = smallest_angle_deg(mesh, f);
+    const double angle = smallest_angle[f.idx()];
     if (angle < s.min_angle_deg)
       ++d.triangles;
     mark(f, angle < s.min_angle_deg ? 2 : angle < 2 * s.min_angle_deg ? 1 : 0);
