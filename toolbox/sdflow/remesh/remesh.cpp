@@ -15,8 +15,8 @@
 #include <nanoflann.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
-#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <array>
@@ -683,8 +683,8 @@ RemeshResult isotropic_remesh(const Mesh& input, const RemeshOptions& options)
 
   // Default targets: the input surface itself (exact closest points, closest_point_grid.h) and
   // its boundary polylines (closest points around the nearest boundary vertices). Both may be
-  // called from several threads; a caller's projections are called from one at a time.
-  // The grid, the normals and the boundary's stars read the same mesh: they are built side by side.
+  // called from several threads; a caller's projections are called from one at a time. The grid,
+  // the normals and the boundary's stars read the same mesh: they are built side by side.
   const bool own_projections = !options.project && !options.project_boundary;
   const Mesh& surface = result.mesh;
   const bool has_boundary = std::any_of(surface.halfedges_begin(), surface.halfedges_end(),
