@@ -3,6 +3,7 @@ target_sources(sdflow_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/test_carried_ordering.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_degraded_elements.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_exact_kinetics.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_look_ahead.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_parameter_schema.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_parameters.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_retriangulation.cpp

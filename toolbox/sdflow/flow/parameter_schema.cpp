@@ -295,6 +295,13 @@ std::vector<ParameterEntry> build_schema()
     bind<bool>(e, &RunParameters::conserve_volume);
   }
   {
+    auto& e = add(entry("look_ahead", "--look-ahead", ParameterType::boolean,
+                        "Take the next step's first trial on the second core while the surface is looked at for "
+                        "re-triangulation (the same results either way; off: one after the other)"));
+    e.resumable = true;
+    bind<bool>(e, &RunParameters::look_ahead);
+  }
+  {
     auto& e = add(entry("fixed_boundary", "--fixed-boundary", ParameterType::boolean,
                         "Hold boundary vertices in place (else they move with H = 0, the paper's §4.3)"));
     e.get = [](const RunParameters& p) -> ParameterValue { return p.scheme.boundary == BoundaryMotion::fixed; };

@@ -42,6 +42,10 @@ struct RunParameters {
   SchemeOptions scheme;
   SolverOptions solver;
   bool conserve_volume = false;
+  //! Take the next step's first trial on a second core while the re-triangulation hook looks at the
+  //! surface, dropping it when the look re-triangulates (surface_diffusion.h): the same results,
+  //! sooner. Off: one after the other.
+  bool look_ahead = true;
   long snapshot_every = 10;          //!< 0: snapshots of the first and last surface only
   long checkpoint_every = 10;        //!< ≥ 1
   Eigen::Vector3d reference_centre = Eigen::Vector3d::Zero();

@@ -247,6 +247,8 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     report.check_seconds = stopwatch.restart();
     if (verdict.reason.empty())
       return report;
+    if (context.changing)
+      context.changing();
     std::string fallback;
     if (verdict.local) {
       if (std::optional<Mesh> remeshed = remesh_degraded_region(mesh, verdict, schedule, *watch, report, fallback)) {

@@ -61,6 +61,9 @@ struct RetriangulationContext {
   long tolerated_degraded = 0;
   //! Re-triangulate now, whatever the schedule says: the step from this surface could not be taken.
   bool force = false;
+  //! If set, called once the hook has decided to change the surface, before it starts to (the flow
+  //! then stops the next step's trial it took ahead, surface_diffusion.h).
+  std::function<void()> changing;
 };
 
 //! What a re-triangulation hook did to the mesh (each flag becomes an event of the step's row).

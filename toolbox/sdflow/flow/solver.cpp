@@ -355,6 +355,8 @@ void FlowSolver::restore(const SolverState& state)
   impl_->analysed = impl_->factorised = false;
 }
 
+void FlowSolver::rewind(const SolverState& state) { impl_->state = state; }
+
 const SolverOptions& FlowSolver::options() const { return impl_->options; }
 
 } // namespace sdflow

@@ -124,6 +124,10 @@ public:
   void restore(const FlowSystem& anchor, const SolverState& state);
   //! The state of a solver that keeps no factorisation (a checkpoint just after a re-triangulation).
   void restore(const SolverState& state);
+  //! Counters back to `state`, an earlier state() of this solver whose analysis is still the
+  //! current one, the factor kept: the solves since then are forgotten (a step's trials run ahead
+  //! and dropped before a re-triangulation, which then drops the factor too).
+  void rewind(const SolverState& state);
 
   const SolverOptions& options() const;
 

@@ -1,6 +1,7 @@
 #include "sdflow/flow/surface_diffusion.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/flow/blas_threads.h"
 #include "sdflow/flow/volume.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
@@ -10,8 +11,10 @@
 
 #include <fmt/format.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -22,6 +25,9 @@ namespace {
 //! The mesh rebuilt from its arrays, so that a flow and its restoration from a state (which stores
 //! the arrays) traverse identical halfedge structures and round identically.
 Mesh canonical(const Mesh& mesh) { return make_mesh(vertex_positions(mesh), face_indices(mesh)); }
+
+//! Thrown between the trials of a step taken ahead once the look re-triangulates.
+struct TrialsCancelled {};
 
 std::string join_events(const std::vector<std::string>& events)
 {
@@ -97,21 +103,21 @@ StepRecord SurfaceDiffusion::step()
   const Stopwatch watch;
   const double cpu_start = process_cpu_seconds();
   const long next_step = step_ + 1;
-  const TimeStepState controller_before = controller_.state();
+  // The first trial: the one taken while the hook looked at the surface, else one now.
+  const bool taken_ahead = ahead_ && ahead_->first.step == next_step;
+  FirstTrial first = taken_ahead ? std::move(ahead_->first) : first_trial(next_step);
+  ahead_.reset();
+  for (FlowNote& n : first.notes)
+    publish(std::move(n));
+  const TimeStepState controller_before = first.controller_before;
   std::vector<std::string> events;
-  const auto& schedule = p_.time_step.schedule.entries();
   const bool table = p_.time_step.mode == TimeStepMode::schedule;
-  if (table && !controller_.adaptive() && controller_.table_step(next_step) == schedule.back().last_step + 1)
-    note(next_step, time_,
-         fmt::format("the τ schedule ends at step {}: the steps after it repeat its last τ = {}", next_step - 1,
-                     schedule.back().tau),
-         true);
 
-  int rejections = 0;
-  StepRecord record;
-  StepResult trial;
-  double tau = 0;
-  std::vector<double> volumes;
+  int rejections = first.rejections;
+  StepRecord record = std::move(first.record);
+  StepResult trial = std::move(first.trial);
+  double tau = first.tau;
+  std::vector<double> volumes = std::move(first.volumes);
   // A step that no τ makes acceptable (a triangle beside a closing neck that turns over
   // whatever the step) is retried once after a re-triangulation of the surface it starts from; a
   // table's step that still fails is then covered by adaptive steps (time_step.h).
@@ -121,16 +127,21 @@ StepRecord SurfaceDiffusion::step()
     controller_ = TimeStepController(p_.time_step, s);
   };
   bool fell_back = false;
-  for (bool forced = false;;) {
+  for (bool forced = false, taken = false;;) {
     try {
-      tau = trial_step(next_step, trial, record, rejections, volumes);
+      if (!std::exchange(taken, true)) {
+        if (first.failure)
+          std::rethrow_exception(first.failure);
+      } else {
+        tau = trial_step(next_step, trial, record, rejections, volumes);
+      }
       break;
     } catch (const SolverFailure& e) {
       if (retriangulate_ && !forced) {
         forced = true;
         note(next_step, time_, fmt::format("no acceptable step ({}): re-triangulating, then trying again", e.what()));
         const VertexVectors before = vertex_positions(mesh_);
-        const RetriangulationReport report = call_retriangulation(true, record.times);
+        const RetriangulationReport report = call_retriangulation(mesh_, true, record.times);
         if (report.changed()) {
           adopt_retriangulation(report, before, events, record.times);
           restart_controller();
@@ -179,11 +190,15 @@ StepRecord SurfaceDiffusion::step()
 
   if (retriangulate_) {
     const VertexVectors before = vertex_positions(mesh_);
-    const RetriangulationReport report = call_retriangulation(false, record.times);
-    if (report.changed())
-      adopt_retriangulation(report, before, events, record.times);
-    else
-      renew_operators(record.times);
+    if (can_look_ahead()) {
+      look_and_try_ahead(before, events, record.times);
+    } else {
+      const RetriangulationReport report = call_retriangulation(mesh_, false, record.times);
+      if (report.changed())
+        adopt_retriangulation(report, before, events, record.times);
+      else
+        renew_operators(record.times);
+    }
   } else {
     renew_operators(record.times);
   }
@@ -192,6 +207,7 @@ StepRecord SurfaceDiffusion::step()
   record.time = time_;
   record.tau = tau;
   record.rejections = rejections;
+  record.taken_ahead = taken_ahead;
   record.event = join_events(events);
   record.times.total = watch.seconds();
   record.times.cpu = process_cpu_seconds() - cpu_start;
@@ -223,18 +239,20 @@ FlowState SurfaceDiffusion::state() const
   s.triangles = triangles_;
   s.previous_w = previous_w_;
   s.earlier_w = earlier_w_;
-  s.time_step = controller_.state();
-  s.solver = solver_.state();
-  s.has_anchor = has_anchor_;
-  if (has_anchor_)
-    s.anchor_positions = anchor_positions_;
-  s.anchor_tau_beta = anchor_tau_beta_;
   s.tolerated_degraded = tolerated_degraded_;
-  s.half_solver = half_solver_.state();
-  s.has_half_anchor = has_half_anchor_;
-  if (has_half_anchor_)
-    s.half_anchor_positions = half_anchor_positions_;
-  s.half_anchor_tau_beta = half_anchor_tau_beta_;
+  // The next step's trial taken ahead is not part of it.
+  const TrialBookkeeping b = ahead_ ? ahead_->before : bookkeeping();
+  s.time_step = b.controller;
+  s.solver = b.solver;
+  s.has_anchor = b.has_anchor;
+  if (b.has_anchor)
+    s.anchor_positions = b.anchor_positions;
+  s.anchor_tau_beta = b.anchor_tau_beta;
+  s.half_solver = b.half_solver;
+  s.has_half_anchor = b.has_half_anchor;
+  if (b.has_half_anchor)
+    s.half_anchor_positions = b.half_anchor_positions;
+  s.half_anchor_tau_beta = b.half_anchor_tau_beta;
   return s;
 }
 
@@ -256,6 +274,7 @@ void SurfaceDiffusion::renew_connectivity()
 //! either, the guard that stops the flow at a self-intersection (intersection_guard.h).
 void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
 {
+  own_hook_ = !hook;
   if (hook) {
     retriangulate_ = std::move(hook);
     return;
@@ -279,10 +298,11 @@ void SurfaceDiffusion::restore_solver(FlowSolver& solver, const VertexVectors& p
 }
 
 //! The hook's failure stops the flow like an unstable step: the surface stays the last accepted one.
-RetriangulationReport SurfaceDiffusion::call_retriangulation(bool force, StepTimes& times)
+RetriangulationReport SurfaceDiffusion::call_retriangulation(Mesh& mesh, bool force, StepTimes& times,
+                                                             std::function<void()> changing)
 {
   try {
-    RetriangulationReport report = retriangulate_(mesh_, {step_, time_, tolerated_degraded_, force});
+    RetriangulationReport report = retriangulate_(mesh, {step_, time_, tolerated_degraded_, force, std::move(changing)});
     if (report.degraded_left >= 0)
       tolerated_degraded_ = report.degraded_left;
     times.retriangulation_check += report.check_seconds;
@@ -345,6 +365,120 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
   note(step_, time_, fmt::format("re-triangulated ({}): {}", join_events(these), report.detail));
 }
 
+//! Step `next_step`'s first trials, until the controller accepts one or gives up (then `failure`
+//! holds what it threw), with the note that the τ schedule has ended if it has; its notes held back.
+SurfaceDiffusion::FirstTrial SurfaceDiffusion::first_trial(long next_step)
+{
+  FirstTrial f;
+  f.step = next_step;
+  f.controller_before = controller_.state();
+  held_notes_ = &f.notes;
+  try {
+    const auto& schedule = p_.time_step.schedule.entries();
+    if (p_.time_step.mode == TimeStepMode::schedule && !controller_.adaptive() &&
+        controller_.table_step(next_step) == schedule.back().last_step + 1)
+      note(next_step, time_,
+           fmt::format("the τ schedule ends at step {}: the steps after it repeat its last τ = {}", next_step - 1,
+                       schedule.back().tau),
+           true);
+    f.tau = trial_step(next_step, f.trial, f.record, f.rejections, f.volumes);
+  } catch (...) {
+    f.failure = std::current_exception();
+  }
+  held_notes_ = nullptr;
+  return f;
+}
+
+SurfaceDiffusion::TrialBookkeeping SurfaceDiffusion::bookkeeping() const
+{
+  return {.controller = controller_.state(),
+          .solver = solver_.state(),
+          .half_solver = half_solver_.state(),
+          .has_anchor = has_anchor_,
+          .has_half_anchor = has_half_anchor_,
+          .anchor_positions = anchor_positions_,
+          .half_anchor_positions = half_anchor_positions_,
+          .anchor_tau_beta = anchor_tau_beta_,
+          .half_anchor_tau_beta = half_anchor_tau_beta_,
+          .rejected_trials = rejected_trials_,
+          .factorisations = factorisations_};
+}
+
+//! The bookkeeping back to `before`; the solvers keep their factors (the caller drops them).
+void SurfaceDiffusion::rewind(const TrialBookkeeping& before)
+{
+  controller_ = TimeStepController(p_.time_step, before.controller);
+  solver_.rewind(before.solver);
+  half_solver_.rewind(before.half_solver);
+  has_anchor_ = before.has_anchor;
+  has_half_anchor_ = before.has_half_anchor;
+  anchor_positions_ = before.anchor_positions;
+  half_anchor_positions_ = before.half_anchor_positions;
+  anchor_tau_beta_ = before.anchor_tau_beta;
+  half_anchor_tau_beta_ = before.half_anchor_tau_beta;
+  rejected_trials_ = before.rejected_trials;
+  factorisations_ = before.factorisations;
+}
+
+//! Whether the next step's first trial may run beside the look at the surface: with the flow's own
+//! hook, which changes the surface only by re-triangulating it (with remeshing on, every run of
+//! the pipeline reports a change), when the hook looks after this step, a next step is due, TBB
+//! has a second thread, and the factorisation would run on one (two would compete with the look).
+bool SurfaceDiffusion::can_look_ahead() const
+{
+  const RetriangulationSchedule& s = p_.retriangulation;
+  return p_.look_ahead && own_hook_ && s.pipeline.remesh_iterations > 0 && step_ % s.every == 0 && !finished() &&
+         tbb::this_task_arena::max_concurrency() > 1 &&
+         blas_threads_for(static_cast<long>(mesh_.n_vertices()), p_.solver.blas) == 1;
+}
+
+//! The hook's look at the surface (on a copy, the mesh being read by the trial) on one core while
+//! the next step's first trial runs on the other. A trial reads only what a look that leaves the
+//! surface alone leaves unchanged, so the one taken ahead is the one step() would take: it is kept
+//! for it. When the hook re-triangulates, the trial is dropped, its bookkeeping rewound, and the
+//! new surface adopted as without looking ahead.
+void SurfaceDiffusion::look_and_try_ahead(const VertexVectors& before, std::vector<std::string>& events,
+                                          StepTimes& times)
+{
+  renew_operators(times); // the trial's operators: those of the surface as it stands
+  TrialBookkeeping kept = bookkeeping();
+  Mesh looked;
+  RetriangulationReport report;
+  std::exception_ptr hook_failure;
+  FirstTrial first;
+  std::atomic<bool> dropped = false; // set by the hook once it re-triangulates: the trial stops
+  cancel_trials_ = &dropped;
+  tbb::parallel_invoke(
+    [&] {
+      try {
+        looked = mesh_;
+        report = call_retriangulation(looked, false, times, [&] { dropped = true; });
+      } catch (...) {
+        hook_failure = std::current_exception();
+      }
+    },
+    [&] { first = first_trial(step_ + 1); });
+  cancel_trials_ = nullptr;
+  if (!hook_failure && !dropped && !report.changed() && report.degraded_left < 0) {
+    ahead_ = LookAhead{std::move(first), std::move(kept)};
+    return;
+  }
+  rewind(kept);
+  if (hook_failure || !report.changed()) {
+    // The trial's factors may be newer than its rewound bookkeeping: the next solves factorise
+    // afresh. (The flow's own hook changes the surface whenever it decides to, or fails.)
+    solver_.restore(solver_.state());
+    half_solver_.restore(half_solver_.state());
+    if (hook_failure)
+      std::rethrow_exception(hook_failure);
+  }
+  mesh_ = std::move(looked);
+  if (report.changed())
+    adopt_retriangulation(report, before, events, times);
+  else
+    renew_operators(times);
+}
+
 //! Trials of step `next_step` until the controller accepts one (returned: its τ); throws
 //! SolverFailure as the controller does.
 double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecord& record, int& rejections,
@@ -365,6 +499,8 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
   const double time_left = std::isfinite(p_.end_time) ? p_.end_time - time_ : std::numeric_limits<double>::infinity();
   const std::array<Eigen::VectorXd, 2> guesses = warm_starts(previous_w_, earlier_w_);
   for (;;) {
+    if (cancel_trials_ && cancel_trials_->load())
+      throw TrialsCancelled();
     const double tau = controller_.propose(next_step, automatic, time_left);
     trial = p_.scheme.extrapolate
                 ? extrapolated_step(mesh_, op_, tau, p_.scheme, solver_, half_solver_, &*cache_, guesses)
@@ -426,7 +562,15 @@ void SurfaceDiffusion::renew_operators(StepTimes& times)
 void SurfaceDiffusion::note(long step, double time, std::string text, bool warning)
 {
   FlowNote n{.step = step, .time = time, .text = std::move(text), .warning = warning};
-  if (warning)
+  if (held_notes_)
+    held_notes_->push_back(std::move(n));
+  else
+    publish(std::move(n));
+}
+
+void SurfaceDiffusion::publish(FlowNote n)
+{
+  if (n.warning)
     logger().warn("{}", n.text);
   else
     logger().info("{}", n.line());

@@ -22,6 +22,9 @@
 #include "sdflow/geometry/cotangent_cache.h"
 #include "sdflow/mesh.h"
 
+#include <atomic>
+#include <exception>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -60,6 +63,9 @@ struct StepRecord {
   int rejections = 0;      //!< trials rejected before the accepted one
   int cg_iterations = 0;
   bool factorised = false;
+  //! Its first trial ran beside the last step's look at the surface (RunParameters::look_ahead):
+  //! its stage times then overlap that step's, and its `total` leaves them out.
+  bool taken_ahead = false;
   //! What happened besides the step, joined by '+': rejected, fallback, remeshed, surgery, split,
   //! merged.
   std::string event;
@@ -90,7 +96,8 @@ public:
   SurfaceDiffusion(const FlowState& state, RunParameters parameters, RetriangulationHook retriangulate = {});
 
   //! Take one accepted step: trials until the time-step rule accepts one (a step that no τ makes
-  //! acceptable is retried once after a forced re-triangulation), then the re-triangulation hook.
+  //! acceptable is retried once after a forced re-triangulation), then the re-triangulation hook,
+  //! beside the next step's first trial when the parameters look ahead (docs/design.md §10).
   //! Never past `end_time`. Throws SolverFailure when the flow cannot go on stably, or, without
   //! re-triangulation, when the step makes the surface intersect itself (the surface is that of
   //! the last accepted step).
@@ -111,9 +118,10 @@ public:
   const RunParameters& parameters() const { return p_; }
   FlowMetrics metrics() const;
   FlowState state() const;
-  //! Trial steps rejected, and numeric factorisations made, since construction.
-  long rejected_trials() const { return rejected_trials_; }
-  long factorisations() const { return factorisations_; }
+  //! Trial steps rejected, and numeric factorisations made, since construction (up to the last
+  //! accepted step).
+  long rejected_trials() const { return ahead_ ? ahead_->before.rejected_trials : rejected_trials_; }
+  long factorisations() const { return ahead_ ? ahead_->before.factorisations : factorisations_; }
 
   //! The notes made since the last call (also sent to the log as they are made), in order; kept
   //! when step() throws, so the reason can follow them.
@@ -127,11 +135,47 @@ private:
     int genus = 0;
   };
 
+  //! What trials change in the flow besides their results.
+  struct TrialBookkeeping {
+    TimeStepState controller;
+    SolverState solver, half_solver;
+    bool has_anchor = false, has_half_anchor = false;
+    VertexVectors anchor_positions, half_anchor_positions;
+    double anchor_tau_beta = 0, half_anchor_tau_beta = 0;
+    long rejected_trials = 0, factorisations = 0;
+  };
+  //! A step's first trial and what came of it: its τ, or the exception it threw; the notes it made,
+  //! held until the step takes it.
+  struct FirstTrial {
+    long step = 0;
+    TimeStepState controller_before;
+    StepRecord record;
+    StepResult trial;
+    double tau = 0;
+    int rejections = 0;
+    std::vector<double> volumes;
+    std::exception_ptr failure;
+    std::vector<FlowNote> notes;
+  };
+  //! The next step's first trial, taken while the hook looked at the surface, and the bookkeeping
+  //! before it (what state() reports until the step takes it).
+  struct LookAhead {
+    FirstTrial first;
+    TrialBookkeeping before;
+  };
+
+  TrialBookkeeping bookkeeping() const;
+  void rewind(const TrialBookkeeping& before);
+  FirstTrial first_trial(long next_step);
+  bool can_look_ahead() const;
+  void look_and_try_ahead(const VertexVectors& before, std::vector<std::string>& events, StepTimes& times);
+  void publish(FlowNote note);
   void renew_connectivity();
   void prepare_retriangulation(RetriangulationHook hook);
   void restore_solver(FlowSolver& solver, const VertexVectors& positions, const FaceIndices& triangles, double tau_beta,
                       const SolverState& state);
-  RetriangulationReport call_retriangulation(bool force, StepTimes& times);
+  RetriangulationReport call_retriangulation(Mesh& mesh, bool force, StepTimes& times,
+                                             std::function<void()> changing = {});
   void adopt_retriangulation(const RetriangulationReport& report, const VertexVectors& before,
                              std::vector<std::string>& events, StepTimes& times);
   void renew_operators(StepTimes& times);
@@ -141,6 +185,7 @@ private:
 
   RunParameters p_;
   RetriangulationHook retriangulate_;
+  bool own_hook_ = false; // the hook made from the schedule, which changes the mesh only to re-triangulate it
   std::optional<SelfIntersectionGuard> guard_; // without a hook: stops the flow at a self-intersection
   FlowSolver solver_, half_solver_; // the half steps of extrapolated steps keep a factor of their own
   TimeStepController controller_;
@@ -159,6 +204,9 @@ private:
   double anchor_tau_beta_ = 0, half_anchor_tau_beta_ = 0;
   long rejected_trials_ = 0, factorisations_ = 0;
   std::vector<FlowNote> notes_;
+  std::vector<FlowNote>* held_notes_ = nullptr; // set while a first trial holds its notes back
+  std::optional<LookAhead> ahead_;
+  const std::atomic<bool>* cancel_trials_ = nullptr; // while trials run ahead: set, they stop
 };
 
 } // namespace sdflow
