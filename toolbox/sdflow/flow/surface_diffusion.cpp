@@ -261,13 +261,18 @@ std::vector<FlowNote> SurfaceDiffusion::take_notes() { return std::exchange(note
 void SurfaceDiffusion::renew_connectivity()
 {
   triangles_ = face_indices(mesh_);
+  cache_.emplace(mesh_);
+  renew_topology();
+}
+
+void SurfaceDiffusion::renew_topology()
+{
   topology_ = {};
   topology_.face_component = face_component_ids(mesh_, &topology_.count);
   for (const auto& c : component_topology(mesh_)) {
     topology_.closed.push_back(c.closed());
     topology_.genus += c.genus;
   }
-  cache_.emplace(mesh_);
 }
 
 //! The hook: the caller's, or the one of the parameters' schedule with its ℓ fixed now; without
@@ -330,21 +335,20 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
                                              std::vector<std::string>& events, StepTimes& times)
 {
   const int components = topology_.count, genus = topology_.genus;
-  // The old vertex nearest each new one, for the carried orderings, on the other core while the
-  // new connectivity and operators are made (it reads only positions, which these keep).
+  // The canonical mesh, the operators' cache of its connectivity and, for the carried orderings,
+  // the old vertex nearest each new one are made side by side from the same positions and corners.
   const bool carried = solver_.carries_ordering() || half_solver_.carries_ordering();
-  const VertexVectors after = carried ? vertex_positions(mesh_) : VertexVectors{};
+  const VertexVectors after = vertex_positions(mesh_);
+  triangles_ = face_indices(mesh_);
   std::vector<int> nearest_old;
-  tbb::parallel_invoke(
-    [&] {
-      mesh_ = canonical(mesh_);
-      renew_connectivity();
-      renew_operators(times);
-    },
-    [&] {
-      if (carried)
-        nearest_old = nearest_points(before, after);
-    });
+  tbb::parallel_invoke([&] { mesh_ = make_mesh(after, triangles_); },
+                       [&] { cache_.emplace(after.rows(), triangles_); },
+                       [&] {
+                         if (carried)
+                           nearest_old = nearest_points(before, after);
+                       });
+  renew_topology();
+  renew_operators(times);
   topology_changed_ =
       topology_changed_ || (p_.stop_at_topology_change && (topology_.count != components || topology_.genus != genus));
   const Stopwatch watch;

@@ -170,7 +170,10 @@ private:
   bool can_look_ahead() const;
   void look_and_try_ahead(const VertexVectors& before, std::vector<std::string>& events, StepTimes& times);
   void publish(FlowNote note);
+  //! triangles_, the operators' cache and topology_ of mesh_.
   void renew_connectivity();
+  //! topology_ of mesh_: its components, which are closed, the total genus.
+  void renew_topology();
   void prepare_retriangulation(RetriangulationHook hook);
   void restore_solver(FlowSolver& solver, const VertexVectors& positions, const FaceIndices& triangles, double tau_beta,
                       const SolverState& state);

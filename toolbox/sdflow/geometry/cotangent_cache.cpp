@@ -29,10 +29,28 @@ CotangentCache::CotangentCache(const Mesh& mesh)
       throw InvalidMesh(fmt::format("CotangentCache: face {} is not a triangle", f.idx()));
     triangles_.push_back(corners(mesh, f));
   }
+  build_pattern(static_cast<Eigen::Index>(mesh.n_vertices()));
+}
+
+CotangentCache::CotangentCache(Eigen::Index vertices, const FaceIndices& triangles)
+{
+  triangles_.resize(static_cast<std::size_t>(triangles.rows()));
+  for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int v = triangles(f, c);
+      if (v < 0 || v >= vertices)
+        throw InvalidMesh(fmt::format("CotangentCache: triangle {} has corner {} outside the {} vertices", f, v,
+                                      vertices));
+      triangles_[static_cast<std::size_t>(f)][c] = v;
+    }
+  build_pattern(vertices);
+}
+
+void CotangentCache::build_pattern(Eigen::Index n)
+{
   // L's pattern, column by column: a vertex and every vertex it shares a triangle with, ascending
   // (what setFromTriplets makes of the corner pairs, at a fraction of its cost: it sorts 12 triplets
   // a triangle twice over).
-  const auto n = static_cast<Eigen::Index>(mesh.n_vertices());
   std::vector<int> start(static_cast<std::size_t>(n) + 1, 0);
   for (const auto& t : triangles_)
     for (const int v : t)

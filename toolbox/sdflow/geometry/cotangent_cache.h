@@ -18,6 +18,11 @@ public:
   //! Record the connectivity of `mesh` and the slots of its triangles in L's pattern.
   explicit CotangentCache(const Mesh& mesh);
 
+  //! The same for the mesh of `vertices` vertices whose faces' corners, in face order and as the
+  //! face's vertex circulator lists them, are the rows of `triangles` (make_mesh keeps them so):
+  //! it can be built beside the mesh itself.
+  CotangentCache(Eigen::Index vertices, const FaceIndices& triangles);
+
   //! True if `mesh` has the connectivity this cache was built for (same triangles, same order).
   bool fits(const Mesh& mesh) const;
 
@@ -29,6 +34,9 @@ public:
   const std::vector<std::array<int, 3>>& triangles() const { return triangles_; }
 
 private:
+  //! L's pattern and the slots, from triangles_.
+  void build_pattern(Eigen::Index vertices);
+
   std::vector<std::array<int, 3>> triangles_;
   std::vector<std::array<int, 12>> slots_; //!< per corner c: (j,k), (k,j), (j,j), (k,k) in L's values
   SparseMatrix pattern_;

@@ -99,8 +99,8 @@ public:
         target_(mesh.n_vertices()), locked_(mesh.n_vertices(), 0)
   {
     const double corner_cos = std::cos(options.boundary_corner_angle_deg * std::numbers::pi / 180);
+    retarget();
     for (auto v : mesh_.vertices()) {
-      target_[v.idx()] = target_at(point(mesh_, v));
       if (!mesh_.is_boundary(v))
         continue;
       if (options_.boundary == BoundaryMode::keep) {
@@ -141,6 +141,21 @@ private:
       throw InvalidParameter(fmt::format("remesh: the sizing field gave {} at ({}, {}, {}); targets must be positive",
                                          t, p.x(), p.y(), p.z()));
     return t;
+  }
+
+  //! ℓ at every vertex where it stands now (on TBB threads: sizing fields may be called from
+  //! several at once, and each vertex's target is its own).
+  void retarget()
+  {
+    if (!options_.sizing) {
+      std::fill(target_.begin(), target_.end(), ell_);
+      return;
+    }
+    for_each_index(static_cast<int>(mesh_.n_vertices()), true, [&](int i) {
+      const Mesh::VertexHandle v(i);
+      if (!mesh_.status(v).deleted())
+        target_[i] = target_at(point(mesh_, v));
+    });
   }
 
   double edge_target(Mesh::VertexHandle a, Mesh::VertexHandle b) const
@@ -586,8 +601,7 @@ private:
     for (auto v : mesh_.vertices())
       mesh_.set_point(v, to_point(current[v.idx()]));
     if (options_.sizing)
-      for (auto v : mesh_.vertices())
-        target_[v.idx()] = target_at(point(mesh_, v));
+      retarget();
   }
 
   Mesh& mesh_;

@@ -57,8 +57,8 @@ struct RemeshOptions {
   //! never moved or removed, so polygonal boundaries keep their shape.
   double boundary_corner_angle_deg = 45;
   //! Local target ℓ(p) for adaptive remeshing (e.g. curvature_sizing, or nearest_vertex_sizing of
-  //! radius_targets); empty: uniform ℓ.
-  //! An edge's target is the mean of the targets at its two ends.
+  //! radius_targets); empty: uniform ℓ. It is called from several threads at once (both of those
+  //! may be). An edge's target is the mean of the targets at its two ends.
   SizingField sizing;
 };
 

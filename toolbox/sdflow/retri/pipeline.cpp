@@ -14,11 +14,14 @@
 #include "sdflow/spatial/nearest_points.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <optional>
 
 namespace sdflow {
 namespace {
@@ -248,6 +251,31 @@ std::vector<std::vector<int>> points_by_piece(const Mesh& remeshed, const Remova
   return groups;
 }
 
+//! Stage 4's outcome: the surface without its debris, validated, with its counts.
+struct CleanedUp {
+  Mesh mesh;
+  int dropped = 0;    //!< components dropped as debris
+  int components = 0; //!< left
+  int open_holes = 0; //!< boundary loops left
+};
+
+//! Stage 4: drop the debris, validate what is left (a remeshing's output by the cheaper test,
+//! validated_remeshing, unless it was `rebuilt` from points) and count its components and holes.
+CleanedUp clean_up(const Mesh& mesh, const ComponentOptions& debris, bool rebuilt)
+{
+  ComponentSelection selection = keep_components(mesh, debris);
+  if (selection.mesh.n_faces() == 0)
+    throw InvalidMesh(fmt::format("re-triangulation: nothing is left: every component has fewer than {} triangles "
+                                  "or encloses almost no volume",
+                                  debris.min_faces));
+  CleanedUp c;
+  c.dropped = static_cast<int>(selection.dropped.size());
+  c.mesh = rebuilt ? validated(selection.mesh) : validated_remeshing(selection.mesh);
+  face_component_ids(c.mesh, &c.components);
+  c.open_holes = static_cast<int>(boundary_loop_lengths(c.mesh).size());
+  return c;
+}
+
 //! The pipeline with the given options, once; `known_crossings`, when given, are the input's
 //! self-intersections.
 RetriangulationResult retriangulate_once(const Mesh& input, const RetriangulationOptions& options,
@@ -291,13 +319,35 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
   }
 
   const double hole_bound = options.max_hole_length > 0 ? options.max_hole_length : automatic_hole_bound(mesh);
-  start = Clock::now();
-  RemovalResult removal = remove_self_intersections(mesh);
-  r.intersecting_pairs = static_cast<int>(removal.intersecting_pairs.size());
-  r.removed_faces = static_cast<int>(removal.removed_faces.size());
-  r.seconds.intersections = seconds_since(start);
+  // Stage 2 usually finds nothing to cut, and stage 4 then cleans up this very surface: it runs
+  // beside the intersection test and is kept when the test comes back empty.
+  std::vector<FacePair> pairs;
+  std::optional<CleanedUp> unrebuilt;
+  std::exception_ptr unrebuilt_failure;
+  tbb::parallel_invoke(
+    [&] {
+      const auto begun = Clock::now();
+      pairs = self_intersections(mesh);
+      r.seconds.intersections = seconds_since(begun);
+    },
+    [&] {
+      if (options.always_rebuild)
+        return;
+      const auto begun = Clock::now();
+      try {
+        unrebuilt = clean_up(mesh, debris, false);
+      } catch (...) {
+        unrebuilt_failure = std::current_exception();
+      }
+      r.seconds.components = seconds_since(begun);
+    });
+  r.intersecting_pairs = static_cast<int>(pairs.size());
 
-  if (r.removed_faces > 0 || options.always_rebuild) {
+  if (!pairs.empty() || options.always_rebuild) {
+    start = Clock::now();
+    RemovalResult removal = remove_self_intersections(mesh, std::move(pairs));
+    r.removed_faces = static_cast<int>(removal.removed_faces.size());
+    r.seconds.intersections += seconds_since(start);
     r.rebuilt = true;
     start = Clock::now();
     const OrientedPoints oriented = oriented_point_normals(removal.mesh, options.normals);
@@ -337,18 +387,17 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
     }
   }
 
-  start = Clock::now();
-  ComponentSelection selection = keep_components(mesh, debris);
-  r.dropped_components += static_cast<int>(selection.dropped.size());
-  if (selection.mesh.n_faces() == 0)
-    throw InvalidMesh(fmt::format("re-triangulation: nothing is left: every component has fewer than {} triangles "
-                                  "or encloses almost no volume",
-                                  options.min_component_faces));
-  r.mesh = r.rebuilt ? validated(selection.mesh) : validated_remeshing(selection.mesh);
-  face_component_ids(r.mesh, &count);
-  r.components_after = count;
-  r.open_holes = static_cast<int>(boundary_loop_lengths(r.mesh).size());
-  r.seconds.components = seconds_since(start);
+  if (r.rebuilt) {
+    start = Clock::now();
+    unrebuilt = clean_up(mesh, debris, true);
+    r.seconds.components = seconds_since(start);
+  } else if (unrebuilt_failure) {
+    std::rethrow_exception(unrebuilt_failure);
+  }
+  r.dropped_components += unrebuilt->dropped;
+  r.components_after = unrebuilt->components;
+  r.open_holes = unrebuilt->open_holes;
+  r.mesh = std::move(unrebuilt->mesh);
 
   logger().debug("re-triangulated: {}", retriangulation_summary(r));
   return r;

@@ -6,10 +6,12 @@
 
 namespace sdflow {
 
-RemovalResult remove_self_intersections(const Mesh& mesh)
+RemovalResult remove_self_intersections(const Mesh& mesh) { return remove_self_intersections(mesh, self_intersections(mesh)); }
+
+RemovalResult remove_self_intersections(const Mesh& mesh, std::vector<FacePair> pairs)
 {
   RemovalResult result;
-  result.intersecting_pairs = self_intersections(mesh);
+  result.intersecting_pairs = std::move(pairs);
   std::vector<char> remove(mesh.n_faces(), 0);
   for (const FacePair& p : result.intersecting_pairs)
     remove[p.first] = remove[p.second] = 1;

@@ -28,4 +28,8 @@ struct RemovalResult {
 //! without a face. The input must carry no deleted faces.
 RemovalResult remove_self_intersections(const Mesh& mesh);
 
+//! The same with the mesh's self-intersections already found (`pairs`, as self_intersections()
+//! returns them).
+RemovalResult remove_self_intersections(const Mesh& mesh, std::vector<FacePair> pairs);
+
 } // namespace sdflow
