@@ -4,6 +4,7 @@
 #include "sdflow/geometry/topology.h"
 #include "sdflow/io/soup.h"
 #include "sdflow/io/validate.h"
+#include "sdflow/remesh/remesh.h"
 #include "sdflow/retri/pipeline.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/mesher.h"
@@ -217,6 +218,31 @@ TEST(Pipeline, crossings_given_by_the_caller_change_nothing)
   Mesh holed = crossed;
   holed.delete_face(Mesh::FaceHandle(0), false);
   EXPECT_THROW(retriangulate(holed, {}, self_intersections(crossed)), InvalidMesh);
+}
+
+//! Stage 1's curvature targets handed in by the run's look (degraded_elements finds the same ones)
+//! give the result the pipeline gives when it computes them, on an ellipsoid whose targets vary;
+//! a list that does not fit the vertices is refused.
+TEST(Pipeline, curvature_targets_given_by_the_caller_change_nothing)
+{
+  const Mesh ellipsoid = test::mapped(analytic::icosphere(4), [](const Eigen::Vector3d& p) {
+    return Eigen::Vector3d(2.5 * p.x(), p.y(), 0.6 * p.z());
+  });
+  const RetriangulationOptions options{.edge_length = 0.15, .remesh_iterations = 1};
+  const std::vector<double> targets =
+      radius_targets(ellipsoid, {.edges_per_radius = options.edges_per_radius,
+                                 .min_length = options.min_edge_fraction * options.edge_length,
+                                 .max_length = options.edge_length});
+  ASSERT_LT(*std::min_element(targets.begin(), targets.end()), 0.9 * options.edge_length);
+  const RetriangulationResult looked = retriangulate(ellipsoid, options);
+  const RetriangulationResult given = retriangulate(ellipsoid, options, {}, targets);
+  EXPECT_EQ(vertex_positions(given.mesh), vertex_positions(looked.mesh));
+  EXPECT_EQ(face_indices(given.mesh), face_indices(looked.mesh));
+  // Targets that are not the mesh's do reach the remesher (so the equality above is not vacuous).
+  const RetriangulationResult coarse =
+      retriangulate(ellipsoid, options, {}, std::vector<double>(ellipsoid.n_vertices(), options.edge_length));
+  EXPECT_NE(coarse.mesh.n_vertices(), looked.mesh.n_vertices());
+  EXPECT_THROW(retriangulate(ellipsoid, options, {}, std::vector<double>(3, 0.1)), InvalidParameter);
 }
 
 TEST(Pipeline, small_components_are_dropped)

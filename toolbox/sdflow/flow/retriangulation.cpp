@@ -264,10 +264,11 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
       if (!surgery)
         fallback = fmt::format("the local surgery declined or failed ({}), so the whole pipeline ran; ", attempt.failure);
     }
-    // The watch's pairs are this surface's unless a local remeshing gave it another one to count.
+    // The watch's pairs are this surface's unless a local remeshing gave it another one to count;
+    // so are the look's curvature targets, found when it does not intersect.
     const bool pairs_known = verdict.watched && !verdict.local;
     RetriangulationResult r = surgery       ? std::move(*surgery)
-                              : pairs_known ? retriangulate(mesh, schedule.pipeline, watch->pairs())
+                              : pairs_known ? retriangulate(mesh, schedule.pipeline, watch->pairs(), verdict.degraded.targets)
                                             : retriangulate(mesh, schedule.pipeline);
     const RetriangulationResult::Seconds local = report.pipeline_seconds; // of a local remeshing given up
     report.pipeline_seconds = r.seconds;

@@ -7,6 +7,7 @@
 #include "sdflow/spatial/closest_point_grid.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <cmath>
@@ -98,22 +99,29 @@ VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& t
 
 VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after)
 {
+  // The components of each surface, their topology and volumes: the two surfaces side by side.
   int old_count = 0, new_count = 0;
-  const std::vector<int> old_component = face_component_ids(before, &old_count);
-  const std::vector<int> new_component = face_component_ids(after, &new_count);
-  const std::vector<ComponentTopology> old_topology = component_topology(before);
-  const std::vector<ComponentTopology> new_topology = component_topology(after);
-  const std::vector<double> old_volume =
-      component_volumes(vertex_positions(before), face_indices(before), old_component, old_count);
-  const std::vector<double> new_volume =
-      component_volumes(vertex_positions(after), face_indices(after), new_component, new_count);
-  std::vector<double> new_area(new_count, 0.0);
+  std::vector<int> old_component, new_component;
+  std::vector<ComponentTopology> old_topology, new_topology;
+  std::vector<double> old_volume, new_volume, new_area;
   std::vector<int> vertex_component(after.n_vertices(), -1);
-  for (auto f : after.faces()) {
-    new_area[new_component[f.idx()]] += after.calc_face_area(f);
-    for (auto v : f.vertices())
-      vertex_component[v.idx()] = new_component[f.idx()];
-  }
+  tbb::parallel_invoke(
+    [&] {
+      old_component = face_component_ids(before, &old_count);
+      old_topology = component_topology(before);
+      old_volume = component_volumes(vertex_positions(before), face_indices(before), old_component, old_count);
+    },
+    [&] {
+      new_component = face_component_ids(after, &new_count);
+      new_topology = component_topology(after);
+      new_volume = component_volumes(vertex_positions(after), face_indices(after), new_component, new_count);
+      new_area.assign(new_count, 0.0);
+      for (auto f : after.faces()) {
+        new_area[new_component[f.idx()]] += after.calc_face_area(f);
+        for (auto v : f.vertices())
+          vertex_component[v.idx()] = new_component[f.idx()];
+      }
+    });
 
   // Nodes 0..old_count-1 are the components of `before`, then those of `after`.
   std::vector<int> parent(old_count + new_count);

@@ -168,12 +168,16 @@ constexpr int kLocalScaleRings = 4;
 //! that intersect others, where the target is the local mean edge length: sheets that crossed are
 //! not a curvature to resolve (refining where they cross leaves the rebuild slivers of enclosed
 //! space), and coarsening a neck that pinched through would tear it before the surgery.
+//! `known_targets`, when given, are the radius targets of `clean`.
 SizingField adapted_sizing(const Mesh& clean, const std::vector<FacePair>& crossings,
-                           const RetriangulationOptions& options, double ell)
+                           const RetriangulationOptions& options, double ell, const std::vector<double>* known_targets)
 {
   const double min_length = options.min_edge_fraction * ell;
-  std::vector<double> target = radius_targets(
-      clean, {.edges_per_radius = options.edges_per_radius, .min_length = min_length, .max_length = ell});
+  std::vector<double> target =
+      known_targets ? *known_targets
+                    : radius_targets(clean, {.edges_per_radius = options.edges_per_radius,
+                                             .min_length = min_length,
+                                             .max_length = ell});
   std::vector<bool> near(clean.n_vertices(), false);
   for (const FacePair& pair : crossings)
     for (const int f : {pair.first, pair.second})
@@ -276,10 +280,16 @@ CleanedUp clean_up(const Mesh& mesh, const ComponentOptions& debris, bool rebuil
   return c;
 }
 
-//! The pipeline with the given options, once; `known_crossings`, when given, are the input's
-//! self-intersections.
+//! What a caller found of the input already, when it did: its self-intersections and stage 1's
+//! curvature targets (retriangulate's second overload).
+struct KnownFindings {
+  const std::vector<FacePair>* crossings = nullptr;
+  const std::vector<double>* targets = nullptr;
+};
+
+//! The pipeline with the given options, once.
 RetriangulationResult retriangulate_once(const Mesh& input, const RetriangulationOptions& options,
-                                         const std::vector<FacePair>* known_crossings)
+                                         KnownFindings known)
 {
   if (input.n_faces() == 0)
     throw InvalidMesh("re-triangulation: the surface has no triangles");
@@ -307,11 +317,12 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
     // Stage 0 left the input as it was unless it joined components.
     const bool looked_for = options.curved_projection || options.edges_per_radius > 0;
     const std::vector<FacePair> crossings = !looked_for ? std::vector<FacePair>{}
-                                            : known_crossings && r.merged_components == 0 ? *known_crossings
+                                            : known.crossings && r.merged_components == 0 ? *known.crossings
                                                                                            : self_intersections(mesh);
     remesh.curved_projection = options.curved_projection && crossings.empty();
     if (options.edges_per_radius > 0)
-      remesh.sizing = adapted_sizing(mesh, crossings, options, r.edge_length);
+      remesh.sizing = adapted_sizing(mesh, crossings, options, r.edge_length,
+                                     r.merged_components == 0 ? known.targets : nullptr);
     RemeshResult remeshed = isotropic_remesh(mesh, remesh);
     mesh = std::move(remeshed.mesh);
     r.remesh = remeshed.statistics;
@@ -427,22 +438,22 @@ std::string retriangulation_summary(const RetriangulationResult& r)
 namespace {
 
 RetriangulationResult retriangulate_with(const Mesh& input, const RetriangulationOptions& options,
-                                         const std::vector<FacePair>* known_crossings)
+                                         KnownFindings known)
 {
   validate_retriangulation_options(options);
   if (options.edges_per_radius == 0)
-    return retriangulate_once(input, options, known_crossings);
+    return retriangulate_once(input, options, {known.crossings});
   // Adapted edge lengths help a pinch or a seal through; where they leave the rebuild with
   // sheets that still cross, or with nothing, the uniform ℓ is tried instead.
   RetriangulationOptions uniform = options;
   uniform.edges_per_radius = 0;
   try {
-    RetriangulationResult r = retriangulate_once(input, options, known_crossings);
+    RetriangulationResult r = retriangulate_once(input, options, known);
     if (!r.rebuilt || self_intersections(r.mesh).empty())
       return r;
   } catch (const InvalidMesh&) {
   }
-  RetriangulationResult r = retriangulate_once(input, uniform, known_crossings);
+  RetriangulationResult r = retriangulate_once(input, uniform, {known.crossings});
   r.uniform_fallback = true;
   return r;
 }
@@ -451,17 +462,20 @@ RetriangulationResult retriangulate_with(const Mesh& input, const Retriangulatio
 
 RetriangulationResult retriangulate(const Mesh& input, const RetriangulationOptions& options)
 {
-  return retriangulate_with(input, options, nullptr);
+  return retriangulate_with(input, options, {});
 }
 
 RetriangulationResult retriangulate(const Mesh& input, const RetriangulationOptions& options,
-                                    const std::vector<FacePair>& crossings)
+                                    const std::vector<FacePair>& crossings, const std::vector<double>& targets)
 {
   const auto faces = input.all_faces();
   if (std::any_of(faces.begin(), faces.end(), [&](Mesh::FaceHandle f) { return input.status(f).deleted(); }))
     throw InvalidMesh("re-triangulation: the surface given with its crossings has deleted faces; garbage-collect it "
                       "and find its crossings again");
-  return retriangulate_with(input, options, &crossings);
+  if (!targets.empty() && targets.size() != input.n_vertices())
+    throw InvalidParameter(fmt::format("re-triangulation: {} curvature targets given for {} vertices", targets.size(),
+                                       input.n_vertices()));
+  return retriangulate_with(input, options, {&crossings, targets.empty() ? nullptr : &targets});
 }
 
 } // namespace sdflow
