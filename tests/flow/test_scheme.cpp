@@ -429,6 +429,21 @@ TEST(CotangentCache, assembles_the_geometry_operators_exactly_and_checks_connect
     EXPECT_TRUE(std::equal(l.innerIndexPtr(), l.innerIndexPtr() + l.nonZeros(), reference.innerIndexPtr()));
     EXPECT_LE((areas - mixed_voronoi_areas(mesh)).cwiseAbs().maxCoeff(), tolerance * areas.maxCoeff());
   }
+  // Built from the corner rows make_mesh takes, beside the mesh itself: the same cache.
+  const Mesh torus = analytic::torus(20, 10, 3, 1);
+  const CotangentCache from_rows(static_cast<Eigen::Index>(torus.n_vertices()), face_indices(torus));
+  const Mesh rebuilt = make_mesh(vertex_positions(torus), face_indices(torus));
+  ASSERT_TRUE(from_rows.fits(rebuilt));
+  SparseMatrix l_mesh, l_rows;
+  Eigen::VectorXd areas_mesh, areas_rows;
+  CotangentCache(torus).assemble(rebuilt, l_mesh, areas_mesh);
+  from_rows.assemble(rebuilt, l_rows, areas_rows);
+  EXPECT_EQ((l_rows - l_mesh).cwiseAbs().sum(), 0.0);
+  EXPECT_EQ(areas_rows, areas_mesh);
+  FaceIndices outside = face_indices(torus);
+  outside(7, 1) = static_cast<int>(torus.n_vertices());
+  EXPECT_THROW(CotangentCache(static_cast<Eigen::Index>(torus.n_vertices()), outside), InvalidMesh);
+
   const CotangentCache cache(analytic::icosphere(1));
   EXPECT_FALSE(cache.fits(analytic::icosphere(2)));
   SparseMatrix l;

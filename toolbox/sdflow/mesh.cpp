@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace sdflow {
 
 VertexVectors vertex_positions(const Mesh& mesh)
@@ -66,6 +68,15 @@ FaceIndices triangle_rows(const std::vector<std::array<int, 3>>& triangles)
   for (std::size_t i = 0; i < triangles.size(); ++i)
     t.row(static_cast<Eigen::Index>(i)) << triangles[i][0], triangles[i][1], triangles[i][2];
   return t;
+}
+
+void collect_garbage(Mesh& mesh)
+{
+  const auto deleted = [&](const auto& range) {
+    return std::any_of(range.begin(), range.end(), [&](auto handle) { return mesh.status(handle).deleted(); });
+  };
+  if (deleted(mesh.all_vertices()) || deleted(mesh.all_edges()) || deleted(mesh.all_faces()))
+    mesh.garbage_collection();
 }
 
 } // namespace sdflow

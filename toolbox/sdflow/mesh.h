@@ -77,4 +77,8 @@ Mesh make_mesh(const VertexVectors& positions, const FaceIndices& triangles);
 //! Triangles as a #F by 3 matrix of vertex indices, in face order.
 FaceIndices face_indices(const Mesh& mesh);
 
+//! mesh.garbage_collection() when an element is deleted. With none deleted it leaves the mesh as it
+//! was, but still rewrites every handle (19 ms at 95k vertices), so then nothing is done.
+void collect_garbage(Mesh& mesh);
+
 } // namespace sdflow

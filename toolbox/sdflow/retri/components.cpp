@@ -65,7 +65,7 @@ template <class Keep> Mesh without_faces(const Mesh& mesh, Keep keep)
   for (auto v : out.vertices())
     if (out.is_isolated(v))
       out.delete_vertex(v, false);
-  out.garbage_collection();
+  collect_garbage(out);
   return out;
 }
 

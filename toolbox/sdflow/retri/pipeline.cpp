@@ -312,7 +312,7 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
     RemeshOptions remesh;
     remesh.edge_length = r.edge_length;
     remesh.iterations = options.remesh_iterations;
-    mesh.garbage_collection();
+    collect_garbage(mesh);
     // Where sheets cross, their normals describe no smooth surface: project onto the flat triangles.
     // Stage 0 left the input as it was unless it joined components.
     const bool looked_for = options.curved_projection || options.edges_per_radius > 0;
