@@ -101,8 +101,9 @@ RetriangulationResult retriangulate(const Mesh& mesh, const RetriangulationOptio
 
 //! The same, for a caller that has found the self-intersections of `mesh` already (`crossings`,
 //! as self_intersections(mesh) gives them; `mesh` without deleted faces) and, when `targets` is
-//! not empty, stage 1's curvature targets too (radius_targets(mesh, …) with edges_per_radius, ℓ/
-//! min_edge_fraction and ℓ, as degraded_elements finds them): stage 1 does not compute them again.
+//! not empty, stage 1's curvature targets too (radius_targets(mesh, …) with edges_per_radius,
+//! min_edge_fraction × ℓ and ℓ, as degraded_elements finds them): stage 1 does not compute them
+//! again.
 //! The result is the one retriangulate(mesh, options) gives.
 RetriangulationResult retriangulate(const Mesh& mesh, const RetriangulationOptions& options,
                                     const std::vector<FacePair>& crossings, const std::vector<double>& targets = {});
