@@ -2,7 +2,9 @@
 //! fold-overs and self-intersections, the default projection, adaptive sizing, bad options.
 #include "sdflow/errors.h"
 #include "sdflow/geometry/measures.h"
+#include "sdflow/geometry/quality.h"
 #include "sdflow/geometry/topology.h"
+#include "sdflow/remesh/face_patch.h"
 #include "sdflow/remesh/remesh.h"
 #include "sdflow/remesh/star_projection.h"
 #include "support/analytic_meshes.h"
@@ -183,6 +185,50 @@ TEST(Remesh, keep_mode_leaves_the_boundary_untouched)
   ASSERT_EQ(after.size(), rim.size());
   for (const auto& p : rim)
     EXPECT_TRUE(std::any_of(after.begin(), after.end(), [&](const Eigen::Vector3d& q) { return q == p; }));
+}
+
+TEST(Remesh, settling_removes_the_short_edges_left_beside_a_kept_boundary)
+{
+  // A cap of a sphere, its interior vertices jittered (worn), cut out and remeshed with its rim
+  // kept: the remeshing leaves a few interior vertices too close to the rim, which settling fixes.
+  Mesh sphere = analytic::icosphere(5);
+  double ell = 0;
+  for (const auto e : sphere.edges())
+    ell += sphere.calc_edge_length(e);
+  ell /= static_cast<double>(sphere.n_edges());
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> offset(-0.2 * ell, 0.2 * ell);
+  std::vector<char> in_cap(sphere.n_faces(), 0);
+  for (const auto f : sphere.faces())
+    in_cap[f.idx()] = sphere.calc_face_centroid(f)[2] > 0.3;
+  for (const auto v : sphere.vertices())
+    if (Mesh::Point p = sphere.point(v); p[2] > 0.45) {
+      p += Mesh::Point(offset(random), offset(random), offset(random));
+      sphere.set_point(v, p / p.norm());
+    }
+  const FacePatch cap = extract_face_patch(sphere, in_cap);
+  struct Count {
+    int short_beside_rim = 0, degraded = 0;
+  };
+  const auto remeshed = [&](bool settle) {
+    const RemeshResult r = isotropic_remesh(cap.mesh, {.edge_length = ell, .iterations = 3, .project = onto_sphere(1),
+                                                       .boundary = BoundaryMode::keep, .settle_kept_boundary = settle});
+    Count count;
+    for (const auto e : r.mesh.edges()) {
+      const double length = r.mesh.calc_edge_length(e);
+      count.short_beside_rim += r.mesh.is_boundary(e.v0()) != r.mesh.is_boundary(e.v1()) && length < 0.5 * ell;
+      count.degraded += length < 0.5 * ell || length > 2 * ell;
+    }
+    for (const auto f : r.mesh.faces()) {
+      count.degraded += smallest_angle_deg(r.mesh, f) < 15;
+      EXPECT_GT(dot(r.mesh.calc_face_normal(f), r.mesh.calc_face_centroid(f)), 0) << "a triangle turned over";
+    }
+    return count;
+  };
+  const Count plain = remeshed(false), settled = remeshed(true);
+  ASSERT_GT(plain.short_beside_rim, 0) << "the case no longer shows the defect it tests";
+  EXPECT_EQ(settled.short_beside_rim, 0);
+  EXPECT_LT(settled.degraded, plain.degraded);
 }
 
 TEST(Remesh, default_projection_follows_the_input_surface)

@@ -6,6 +6,7 @@
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/normals.h"
 #include "sdflow/geometry/principal_curvature.h"
+#include "sdflow/geometry/quality.h"
 #include "sdflow/log.h"
 #include "sdflow/remesh/star_projection.h"
 #include "sdflow/spatial/closest_point_grid.h"
@@ -23,6 +24,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <vector>
@@ -32,6 +34,7 @@ namespace {
 
 constexpr double kSplitRatio = 4.0 / 3.0;    //!< split edges longer than this × target
 constexpr double kCollapseRatio = 4.0 / 5.0; //!< collapse edges shorter than this × target
+constexpr int kSettleSweeps = 5; //!< at most, of the vertices beside a kept boundary (settle_beside_kept_boundary)
 //! Splitting passes per iteration; each pass at least halves the longest edges, so edges up to
 //! 2^10 × 4/3 ℓ are split to length in one iteration, longer ones in the next.
 constexpr int kMaxSplitPasses = 10;
@@ -126,6 +129,12 @@ public:
       relax_and_project();
       renumber();
       logger().debug("remesh iteration {}: {} vertices, {} faces", iteration + 1, mesh_.n_vertices(), mesh_.n_faces());
+    }
+    if (options_.boundary == BoundaryMode::keep && options_.settle_kept_boundary && options_.iterations > 0) {
+      settle_beside_kept_boundary();
+      collapse_short_edges(true);
+      settle_beside_kept_boundary();
+      renumber();
     }
     statistics_.edge_length = ell_;
     return statistics_;
@@ -377,9 +386,16 @@ private:
     return true;
   }
 
-  void collapse_short_edges()
+  //! Collapses the edges shorter than kCollapseRatio × target where allowed; with
+  //! `beside_kept_boundary`, only those between a locked vertex and a free one.
+  void collapse_short_edges(bool beside_kept_boundary = false)
   {
-    project_collapse_midpoints();
+    if (beside_kept_boundary) {
+      collapse_slot_.assign(mesh_.n_edges(), -1);
+      collapse_cache_.clear();
+    } else {
+      project_collapse_midpoints();
+    }
     const std::size_t edges = mesh_.n_edges();
     for (std::size_t i = 0; i < edges; ++i) {
       const Mesh::EdgeHandle e(static_cast<int>(i));
@@ -387,6 +403,8 @@ private:
         continue;
       const auto h01 = mesh_.halfedge_handle(e, 0), h10 = mesh_.halfedge_handle(e, 1);
       const auto v0 = mesh_.from_vertex_handle(h01), v1 = mesh_.to_vertex_handle(h01);
+      if (beside_kept_boundary && locked_[v0.idx()] == locked_[v1.idx()])
+        continue;
       if ((point(mesh_, v0) - point(mesh_, v1)).norm() >= kCollapseRatio * edge_target(v0, v1))
         continue;
       // Remove the vertex of lower valence when both ways are allowed: that pulls both valences
@@ -417,6 +435,84 @@ private:
     for ([[maybe_unused]] auto h : mesh_.voh_range(v))
       ++n;
     return n;
+  }
+
+  //! The worst element of v's star, as a number that grows with quality: the smallest of each
+  //! edge's length over its target or target over length, and of each triangle's smallest angle
+  //! over 30° (a 15° angle counts as an edge at half or twice its target, as the run's hook calls
+  //! both degraded, flow/degraded_elements.h).
+  double star_quality(Mesh::VertexHandle v) const
+  {
+    const Eigen::Vector3d x = point(mesh_, v);
+    double quality = std::numeric_limits<double>::infinity();
+    for (auto w : mesh_.vv_range(v)) {
+      const double ratio = (point(mesh_, w) - x).norm() / edge_target(v, w);
+      quality = std::min(quality, std::min(ratio, 1 / ratio));
+    }
+    for (auto f : mesh_.vf_range(v))
+      quality = std::min(quality, smallest_angle_deg(mesh_, f) / 30);
+    return quality;
+  }
+
+  //! Moves v by length-equalising springs (each edge pulls or pushes it toward its target length)
+  //! within its star's tangent plane, projected; kept only when no triangle of its star turns or
+  //! degenerates and its worst element improves (star_quality). Returns whether v moved.
+  bool settle(Mesh::VertexHandle v)
+  {
+    const Eigen::Vector3d x = point(mesh_, v);
+    Eigen::Vector3d pull = Eigen::Vector3d::Zero();
+    int neighbours = 0;
+    for (auto w : mesh_.vv_range(v)) {
+      const Eigen::Vector3d e = point(mesh_, w) - x;
+      const double length = e.norm();
+      if (!(length > 0))
+        return false;
+      pull += (length - edge_target(v, w)) / length * e;
+      ++neighbours;
+    }
+    const Eigen::Vector3d reference = star_normal(v);
+    if (neighbours == 0 || !(reference.norm() > 0))
+      return false;
+    const Eigen::Vector3d normal = reference.normalized();
+    pull /= neighbours;
+    pull -= normal * normal.dot(pull);
+    const double before = star_quality(v);
+    for (const double step : {0.5, 0.25}) {
+      mesh_.set_point(v, to_point(project_(x + step * pull)));
+      bool kept = star_quality(v) > before;
+      for (auto f : mesh_.vf_range(v))
+        kept = kept && acceptable(face_area_normal(mesh_, f), reference, target_[v.idx()]);
+      if (kept)
+        return true;
+      mesh_.set_point(v, to_point(x));
+    }
+    return false;
+  }
+
+  //! Sweeps of settle() over the free vertices beside a kept (locked) boundary vertex, until
+  //! none moves or kSettleSweeps have run; their targets follow them.
+  void settle_beside_kept_boundary()
+  {
+    std::vector<Mesh::VertexHandle> beside;
+    for (auto v : mesh_.vertices()) {
+      if (mesh_.status(v).deleted() || locked_[v.idx()] || mesh_.is_boundary(v))
+        continue;
+      for (auto w : mesh_.vv_range(v))
+        if (locked_[w.idx()]) {
+          beside.push_back(v);
+          break;
+        }
+    }
+    for (int sweep = 0; sweep < kSettleSweeps; ++sweep) {
+      bool moved = false;
+      for (const auto v : beside)
+        if (settle(v)) {
+          moved = true;
+          target_[v.idx()] = target_at(point(mesh_, v));
+        }
+      if (!moved)
+        break;
+    }
   }
 
   int valence_target(Mesh::VertexHandle v) const { return mesh_.is_boundary(v) ? 4 : 6; }

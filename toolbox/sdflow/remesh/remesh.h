@@ -56,6 +56,11 @@ struct RemeshOptions {
   //! Boundary vertices where the boundary turns by more than this angle (degrees) are corners:
   //! never moved or removed, so polygonal boundaries keep their shape.
   double boundary_corner_angle_deg = 45;
+  //! With BoundaryMode::keep: after the last iteration, let the vertices beside the kept boundary
+  //! settle (Remesher::settle_beside_kept_boundary) and collapse the short edges left between them
+  //! and the boundary. The rounds of remeshing leave such edges where a row of vertices came to lie
+  //! too close to a boundary that cannot move toward them.
+  bool settle_kept_boundary = false;
   //! Local target ℓ(p) for adaptive remeshing (e.g. curvature_sizing, or nearest_vertex_sizing of
   //! radius_targets); empty: uniform ℓ. It is called from several threads at once (both of those
   //! may be). An edge's target is the mean of the targets at its two ends.
