@@ -18,6 +18,7 @@
 #include <fstream>
 #include <limits>
 #include <numbers>
+#include <random>
 #include <set>
 #include <sstream>
 
@@ -241,6 +242,31 @@ TEST(RetriangulationHook, degraded_elements_alone_are_remeshed_locally_and_the_v
       EXPECT_GT(remeshed.n_vertices(), mesh.n_vertices() - 40);
     }
   }
+}
+
+TEST(RetriangulationHook, a_surface_worn_all_over_is_remeshed_whole_even_when_local_is_asked_for)
+{
+  // Every vertex jittered by a third of an edge: the worn faces and their rings cover the sphere,
+  // more than a local remeshing takes, so the whole pipeline runs and says why.
+  Mesh mesh = analytic::icosphere(3);
+  double ell = 0;
+  for (const auto e : mesh.edges())
+    ell += mesh.calc_edge_length(e) / static_cast<double>(mesh.n_edges());
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> offset(-ell / 3, ell / 3);
+  for (const auto v : mesh.vertices())
+    mesh.set_point(v, mesh.point(v) + Mesh::Point(offset(random), offset(random), offset(random)));
+  ASSERT_GT(degraded_elements(mesh, ell), 10);
+  RetriangulationSchedule schedule;
+  schedule.local = true;
+  schedule.pipeline.edge_length = ell;
+  schedule.pipeline.edges_per_radius = 0;
+  const RetriangulationReport report = make_retriangulation_hook(schedule)(mesh, {.step = 1});
+  EXPECT_TRUE(report.remeshed);
+  EXPECT_FALSE(report.local);
+  EXPECT_NE(report.detail.find("more than a local remeshing takes, so the whole pipeline ran"), std::string::npos)
+      << report.detail;
+  EXPECT_LT(degraded_elements(mesh, ell), 10);
 }
 
 TEST(RetriangulatingRun, local_and_whole_surface_remeshing_pinch_the_dumbbell_off_alike)

@@ -147,9 +147,31 @@ TEST(LocalRemesh, no_faces_leave_the_surface_as_it_is)
   EXPECT_EQ(vertex_positions(r.mesh), vertex_positions(mesh));
 }
 
+TEST(LocalRemesh, a_patch_larger_than_its_allowed_share_is_declined)
+{
+  const Mesh mesh = analytic::icosphere(3);
+  const double ell = mean_edge(mesh);
+  std::vector<char> chosen(mesh.n_faces(), 0);
+  chosen[0] = 1;
+  const std::vector<char> patch = grow_face_patch(mesh, chosen, 2);
+  const long faces = std::count(patch.begin(), patch.end(), 1);
+  const double share = static_cast<double>(faces) / static_cast<double>(mesh.n_faces());
+  const LocalRemeshResult declined =
+      remesh_locally(mesh, {0}, {}, {.edge_length = ell, .rings = 2, .max_patch_share = 0.99 * share});
+  EXPECT_TRUE(declined.declined);
+  EXPECT_EQ(declined.patch_faces, faces);
+  EXPECT_EQ(declined.mesh.n_faces(), 0u);
+  const LocalRemeshResult taken = remesh_locally(mesh, {0}, {}, {.edge_length = ell, .rings = 2, .max_patch_share = share});
+  EXPECT_FALSE(taken.declined);
+  EXPECT_EQ(taken.patch_faces, faces);
+  EXPECT_GT(taken.mesh.n_faces(), 0u);
+}
+
 TEST(LocalRemesh, bad_options_and_faces_are_rejected)
 {
   const Mesh mesh = analytic::icosphere(2);
+  EXPECT_THROW(remesh_locally(mesh, {0}, {}, {.edge_length = 0.3, .max_patch_share = 0}), InvalidParameter);
+  EXPECT_THROW(remesh_locally(mesh, {0}, {}, {.edge_length = 0.3, .max_patch_share = 1.5}), InvalidParameter);
   EXPECT_THROW(remesh_locally(mesh, {0}, {}, {.edge_length = 0}), InvalidParameter);
   EXPECT_THROW(remesh_locally(mesh, {0}, {}, {.edge_length = 0.3, .rings = 0}), InvalidParameter);
   EXPECT_THROW(remesh_locally(mesh, {static_cast<int>(mesh.n_faces())}, {}, {.edge_length = 0.3}), InvalidParameter);

@@ -125,6 +125,12 @@ std::string restore_volume(const Mesh& before, Mesh& after, const std::vector<in
                          : std::string{};
 }
 
+//! The largest share of the surface's faces a local remeshing takes (the worn faces with their
+//! rings); beyond it the whole pipeline runs. On the three spheres on a plane the first steps,
+//! while the surface settles to its curvature-adapted sizing, wear 10–35% of it at once: remeshing
+//! all of it then lasts longer than remeshing those patches, which leave the rest as worn as it was.
+constexpr double kLocalPatchShare = 0.1;
+
 //! Rounds of local remeshing at most: each one remeshes around what the last one left degraded
 //! (a patch's kept boundary can leave a few sharp triangles or off-target edges beside it).
 constexpr int kLocalRemeshRounds = 3;
@@ -148,9 +154,17 @@ LocalRounds remesh_worn_regions(const Mesh& mesh, const DegradedElements& degrad
   const Mesh* current = &mesh;
   const DegradedElements* seeds = &degraded;
   while (rounds.rounds < kLocalRemeshRounds) {
-    LocalRemeshResult next = remesh_locally(*current, seeds->worn_faces, seeds->targets,
-                                            {.edge_length = o.edge_length, .iterations = o.remesh_iterations,
-                                             .rings = kLocalRemeshRings, .curved_projection = o.curved_projection});
+    // Only the first round can be declined: later ones work around what it left.
+    LocalRemeshResult next =
+        remesh_locally(*current, seeds->worn_faces, seeds->targets,
+                       {.edge_length = o.edge_length, .iterations = o.remesh_iterations, .rings = kLocalRemeshRings,
+                        .curved_projection = o.curved_projection,
+                        .max_patch_share = rounds.rounds == 0 ? kLocalPatchShare : 1.0});
+    if (next.declined) {
+      total.patch_faces = next.patch_faces;
+      total.declined = true;
+      return rounds;
+    }
     if (rounds.rounds == 0) {
       total.vertex_map = std::move(next.vertex_map);
     } else {
@@ -176,9 +190,11 @@ LocalRounds remesh_worn_regions(const Mesh& mesh, const DegradedElements& degrad
 }
 
 //! The local remeshing of a hook: the regions around the degraded elements remeshed and their
-//! volume given back, accepted unless it leaves the surface intersecting itself (then the caller
-//! falls back to the whole pipeline, whose note is returned in `fallback`).
-std::optional<Mesh> remesh_degraded_region(const Mesh& mesh, const Verdict& verdict, const RetriangulationSchedule& s,
+//! volume given back, accepted unless they are too large (kLocalPatchShare), the patch cannot be
+//! cut out or put back, or the result intersects itself (then the caller falls back to the whole
+//! pipeline, whose note is returned in `fallback`; `verdict.watched` turns false once the watch
+//! has counted another surface than `mesh`).
+std::optional<Mesh> remesh_degraded_region(const Mesh& mesh, Verdict& verdict, const RetriangulationSchedule& s,
                                            IntersectionWatch& watch, RetriangulationReport& report,
                                            std::string& fallback)
 {
@@ -193,8 +209,15 @@ std::optional<Mesh> remesh_degraded_region(const Mesh& mesh, const Verdict& verd
   }
   LocalRemeshResult& r = rounds.result;
   report.pipeline_seconds.remesh = stopwatch.restart();
+  if (r.declined) {
+    fallback = fmt::format("the worn regions and their rings hold {} of the {} faces, more than a local remeshing "
+                           "takes, so the whole pipeline ran; ",
+                           r.patch_faces, mesh.n_faces());
+    return std::nullopt;
+  }
   const std::string volume_note = s.restore_volume ? restore_volume(mesh, r.mesh, r.vertex_map) : std::string{};
   report.volume_seconds = stopwatch.restart();
+  verdict.watched = false; // the watch now holds the remeshed surface's pairs
   const std::size_t pairs = watch.count(r.mesh);
   report.pipeline_seconds.intersections = stopwatch.seconds();
   if (pairs > 0) {
@@ -266,7 +289,7 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     }
     // The watch's pairs are this surface's unless a local remeshing gave it another one to count;
     // so are the look's curvature targets, found when it does not intersect.
-    const bool pairs_known = verdict.watched && !verdict.local;
+    const bool pairs_known = verdict.watched;
     RetriangulationResult r = surgery       ? std::move(*surgery)
                               : pairs_known ? retriangulate(mesh, schedule.pipeline, watch->pairs(), verdict.degraded.targets)
                                             : retriangulate(mesh, schedule.pipeline);

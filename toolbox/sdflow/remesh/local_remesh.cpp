@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -17,6 +18,9 @@ LocalRemeshResult remesh_locally(const Mesh& mesh, const std::vector<int>& faces
 {
   if (!(options.edge_length > 0) || !std::isfinite(options.edge_length))
     throw InvalidParameter(fmt::format("local remeshing: ℓ must be a finite number > 0, got {}", options.edge_length));
+  if (!(options.max_patch_share > 0 && options.max_patch_share <= 1))
+    throw InvalidParameter(
+        fmt::format("local remeshing: the largest patch share must be in (0, 1], got {}", options.max_patch_share));
   if (options.iterations < 1 || options.rings < 1)
     throw InvalidParameter(fmt::format("local remeshing: iterations ({}) and rings ({}) must be ≥ 1",
                                        options.iterations, options.rings));
@@ -36,6 +40,12 @@ LocalRemeshResult remesh_locally(const Mesh& mesh, const std::vector<int>& faces
     return result;
   }
   const std::vector<char> in_patch = grow_face_patch(mesh, std::move(chosen), options.rings);
+  const long patch_faces = std::count(in_patch.begin(), in_patch.end(), 1);
+  if (static_cast<double>(patch_faces) > options.max_patch_share * static_cast<double>(mesh.n_faces())) {
+    result.patch_faces = patch_faces;
+    result.declined = true;
+    return result;
+  }
   const FacePatch patch = extract_face_patch(mesh, in_patch);
   result.patch_faces = static_cast<long>(patch.mesh.n_faces());
   face_component_ids(patch.mesh, &result.patches);

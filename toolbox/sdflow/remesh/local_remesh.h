@@ -25,6 +25,9 @@ struct LocalRemeshOptions {
   //! Project onto the smooth surface the triangles sample (RemeshOptions::curved_projection), with
   //! the normals of each vertex's whole star; off: onto the flat triangles.
   bool curved_projection = true;
+  //! Remesh nothing when the patch (chosen faces, rings, closure) would hold more than this share
+  //! of the surface's faces (in (0, 1]): so much of it is worn that the whole pipeline is called for.
+  double max_patch_share = 1;
 };
 
 //! What a local remeshing did.
@@ -34,6 +37,9 @@ struct LocalRemeshResult {
   long patch_faces = 0;    //!< faces cut out (the chosen ones, their rings, manifold closure)
   long new_faces = 0;      //!< faces put in their place
   int patches = 0;         //!< connected pieces of the patch
+  //! The patch held more than LocalRemeshOptions::max_patch_share of the faces: nothing was
+  //! remeshed, `mesh` and `vertex_map` are empty (`patch_faces` says how large it would have been).
+  bool declined = false;
   RemeshStatistics statistics;
 };
 
