@@ -408,7 +408,7 @@ std::vector<ParameterEntry> build_schema()
     auto& e = add(entry("retriangulation.local", "--retriangulate-local", ParameterType::boolean,
                         "When only degraded elements call for a re-triangulation, remesh just the region around them "
                         "(three rings of faces, boundary kept) instead of running the whole pipeline (the whole "
-                        "pipeline when that fails)"));
+                        "pipeline when that fails or the region holds more than a tenth of the surface)"));
     bind<bool>(e, &RunParameters::retriangulation, &RS::local);
   }
   {
