@@ -34,7 +34,10 @@ namespace {
 
 constexpr double kSplitRatio = 4.0 / 3.0;    //!< split edges longer than this × target
 constexpr double kCollapseRatio = 4.0 / 5.0; //!< collapse edges shorter than this × target
-constexpr int kSettleSweeps = 5; //!< at most, of the vertices beside a kept boundary (settle_beside_kept_boundary)
+constexpr int kSettleSweeps = 5; //!< sweeps of Remesher::settle_beside_kept_boundary at most
+//! The angle that counts in Remesher::star_quality as much as an edge at its target: 15°, which the
+//! run's hook calls degraded (flow/degraded_elements.h), then counts as an edge at half or twice it.
+constexpr double kSettleAngleScaleDeg = 30;
 //! Splitting passes per iteration; each pass at least halves the longest edges, so edges up to
 //! 2^10 × 4/3 ℓ are split to length in one iteration, longer ones in the next.
 constexpr int kMaxSplitPasses = 10;
@@ -439,8 +442,7 @@ private:
 
   //! The worst element of v's star, as a number that grows with quality: the smallest of each
   //! edge's length over its target or target over length, and of each triangle's smallest angle
-  //! over 30° (a 15° angle counts as an edge at half or twice its target, as the run's hook calls
-  //! both degraded, flow/degraded_elements.h).
+  //! over kSettleAngleScaleDeg.
   double star_quality(Mesh::VertexHandle v) const
   {
     const Eigen::Vector3d x = point(mesh_, v);
@@ -450,7 +452,7 @@ private:
       quality = std::min(quality, std::min(ratio, 1 / ratio));
     }
     for (auto f : mesh_.vf_range(v))
-      quality = std::min(quality, smallest_angle_deg(mesh_, f) / 30);
+      quality = std::min(quality, smallest_angle_deg(mesh_, f) / kSettleAngleScaleDeg);
     return quality;
   }
 
