@@ -53,7 +53,8 @@ void run(const RemeshArguments& args)
   const RemeshResult result = isotropic_remesh(
       input.mesh, {.edge_length = args.edge_length,
                    .iterations = args.iterations,
-                   .boundary = args.keep_boundary ? BoundaryMode::keep : BoundaryMode::remesh});
+                   .boundary = args.keep_boundary ? BoundaryMode::keep : BoundaryMode::remesh,
+                   .settle_kept_boundary = args.keep_boundary});
   progress.stage("writing " + args.output);
   write_mesh(result.mesh, args.output, {.encoding = args.encoding, .vertex_fields = surface_fields(result.mesh)});
   progress.finish();
@@ -98,7 +99,9 @@ void add_remesh_verb(CLI::App& app)
   verb->add_option("--remesh-iterations,--iterations", args->iterations,
                    "Remeshing iterations (--iterations: its older name)")->capture_default_str()->check(CLI::NonNegativeNumber);
   verb->add_flag("--force", args->force, "Skip the plausibility limits (size of the result, iterations)");
-  verb->add_flag("--keep-boundary", args->keep_boundary, "Leave boundary vertices and edges exactly as they are");
+  verb->add_flag("--keep-boundary", args->keep_boundary,
+                 "Leave boundary vertices and edges exactly as they are (the vertices beside them then settle, "
+                 "which evens out the edges to the boundary)");
   add_encoding_flags(*verb, args->encoding);
   add_json_flag(*verb, args->json);
   verb->callback([args] { run(*args); });

@@ -202,7 +202,9 @@ def retriangulate(V, F, *, edge_length=0.0, iterations=3, edges_per_radius=4.0, 
 
 
 def remesh(V, F, *, edge_length=0.0, iterations=10, keep_boundary=False, curved_projection=False, force=False):
-    """Isotropic remeshing (Botsch & Kobbelt 2004) onto the input surface; edge_length 0: the mean."""
+    """Isotropic remeshing (Botsch & Kobbelt 2004) onto the input surface; edge_length 0: the mean.
+    keep_boundary: boundary vertices and edges stay exactly as they are, and the vertices beside them
+    then settle, which evens out the edges to the boundary (`sdflow remesh --keep-boundary`)."""
     V, F, info = _sdflow.remesh(V, F, edge_length, iterations, keep_boundary, curved_projection, force)
     return MeshResult(V, F, info)
 

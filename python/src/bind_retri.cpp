@@ -162,7 +162,8 @@ void bind_retri(py::module_& m)
           r = isotropic_remesh(input.mesh, {.edge_length = edge_length,
                                             .iterations = iterations,
                                             .curved_projection = curved_projection,
-                                            .boundary = keep_boundary ? BoundaryMode::keep : BoundaryMode::remesh});
+                                            .boundary = keep_boundary ? BoundaryMode::keep : BoundaryMode::remesh,
+                                            .settle_kept_boundary = keep_boundary});
         }
         py::dict info;
         info["splits"] = r.statistics.splits;

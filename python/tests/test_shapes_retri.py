@@ -53,6 +53,39 @@ def test_remesh_equals_sdflow_remesh(cli, meshes, tmp_path):
     np.testing.assert_array_equal(V, sdflow.read(tmp_path / "r.ply").V)
 
 
+def test_remesh_keep_boundary_keeps_the_rim_as_sdflow_remesh_does(cli, tmp_path):
+    # The upper half of an ellipsoid: a surface with one boundary loop.
+    V, F = sdflow.shape(name="ellipsoid", vertices=800)
+    keep = (V[F][:, :, 2].mean(axis=1) > 0)
+    used, F_half = np.unique(F[keep], return_inverse=True)
+    V_half, F_half = V[used], F_half.reshape(-1, 3).astype(F.dtype)
+    sdflow.write(tmp_path / "half.ply", V_half, F_half, binary=True)
+    # At about the rim's own edge length (0.53); the remeshing alone leaves 3 edges shorter than
+    # half the target beside the rim here, the settling none.
+    cli("remesh", tmp_path / "half.ply", "-o", tmp_path / "r.ply", "--edge-length", 0.55, "--iterations", 5,
+        "--keep-boundary")
+    R, G = sdflow.remesh(V_half, F_half, edge_length=0.55, iterations=5, keep_boundary=True)
+    np.testing.assert_array_equal(R, sdflow.read(tmp_path / "r.ply").V)
+    np.testing.assert_array_equal(G, sdflow.read(tmp_path / "r.ply").F)
+    assert rim_points(R, G) == rim_points(V_half, F_half)
+    edges = np.sort(np.concatenate([G[:, [0, 1]], G[:, [1, 2]], G[:, [2, 0]]]), axis=1)
+    on_rim = np.isin(edges, rim_vertices(G))
+    beside_rim = on_rim[:, 0] != on_rim[:, 1]
+    lengths = np.linalg.norm(R[edges[:, 0]] - R[edges[:, 1]], axis=1)
+    assert not np.any(beside_rim & (lengths < 0.5 * 0.55))
+
+
+def rim_vertices(F):
+    """The vertices on edges that only one face has."""
+    edges = np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1)
+    unique, counts = np.unique(edges, axis=0, return_counts=True)
+    return np.unique(unique[counts == 1])
+
+
+def rim_points(V, F):
+    return {tuple(p) for p in V[rim_vertices(F)]}
+
+
 def test_intersections_union_and_the_pipeline_on_overlapping_spheres(cli_json, tmp_path):
     V, F = sdflow.shape("sphere", vertices=600)
     V2 = V + [1.0, 0, 0]

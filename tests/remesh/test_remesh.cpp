@@ -10,6 +10,7 @@
 #include "support/analytic_meshes.h"
 #include "support/convergence.h"
 #include "support/exact_intersections.h"
+#include "support/test_meshes.h"
 
 #include <gtest/gtest.h>
 
@@ -191,27 +192,13 @@ TEST(Remesh, settling_removes_the_short_edges_left_beside_a_kept_boundary)
 {
   // A cap of a sphere, its interior vertices jittered (worn), cut out and remeshed with its rim
   // kept: the remeshing leaves a few interior vertices too close to the rim, which settling fixes.
-  Mesh sphere = analytic::icosphere(5);
   double ell = 0;
-  for (const auto e : sphere.edges())
-    ell += sphere.calc_edge_length(e);
-  ell /= static_cast<double>(sphere.n_edges());
-  std::mt19937 random(7);
-  std::uniform_real_distribution<double> offset(-0.2 * ell, 0.2 * ell);
-  std::vector<char> in_cap(sphere.n_faces(), 0);
-  for (const auto f : sphere.faces())
-    in_cap[f.idx()] = sphere.calc_face_centroid(f)[2] > 0.3;
-  for (const auto v : sphere.vertices())
-    if (Mesh::Point p = sphere.point(v); p[2] > 0.45) {
-      p += Mesh::Point(offset(random), offset(random), offset(random));
-      sphere.set_point(v, p / p.norm());
-    }
-  const FacePatch cap = extract_face_patch(sphere, in_cap);
+  const Mesh cap = test::worn_sphere_cap(&ell);
   struct Count {
     int short_beside_rim = 0, degraded = 0;
   };
   const auto remeshed = [&](bool settle) {
-    const RemeshResult r = isotropic_remesh(cap.mesh, {.edge_length = ell, .iterations = 3, .project = onto_sphere(1),
+    const RemeshResult r = isotropic_remesh(cap, {.edge_length = ell, .iterations = 3, .project = onto_sphere(1),
                                                        .boundary = BoundaryMode::keep, .settle_kept_boundary = settle});
     Count count;
     for (const auto e : r.mesh.edges()) {

@@ -1,9 +1,11 @@
 #pragma once
 //! \file test_meshes.h
-//! \brief Small meshes for the retri tests: grids mapped by a function, disjoint unions, random
-//! lattice positions. Header-only helpers shared by the retri test files.
+//! \brief Small meshes for the tests: grids mapped by a function, disjoint unions, mapped copies,
+//! worn sphere caps. Header-only helpers shared by the test files.
 
 #include "sdflow/mesh.h"
+#include "sdflow/remesh/face_patch.h"
+#include "support/analytic_meshes.h"
 
 #include <functional>
 #include <random>
@@ -63,6 +65,31 @@ inline Mesh mapped(const Mesh& mesh, const std::function<Eigen::Vector3d(const E
   for (auto v : out.vertices())
     out.set_point(v, to_point(map(to_eigen(out.point(v)))));
   return out;
+}
+
+//! A worn cap of the unit sphere: the faces of icosphere(5) with centroid z > 0.3, cut out (its rim
+//! a boundary loop), and its vertices above z = 0.45 jittered by up to ±0.2 of the mean edge length
+//! (fixed seed) and put back on the sphere. Remeshed with its rim kept, it leaves interior vertices
+//! too close to the rim (the case the remesher's settling is for). `edge_length`: the mean edge.
+inline Mesh worn_sphere_cap(double* edge_length)
+{
+  Mesh sphere = analytic::icosphere(5);
+  double ell = 0;
+  for (const auto e : sphere.edges())
+    ell += sphere.calc_edge_length(e);
+  ell /= static_cast<double>(sphere.n_edges());
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> offset(-0.2 * ell, 0.2 * ell);
+  std::vector<char> in_cap(sphere.n_faces(), 0);
+  for (const auto f : sphere.faces())
+    in_cap[f.idx()] = sphere.calc_face_centroid(f)[2] > 0.3;
+  for (const auto v : sphere.vertices())
+    if (Mesh::Point p = sphere.point(v); p[2] > 0.45) {
+      p += Mesh::Point(offset(random), offset(random), offset(random));
+      sphere.set_point(v, p / p.norm());
+    }
+  *edge_length = ell;
+  return extract_face_patch(sphere, in_cap).mesh;
 }
 
 } // namespace sdflow::test
