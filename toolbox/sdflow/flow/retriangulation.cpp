@@ -218,15 +218,28 @@ std::optional<Mesh> remesh_degraded_region(const Mesh& mesh, Verdict& verdict, c
   const std::string volume_note = s.restore_volume ? restore_volume(mesh, r.mesh, r.vertex_map) : std::string{};
   report.volume_seconds = stopwatch.restart();
   verdict.watched = false; // the watch now holds the remeshed surface's pairs
-  const std::size_t pairs = watch.count(r.mesh);
+  // The volume restoration moved the vertices by a tiny normal offset: count the degraded elements
+  // again, beside the intersection test (the count is wasted only when that test fails).
+  std::size_t pairs = 0;
+  long degraded_left = 0;
+  std::exception_ptr degraded_failure;
+  tbb::parallel_invoke([&] { pairs = watch.count(r.mesh); },
+                       [&] {
+                         try {
+                           degraded_left = degraded_elements(r.mesh, s).total();
+                         } catch (...) {
+                           degraded_failure = std::current_exception();
+                         }
+                       });
   report.pipeline_seconds.intersections = stopwatch.seconds();
   if (pairs > 0) {
     fallback = fmt::format("the local remeshing left {} intersecting face pairs, so the whole pipeline ran; ", pairs);
     return std::nullopt;
   }
+  if (degraded_failure)
+    std::rethrow_exception(degraded_failure);
   report.remeshed = report.local = true;
-  // The volume restoration moved the vertices by a tiny normal offset: count again.
-  report.degraded_left = degraded_elements(r.mesh, s).total();
+  report.degraded_left = degraded_left;
   report.detail = fmt::format("{}: local remeshing of {} faces in {} patches into {} in {} rounds ({} splits, {} "
                               "collapses, {} flips){}; {} degraded elements left",
                               verdict.reason, r.patch_faces, r.patches, r.new_faces, rounds.rounds,
