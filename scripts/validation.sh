@@ -6,19 +6,22 @@
 #   - the paper's dumbbell (samples/dumbbell.toml's shape): when its neck pinches off, likewise;
 #   - capsules of radius 1 and length L (L/D from 5 to 12): how many bodies they break into, and when,
 #     at three edge lengths with the defaults and at one with --preset paper;
-#   - the axisymmetric reference (`sdflow axisymmetric`) for each, computed in 1-D.
+#   - the axisymmetric reference (`sdflow axisymmetric`) for each, computed in 1-D;
+#   - the sphere-mode rates and the remeshed tori's curvature errors, from the test suite's measurements.
 # Each run's directory is kept under build/validation/ and reused when it finished, so a second call
 # only redraws the tables; --force re-runs everything. Runs go two at a time (--jobs N to change).
-#   - the sphere-mode rates and the remeshed tori's curvature errors, from the test suite's measurements.
 # --tables-only redraws the tables from the runs on disk without starting any (unfinished ones show "–").
+# --with "FLAGS" adds run flags to every run with the defaults (e.g. --with --retriangulate-local) and
+# keeps those runs under build/validation-with/; the tables are then printed, not written to the doc.
 #   scripts/validation.sh [--jobs N] [--force] [--tables-only] [--only modes|torus|dumbbell|capsules] [--sdflow PATH]
+#                         [--with "FLAGS"]
 set -euo pipefail
 # Everything runs inside main(), which bash reads whole before it starts: editing this file while a
 # validation runs cannot change what the running one does.
 main() {
 cd "$(dirname "$0")/.."
 
-jobs=2 force=0 tables_only=0 only="" sdflow=build/release/cli/sdflow
+jobs=2 force=0 tables_only=0 only="" sdflow=build/release/cli/sdflow with=""
 while (($#)); do
   case $1 in
     --jobs) jobs=$2; shift 2 ;;
@@ -26,13 +29,23 @@ while (($#)); do
     --tables-only) tables_only=1; shift ;;
     --only) only=$2; shift 2 ;;
     --sdflow) sdflow=$2; shift 2 ;;
-    -h|--help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --with) with=$2; shift 2 ;;
+    -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "validation.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
   esac
 done
 [[ -x $sdflow ]] || { echo "validation.sh: $sdflow not found: build first (scripts/test.sh builds build/release)" >&2; exit 2; }
 sdflow=$(realpath "$sdflow")
+# The flags are split into words, never evaluated: only option-like words are taken.
+[[ $with =~ ^[A-Za-z0-9._=\ -]*$ ]] || { echo "validation.sh: --with takes run flags (letters, digits, . _ = -), got '$with'" >&2; exit 2; }
 work=build/validation
+if [[ -n $with ]]; then
+  work=build/validation-with
+  mkdir -p "$work"
+  # Runs made with other flags are not reused.
+  [[ -f $work/flags && $(cat "$work/flags") == "$with" ]] || force=1
+  echo "$with" > "$work/flags"
+fi
 mkdir -p "$work"
 work=$(realpath "$work")
 
@@ -72,6 +85,12 @@ if want capsules; then
       plan+=("capsule_${ratio}_${h}_default|shape --expr $expr --box $box --edge-length $h|--end-time 50 --preset default")
     done
     plan+=("capsule_${ratio}_${paper_capsule_edge}_paper|shape --expr $expr --box $box --edge-length $paper_capsule_edge|--end-time 50 --preset paper")
+  done
+fi
+
+if [[ -n $with ]]; then
+  for k in "${!plan[@]}"; do
+    [[ ${plan[k]} == *"--preset default"* ]] && plan[k]="${plan[k]} $with"
   done
 fi
 
@@ -243,7 +262,7 @@ tables=$(mktemp)
 } > "$tables"
 
 doc=docs/validation.md
-if [[ -z $only && -f $doc ]] && grep -q '<!-- tables -->' "$doc"; then
+if [[ -z $only && -z $with && -f $doc ]] && grep -q '<!-- tables -->' "$doc"; then
   awk -v tables="$tables" '
     /<!-- tables -->/ { print; while ((getline line < tables) > 0) print line; skip = 1; next }
     /<!-- end of tables -->/ { skip = 0 }
