@@ -39,14 +39,13 @@ sdflow=$(realpath "$sdflow")
 # The flags are split into words, never evaluated: only option-like words are taken.
 [[ $with =~ ^[A-Za-z0-9._=\ -]*$ ]] || { echo "validation.sh: --with takes run flags (letters, digits, . _ = -), got '$with'" >&2; exit 2; }
 work=build/validation
+[[ -z $with ]] || work=build/validation-with
+mkdir -p "$work"
 if [[ -n $with ]]; then
-  work=build/validation-with
-  mkdir -p "$work"
   # Runs made with other flags are not reused.
   [[ -f $work/flags && $(cat "$work/flags") == "$with" ]] || force=1
   echo "$with" > "$work/flags"
 fi
-mkdir -p "$work"
 work=$(realpath "$work")
 
 torus_vertices=(5000 15000 30000)

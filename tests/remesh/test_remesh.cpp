@@ -199,7 +199,7 @@ TEST(Remesh, settling_removes_the_short_edges_left_beside_a_kept_boundary)
   };
   const auto remeshed = [&](bool settle) {
     const RemeshResult r = isotropic_remesh(cap, {.edge_length = ell, .iterations = 3, .project = onto_sphere(1),
-                                                       .boundary = BoundaryMode::keep, .settle_kept_boundary = settle});
+                                                  .boundary = BoundaryMode::keep, .settle_kept_boundary = settle});
     Count count;
     for (const auto e : r.mesh.edges()) {
       const double length = r.mesh.calc_edge_length(e);

@@ -58,6 +58,37 @@ struct Verdict {
   DegradedElements degraded; //!< found when nothing intersects
 };
 
+//! A surface's intersecting pairs and degraded elements, counted side by side.
+struct SurfaceCount {
+  std::size_t pairs = 0;
+  DegradedElements degraded;
+  std::exception_ptr degraded_failure; //!< finding them failed (a crossing can leave a degenerate triangle)
+
+  //! The degraded elements, or the failure to find them rethrown (they count only when nothing intersects).
+  DegradedElements degraded_or_throw()
+  {
+    if (degraded_failure)
+      std::rethrow_exception(degraded_failure);
+    return std::move(degraded);
+  }
+};
+
+//! The two counts read the surface independently, so they overlap on two cores; each answer is the
+//! one it would be alone.
+SurfaceCount count_surface(const Mesh& mesh, const RetriangulationSchedule& s, IntersectionWatch& watch)
+{
+  SurfaceCount c;
+  tbb::parallel_invoke([&] { c.pairs = watch.count(mesh); },
+                       [&] {
+                         try {
+                           c.degraded = degraded_elements(mesh, s);
+                         } catch (...) {
+                           c.degraded_failure = std::current_exception();
+                         }
+                       });
+  return c;
+}
+
 //! The pipeline runs when the surface intersects itself (or on `always`). Degraded elements call
 //! for a re-triangulation when they exceed both the schedule's allowance and what the last one left
 //! behind, so elements the remesher cannot improve (beside a thin neck, say) do not call it after
@@ -69,29 +100,14 @@ Verdict look_at_surface(const Mesh& mesh, const RetriangulationSchedule& s, long
     v.reason = "scheduled";
     return v;
   }
-  // The two looks read the surface independently, so they overlap on two cores; each answer is the
-  // one it would be alone. The degraded elements (and a failure to find them, on a surface whose
-  // crossing left a degenerate triangle) count only when nothing intersects.
-  std::size_t pairs = 0;
-  DegradedElements degraded;
-  std::exception_ptr degraded_failure;
-  tbb::parallel_invoke([&] { pairs = watch.count(mesh); },
-                       [&] {
-                         try {
-                           degraded = degraded_elements(mesh, s);
-                         } catch (...) {
-                           degraded_failure = std::current_exception();
-                         }
-                       });
+  SurfaceCount counted = count_surface(mesh, s, watch);
   v.watched = true;
-  if (pairs > 0) {
-    v.reason = fmt::format("{} intersecting face pairs", pairs);
+  if (counted.pairs > 0) {
+    v.reason = fmt::format("{} intersecting face pairs", counted.pairs);
     v.intersecting = true;
     return v;
   }
-  if (degraded_failure)
-    std::rethrow_exception(degraded_failure);
-  v.degraded = std::move(degraded);
+  v.degraded = counted.degraded_or_throw();
   const DegradedElements& d = v.degraded;
   const double allowed = std::max(s.degraded_fraction * static_cast<double>(mesh.n_faces()),
                                   static_cast<double>(tolerated));
@@ -220,26 +236,15 @@ std::optional<Mesh> remesh_degraded_region(const Mesh& mesh, Verdict& verdict, c
   verdict.watched = false; // the watch now holds the remeshed surface's pairs
   // The volume restoration moved the vertices by a tiny normal offset: count the degraded elements
   // again, beside the intersection test (the count is wasted only when that test fails).
-  std::size_t pairs = 0;
-  long degraded_left = 0;
-  std::exception_ptr degraded_failure;
-  tbb::parallel_invoke([&] { pairs = watch.count(r.mesh); },
-                       [&] {
-                         try {
-                           degraded_left = degraded_elements(r.mesh, s).total();
-                         } catch (...) {
-                           degraded_failure = std::current_exception();
-                         }
-                       });
+  SurfaceCount counted = count_surface(r.mesh, s, watch);
   report.pipeline_seconds.intersections = stopwatch.seconds();
-  if (pairs > 0) {
-    fallback = fmt::format("the local remeshing left {} intersecting face pairs, so the whole pipeline ran; ", pairs);
+  if (counted.pairs > 0) {
+    fallback = fmt::format("the local remeshing left {} intersecting face pairs, so the whole pipeline ran; ",
+                           counted.pairs);
     return std::nullopt;
   }
-  if (degraded_failure)
-    std::rethrow_exception(degraded_failure);
   report.remeshed = report.local = true;
-  report.degraded_left = degraded_left;
+  report.degraded_left = counted.degraded_or_throw().total();
   report.detail = fmt::format("{}: local remeshing of {} faces in {} patches into {} in {} rounds ({} splits, {} "
                               "collapses, {} flips){}; {} degraded elements left",
                               verdict.reason, r.patch_faces, r.patches, r.new_faces, rounds.rounds,
