@@ -165,9 +165,13 @@ TEST(RunParameters, paper_preset_selects_the_papers_scheme_and_keys_override_it)
   EXPECT_EQ(paper.retriangulation.pipeline.edges_per_radius, 0);
   EXPECT_FALSE(paper.retriangulation.restore_volume);
   EXPECT_FALSE(paper.retriangulation.pipeline.curved_projection);
+  EXPECT_FALSE(paper.retriangulation.local);
+  EXPECT_FALSE(paper.retriangulation.local_surgery);
   RunParameters back = paper;
   apply_preset("default", back);
   EXPECT_EQ(curvature_name(back.scheme.curvature), "cotangent");
+  EXPECT_TRUE(back.retriangulation.local);
+  EXPECT_TRUE(back.retriangulation.local_surgery);
   EXPECT_EQ(back.retriangulation.pipeline.edges_per_radius, RunParameters{}.retriangulation.pipeline.edges_per_radius);
   EXPECT_TRUE(back.retriangulation.restore_volume);
   EXPECT_THROW(apply_preset("Paper", back), InvalidParameter);

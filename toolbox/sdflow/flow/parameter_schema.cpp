@@ -71,8 +71,8 @@ std::vector<ParameterEntry> build_schema()
   {
     auto& e = add(entry("preset", "--preset", ParameterType::choice,
                         "`paper`: the paper's scheme exactly (eq. 9 H, Voronoi areas, plain steps, uniform "
-                        "re-triangulation ℓ, flat projection, no volume restoration); `default`: sdflow's. Applied "
-                        "before the other keys and flags, which override it"));
+                        "re-triangulation ℓ, flat projection, no volume restoration, whole-surface re-triangulation); "
+                        "`default`: sdflow's. Applied before the other keys and flags, which override it"));
     e.choices = {"paper", "default"};
     e.order = Order::first;
     e.get = [](const RunParameters&) -> ParameterValue { return std::string(); };

@@ -208,6 +208,7 @@ void apply_preset(const std::string& name, RunParameters& p)
     paper.retriangulation.pipeline.edges_per_radius = 0;
     paper.retriangulation.pipeline.curved_projection = false;
     paper.retriangulation.restore_volume = false;
+    paper.retriangulation.local = false;
     paper.retriangulation.local_surgery = false;
     source = &paper;
   } else if (name != "default") {
@@ -221,6 +222,7 @@ void apply_preset(const std::string& name, RunParameters& p)
   p.retriangulation.pipeline.min_edge_fraction = source->retriangulation.pipeline.min_edge_fraction;
   p.retriangulation.pipeline.curved_projection = source->retriangulation.pipeline.curved_projection;
   p.retriangulation.restore_volume = source->retriangulation.restore_volume;
+  p.retriangulation.local = source->retriangulation.local;
   p.retriangulation.local_surgery = source->retriangulation.local_surgery;
 }
 

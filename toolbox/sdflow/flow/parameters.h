@@ -68,7 +68,8 @@ VertexMass vertex_mass(const std::string& name);
 
 //! The presets of the `preset` key and `--preset`: "paper" is the paper's scheme exactly (eq. 9 H,
 //! Voronoi areas, plain steps, no error control, uniform re-triangulation edge length, no volume
-//! restoration after re-triangulation, flat projection in remeshing); "default" sets those options
+//! restoration after re-triangulation, flat projection in remeshing, the whole re-triangulation
+//! pipeline instead of local remeshing and surgery); "default" sets those options
 //! back to sdflow's defaults.
 //! Other parameters (time steps, β, the re-triangulation's ℓ and triggers) are left alone.
 //! Throws InvalidParameter, listing the names, on another name.
