@@ -112,7 +112,7 @@ class Flow:
     file is when read (`findings` has what was found). Parameters are the scenario keys of
     `sdflow run` (toolbox/sdflow/flow/parameters.h) with their defaults, names, checks and
     messages: ``beta``, ``curvature``, ``mass``, ``tau``, ``time_step``, ``extrapolate``,
-    ``conserve_volume``, ``fixed_boundary``, ``steps``, ``t_end``, ``adaptive={...}``,
+    ``conserve_volume``, ``boundary``, ``steps``, ``t_end``, ``adaptive={...}``,
     ``retriangulation={...}``, ``preset``, ... Re-triangulation is **on** by default
     (``retriangulation=False`` turns it off); its ℓ defaults to the initial mean edge length.
     ``scenario=`` reads a TOML scenario first (keyword arguments override it).

@@ -21,7 +21,7 @@ TEST(RunParameters, resolved_toml_reads_back_to_the_same_parameters)
   p.time_step.schedule_retries = 3;
   p.time_step.adaptive.max_displacement = 0.1;
   p.scheme.beta = 0.75;
-  p.scheme.boundary = BoundaryMotion::fixed;
+  p.scheme.boundary = BoundaryCondition::paper; // not the default, so that the round trip shows
   p.scheme.curvature.method = CurvatureMethod::cotangent;
   p.scheme.mass = VertexMass::volume_gradient;
   p.scheme.extrapolate = true;
@@ -56,7 +56,7 @@ TEST(RunParameters, resolved_toml_reads_back_to_the_same_parameters)
   EXPECT_EQ(q.time_step.schedule_retries, 3);
   EXPECT_EQ(q.time_step.adaptive.max_displacement, 0.1);
   EXPECT_EQ(q.scheme.beta, 0.75);
-  EXPECT_EQ(q.scheme.boundary, BoundaryMotion::fixed);
+  EXPECT_EQ(q.scheme.boundary, BoundaryCondition::paper);
   EXPECT_EQ(q.scheme.curvature.method, CurvatureMethod::cotangent);
   EXPECT_EQ(q.scheme.mass, VertexMass::volume_gradient);
   EXPECT_TRUE(q.scheme.extrapolate);

@@ -297,7 +297,7 @@ TEST(FlowSolver, cholmod_and_paper_qr_agree_on_small_meshes)
   struct Case {
     const char* name;
     Mesh mesh;
-    BoundaryMotion boundary;
+    BoundaryCondition boundary;
   };
   Mesh disk = analytic::disk(6);
   for (auto v : disk.vertices()) { // a bump, so that H and w are not zero
@@ -305,10 +305,10 @@ TEST(FlowSolver, cholmod_and_paper_qr_agree_on_small_meshes)
     p[2] = 0.2 * std::exp(-4 * (p[0] * p[0] + p[1] * p[1]));
     disk.set_point(v, p);
   }
-  const std::vector<Case> cases{{"ellipsoid", analytic::ellipsoid(2, 5, 4, 3), BoundaryMotion::paper},
-                                {"torus", analytic::torus(24, 12, 3, 1), BoundaryMotion::paper},
-                                {"bump, free boundary", disk, BoundaryMotion::paper},
-                                {"bump, fixed boundary", disk, BoundaryMotion::fixed}};
+  const std::vector<Case> cases{{"ellipsoid", analytic::ellipsoid(2, 5, 4, 3), BoundaryCondition::paper},
+                                {"torus", analytic::torus(24, 12, 3, 1), BoundaryCondition::paper},
+                                {"bump, free boundary", disk, BoundaryCondition::paper},
+                                {"bump, fixed boundary", disk, BoundaryCondition::fixed}};
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
     const SchemeOptions scheme{.boundary = c.boundary};
@@ -396,8 +396,8 @@ TEST(FlowStep, fixed_boundary_stays_put_and_free_boundary_moves)
     p[2] = 0.3 * (1 - p[0] * p[0] - p[1] * p[1]) * std::cos(3 * p[0]);
     disk.set_point(v, p);
   }
-  const auto fixed = flow_step(disk, 0.01, {.boundary = BoundaryMotion::fixed});
-  const auto free = flow_step(disk, 0.01, {.boundary = BoundaryMotion::paper});
+  const auto fixed = flow_step(disk, 0.01, {.boundary = BoundaryCondition::fixed});
+  const auto free = flow_step(disk, 0.01, {.boundary = BoundaryCondition::paper});
   const VertexVectors x = vertex_positions(disk);
   double fixed_motion = 0, free_motion = 0;
   for (auto v : disk.vertices())

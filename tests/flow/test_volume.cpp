@@ -1,6 +1,7 @@
 //! Volume restoration (volume.h).
 #include "sdflow/errors.h"
 #include "sdflow/flow/volume.h"
+#include "sdflow/geometry/material_volume.h"
 #include "sdflow/geometry/measures.h"
 #include "support/analytic_meshes.h"
 
@@ -40,11 +41,24 @@ TEST(RestoreVolumes, each_closed_component_gets_its_target_volume_back)
   EXPECT_LT(r.max_relative_error, round_off_volume);
 }
 
-TEST(RestoreVolumes, open_components_are_left_alone)
+TEST(RestoreVolumes, open_components_get_their_material_volume_back_with_the_boundary_in_place)
 {
-  const Mesh disk = analytic::disk(4);
-  const VolumeRestoration r = restore_volumes(disk, {1.0});
-  EXPECT_EQ(r.positions, vertex_positions(disk));
+  Mesh disk = analytic::disk(6);
+  for (auto v : disk.vertices()) { // a bump over z = 0, so that the material volume is not zero
+    auto p = disk.point(v);
+    p[2] = 0.3 * (1 - p[0] * p[0] - p[1] * p[1]);
+    disk.set_point(v, p);
+  }
+  const double target = 1.05 * material_volume(disk);
+  const VolumeRestoration r = restore_volumes(disk, {target});
+  const VertexVectors x = vertex_positions(disk);
+  Mesh restored = disk;
+  set_vertex_positions(restored, r.positions);
+  EXPECT_NEAR(material_volume(restored), target, round_off_volume * target);
+  for (auto v : disk.vertices())
+    if (disk.is_boundary(v))
+      EXPECT_EQ(r.positions.row(v.idx()), x.row(v.idx())) << v.idx();
+  EXPECT_GT(r.offsets[0], 0);
   EXPECT_THROW(restore_volumes(disk, {}), InvalidParameter);
 }
 

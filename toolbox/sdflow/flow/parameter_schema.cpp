@@ -70,8 +70,9 @@ std::vector<ParameterEntry> build_schema()
   // --- What runs, where, and until when ---
   {
     auto& e = add(entry("preset", "--preset", ParameterType::choice,
-                        "`paper`: the paper's scheme exactly (eq. 9 H, Voronoi areas, plain steps, uniform "
-                        "re-triangulation ℓ, flat projection, no volume restoration, whole-surface re-triangulation); "
+                        "`paper`: the paper's scheme exactly (eq. 9 H, Voronoi areas, plain steps, its boundary rule, "
+                        "uniform re-triangulation ℓ, flat projection, no volume restoration, whole-surface "
+                        "re-triangulation); "
                         "`default`: sdflow's. Applied before the other keys and flags, which override it"));
     e.choices = {"paper", "default"};
     e.order = Order::first;
@@ -287,10 +288,11 @@ std::vector<ParameterEntry> build_schema()
   // --- Flow options ---
   {
     auto& e = add(entry("conserve_volume", "--conserve-volume", ParameterType::boolean,
-                        "Restore each closed component's volume after every step (a uniform normal offset)"));
+                        "Restore each component's material volume after every step (a uniform normal offset)"));
     e.meshlab = {.name = "ConserveVolume", .label = "Conserve volume exactly",
-                 .help = "After each step, move every closed component along its normals by one uniform distance "
-                         "that restores its enclosed volume. The flow conserves volume in theory; this removes the "
+                 .help = "After each step, move every component along its normals by one uniform distance "
+                         "that restores its volume (an open surface's boundary stays put; its volume is that "
+                         "closed by flat caps over its boundary). The flow conserves volume in theory; this removes the "
                          "small drift of the discrete scheme."};
     bind<bool>(e, &RunParameters::conserve_volume);
   }
@@ -302,15 +304,24 @@ std::vector<ParameterEntry> build_schema()
     bind<bool>(e, &RunParameters::look_ahead);
   }
   {
-    auto& e = add(entry("fixed_boundary", "--fixed-boundary", ParameterType::boolean,
-                        "Hold boundary vertices in place (else they move with H = 0, the paper's §4.3)"));
-    e.get = [](const RunParameters& p) -> ParameterValue { return p.scheme.boundary == BoundaryMotion::fixed; };
+    auto& e = add(entry("boundary", "--boundary", ParameterType::choice,
+                        "At the boundary of an open surface: `fixed` (the rim stays put and no material crosses "
+                        "it; the default) or `paper` (the rim moves, with H = 0 there: the paper's §4.3)"));
+    e.choices = {"fixed", "paper"};
+    e.key_aliases = {"fixed_boundary"}; // its older boolean key: true is `fixed`, false `paper`
+    e.shorthands = {{"--fixed-boundary", "fixed", "A fixed boundary (the default): --boundary fixed"}};
+    e.get = [](const RunParameters& p) -> ParameterValue {
+      return std::string(boundary_condition_name(p.scheme.boundary));
+    };
     e.set = [](RunParameters& p, const ParameterValue& v) {
-      p.scheme.boundary = std::get<bool>(v) ? BoundaryMotion::fixed : BoundaryMotion::paper;
+      p.scheme.boundary = boundary_condition(std::get<std::string>(v));
     };
     e.meshlab = {.name = "FixedBoundary", .label = "Fixed boundary",
-                 .help = "Hold the boundary vertices of open surfaces in place. Off: boundary vertices move like "
-                         "interior ones, with zero mean curvature there."};
+                 .help = "At the boundary of an open surface. On: the boundary stays where it is and no material "
+                         "flows through it (the surface ends on a large body that does not move), so the volume "
+                         "under the surface is conserved. Off: boundary vertices move like interior ones, with zero "
+                         "mean curvature there (the paper's rule; the volume is not conserved).",
+                 .boolean_choices = std::pair<std::string, std::string>{"paper", "fixed"}};
   }
 
   // --- [adaptive]: the adaptive time step (flow/time_step.h) ---
@@ -339,7 +350,7 @@ std::vector<ParameterEntry> build_schema()
                         "Adaptive τ: aim this fraction of the bounds when predicting the next τ"),
                &RunParameters::time_step, &TimeStepOptions::adaptive, &AdaptiveOptions::safety);
   bind<double>(adaptive("adaptive.max_volume_change", "--max-volume-change", ParameterType::real, {.min = 0, .min_open = true, .infinite_allowed = true},
-                        "Adaptive τ: bound on a closed component's relative volume change per step"),
+                        "Adaptive τ: bound on a component's relative change of material volume per step"),
                &RunParameters::time_step, &TimeStepOptions::adaptive, &AdaptiveOptions::max_volume_change);
   bind<double>(adaptive("adaptive.min_tau", "--min-tau", ParameterType::real, above(0),
                         "Adaptive τ: below this τ the run is declared unstable"),
@@ -449,7 +460,7 @@ std::vector<ParameterEntry> build_schema()
   }
   {
     auto& e = add(entry("retriangulation.restore_volume", "--restore-volume", ParameterType::boolean,
-                        "Give each closed component (or group that split or fused) back the volume a "
+                        "Give each component (or group that split or fused) back the material volume a "
                         "re-triangulation took or added"));
     bind<bool>(e, &RunParameters::retriangulation, &RS::restore_volume);
   }

@@ -93,7 +93,8 @@ struct MeshlabParameter {
   Default source = Default::schema;
   std::optional<ParameterValue> value; //!< the dialog's own default, where it differs from a run's
   //! A boolean in the dialog for a choice: the names it selects when off and on (AutomaticTau:
-  //! time_step = "constant" / "adaptive").
+  //! time_step = "constant" / "adaptive"). A scenario may then give the choice as that boolean
+  //! too (`fixed_boundary = true`, the older boolean key of `boundary`).
   std::optional<std::pair<std::string, std::string>> boolean_choices;
   ParameterRange range; //!< the dialog's own range, where narrower (Steps ≥ 1)
 };

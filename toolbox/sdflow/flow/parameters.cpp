@@ -92,6 +92,8 @@ ParameterValue toml_value(const std::filesystem::path& file, const toml::node& n
   case ParameterType::choice:
     if (node.is_string())
       return *node.value<std::string>();
+    if (node.is_boolean() && entry.meshlab.boolean_choices) // as the dialog's boolean, and older keys, give it
+      return *node.value<bool>() ? entry.meshlab.boolean_choices->second : entry.meshlab.boolean_choices->first;
     return wrong_type();
   case ParameterType::path:
     if (node.is_string())
@@ -204,6 +206,7 @@ void apply_preset(const std::string& name, RunParameters& p)
     paper.scheme.curvature = {.method = CurvatureMethod::normal_curvature_integral};
     paper.scheme.mass = VertexMass::voronoi;
     paper.scheme.extrapolate = false;
+    paper.scheme.boundary = BoundaryCondition::paper;
     paper.time_step.adaptive.tolerance = 0;
     paper.retriangulation.pipeline.edges_per_radius = 0;
     paper.retriangulation.pipeline.curved_projection = false;
@@ -217,6 +220,7 @@ void apply_preset(const std::string& name, RunParameters& p)
   p.scheme.curvature = source->scheme.curvature;
   p.scheme.mass = source->scheme.mass;
   p.scheme.extrapolate = source->scheme.extrapolate;
+  p.scheme.boundary = source->scheme.boundary;
   p.time_step.adaptive.tolerance = source->time_step.adaptive.tolerance;
   p.retriangulation.pipeline.edges_per_radius = source->retriangulation.pipeline.edges_per_radius;
   p.retriangulation.pipeline.min_edge_fraction = source->retriangulation.pipeline.min_edge_fraction;

@@ -3,6 +3,7 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/degraded_elements.h"
 #include "sdflow/flow/volume.h"
+#include "sdflow/geometry/material_volume.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/remesh/local_remesh.h"
 #include "sdflow/retri/local_surgery.h"
@@ -132,11 +133,11 @@ constexpr int kLocalRemeshRings = 3;
 //! returns the note for events.log.
 std::string restore_volume(const Mesh& before, Mesh& after, const std::vector<int>& vertex_map = {})
 {
-  const double old_volume = enclosed_volume(after);
+  const double old_volume = material_volume(after);
   const VolumeRestoration restored =
       vertex_map.empty() ? restore_volumes_from(before, after) : restore_volumes_kept(before, after, vertex_map);
   set_vertex_positions(after, restored.positions);
-  const double new_volume = enclosed_volume(after);
+  const double new_volume = material_volume(after);
   return new_volume != 0 ? fmt::format("; volume restored by {:.3g} (relative)", (new_volume - old_volume) / new_volume)
                          : std::string{};
 }

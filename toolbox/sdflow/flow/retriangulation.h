@@ -44,7 +44,7 @@ struct RetriangulationSchedule {
   //! each other, a patch reaching a true boundary) or fails, with `always`, and when a step could
   //! not be taken. Off in the paper's preset.
   bool local_surgery = true;
-  //! Give each closed component (or group of components that split or fused) back the volume the
+  //! Give each component (or group of components that split or fused) back the material volume the
   //! re-triangulation took or added (flow/volume.h, restore_volumes_from).
   bool restore_volume = true;
   //! The pipeline; its ℓ (0 = automatic) is fixed when the run starts, to the initial surface's

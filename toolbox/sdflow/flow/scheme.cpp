@@ -44,16 +44,8 @@ FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options, con
   op.curvature = options.curvature.method == CurvatureMethod::cotangent
                      ? cotangent_mean_curvature(mesh, op.normals, op.laplacian, op.areas)
                      : mean_curvature(mesh, op.normals, options.curvature);
+  impose_boundary_condition(mesh, options.boundary, op.laplacian, op.curvature, op.held);
   op.rhs = op.laplacian * op.curvature;
-  if (options.boundary == BoundaryMotion::fixed) {
-    bool any = false;
-    op.held.assign(mesh.n_vertices(), false);
-    for (auto v : mesh.vertices())
-      if (mesh.is_boundary(v))
-        op.held[v.idx()] = any = true;
-    if (!any)
-      op.held.clear();
-  }
   return op;
 }
 

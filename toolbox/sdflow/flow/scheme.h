@@ -3,6 +3,7 @@
 //! \brief One step of the semi-implicit scheme, eq. (6) of the paper in the SPD form of docs/design.md §2:
 //! (M + τβ L M⁻¹ L) w = L H, then X ← X - τ w N (so the normal velocity is V_N = -w ≈ -ΔH).
 
+#include "sdflow/flow/boundary_condition.h"
 #include "sdflow/flow/solver.h"
 #include "sdflow/geometry/cotangent_cache.h"
 #include "sdflow/geometry/curvature.h"
@@ -17,12 +18,6 @@
 
 namespace sdflow {
 
-//! What boundary vertices do.
-enum class BoundaryMotion {
-  paper, //!< move like interior vertices, with H = 0 there and one-cotangent weights (paper §4.3)
-  fixed  //!< held in place (w = 0 on every boundary vertex)
-};
-
 //! The vertex areas M of Δ = M⁻¹L (and of the cotangent H).
 enum class VertexMass {
   voronoi,        //!< mixed Voronoi areas, eq. (10) (default)
@@ -32,7 +27,9 @@ enum class VertexMass {
 struct SchemeOptions {
   //! Implicitness β of eq. (6): 1/2 is the paper's (stable) choice, 0 the explicit scheme.
   double beta = 0.5;
-  BoundaryMotion boundary = BoundaryMotion::paper;
+  //! At the boundary of an open surface (boundary_condition.h): a pinned rim with zero flux by
+  //! default; `paper` in the paper's preset.
+  BoundaryCondition boundary = BoundaryCondition::fixed;
   NormalOptions normals;       //!< eq. (8); `equal_weights` is the paper's §4.3 boundary variant
   //! The cotangent H = ½ N·ΔX by default: it converges under refinement on every smooth surface.
   //! The paper's eq. (9) (`normal_curvature_integral`) does not off spheres (docs/validation.md):
@@ -49,14 +46,16 @@ inline constexpr double kMassFallbackFraction = 0.1;
 
 struct FlowOperators {
   VertexVectors normals;       //!< N (#V by 3), eq. (8)
-  Eigen::VectorXd curvature;   //!< H (eq. 9 or cotangent, per SchemeOptions::curvature), 0 on the boundary
-  SparseMatrix laplacian;      //!< L, eq. (10) in symmetric form
+  //! H (eq. 9 or cotangent, per SchemeOptions::curvature); on the boundary as its condition sets it
+  Eigen::VectorXd curvature;
+  //! L, eq. (10) in symmetric form; with a fixed boundary, its rim eliminated (zero_flux_laplacian)
+  SparseMatrix laplacian;
   Eigen::VectorXd areas;       //!< M: mixed Voronoi or volume-gradient areas (SchemeOptions::mass)
   //! Vertices whose volume-gradient area was not usable (a folded or nearly flat-folded star near a
   //! pinch or a seal): they take their mixed Voronoi area instead, so the step goes on.
   long mass_fallbacks = 0;
   Eigen::VectorXd rhs;         //!< L H
-  std::vector<bool> held;      //!< vertices with w = 0 (empty if none)
+  std::vector<bool> held;      //!< vertices with w = 0: a fixed boundary (empty if none)
 };
 
 //! N, H, L, M and L H of `mesh`. With `cache` (built for this connectivity) L and M are assembled

@@ -1,5 +1,6 @@
 target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/blas_threads.cpp
+  sdflow/flow/boundary_condition.cpp
   sdflow/flow/carried_ordering.cpp
   sdflow/flow/checkpoint.cpp
   sdflow/flow/degraded_elements.cpp

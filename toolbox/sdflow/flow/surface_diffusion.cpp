@@ -223,7 +223,7 @@ FlowMetrics SurfaceDiffusion::metrics() const
           .components = topology_.count,
           .genus = topology_.genus,
           .area = surface_area(mesh_),
-          .volume = enclosed_volume(mesh_),
+          .volume = material_volume(mesh_),
           .mean_curvature = h.mean,
           .curvature_deviation_pct = h.deviation_pct,
           .d1 = d.d1,
@@ -273,6 +273,7 @@ void SurfaceDiffusion::renew_topology()
     topology_.closed.push_back(c.closed());
     topology_.genus += c.genus;
   }
+  topology_.loops = boundary_loop_vertices(mesh_, topology_.face_component);
 }
 
 //! The hook: the caller's, or the one of the parameters' schedule with its ℓ fixed now; without
@@ -291,6 +292,7 @@ void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
   }
   if (!(schedule.pipeline.edge_length > 0))
     schedule.pipeline.edge_length = mean_edge_length(mesh_);
+  schedule.pipeline.keep_boundary = p_.scheme.boundary == BoundaryCondition::fixed;
   retriangulate_ = make_retriangulation_hook(schedule);
 }
 
@@ -492,7 +494,7 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
   Stopwatch watch;
   const VertexVectors positions = vertex_positions(mesh_);
   const Eigen::VectorXd edge_lengths = vertex_mean_edge_lengths(mesh_);
-  volumes = component_volumes(positions, triangles_, topology_.face_component, topology_.count);
+  volumes = material_volumes(positions, triangles_, topology_.face_component, topology_.count, topology_.loops);
   times.acceptance += watch.seconds();
   const AdaptiveOptions& adaptive = p_.time_step.adaptive;
   const bool need_automatic_tau =
@@ -533,9 +535,9 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
     double volume_change = 0;
     if (trial.positions.allFinite()) {
       const std::vector<double> after =
-          component_volumes(trial.positions, triangles_, topology_.face_component, topology_.count);
+          material_volumes(trial.positions, triangles_, topology_.face_component, topology_.count, topology_.loops);
       for (int k = 0; k < topology_.count; ++k)
-        if (topology_.closed[k] && volumes[k] != 0)
+        if (volumes[k] != 0)
           volume_change = std::max(volume_change, std::abs(after[k] - volumes[k]) / std::abs(volumes[k]));
     }
     const StepCheck check = check_trial({.tau = tau,

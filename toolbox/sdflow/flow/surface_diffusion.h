@@ -20,6 +20,7 @@
 #include "sdflow/flow/retriangulation.h"
 #include "sdflow/flow/scheme.h"
 #include "sdflow/geometry/cotangent_cache.h"
+#include "sdflow/geometry/material_volume.h"
 #include "sdflow/mesh.h"
 
 #include <atomic>
@@ -76,7 +77,8 @@ struct StepRecord {
 struct FlowMetrics {
   long vertices = 0, faces = 0;
   int components = 0, genus = 0;
-  double area = 0, volume = 0;
+  double area = 0;
+  double volume = 0; //!< material volume (material_volume.h): closed by flat caps over boundary loops
   double mean_curvature = 0, curvature_deviation_pct = 0; //!< H̃ and δH (measures.h)
   double d1 = 0, d2 = 0;                                  //!< from the reference sphere
 };
@@ -132,6 +134,7 @@ private:
     std::vector<int> face_component;
     int count = 0;
     std::vector<bool> closed;
+    std::vector<BoundaryLoop> loops; //!< the boundary loops, whose caps close material_volumes
     int genus = 0;
   };
 

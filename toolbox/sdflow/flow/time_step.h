@@ -9,7 +9,7 @@
 //!   min(growth, safety · max_displacement / d), at least by `shrink` on a rejection.
 //!   So τ grows by at most `growth` per step while the surface is calm.
 //! - A step is also rejected when a triangle turns over (its normal reverses), a position is not
-//!   finite, or a closed component's enclosed volume changes by more than `max_volume_change`
+//!   finite, or a component's material volume (material_volume.h) changes by more than `max_volume_change`
 //!   (relative): τ is then multiplied by `shrink`.
 //! - With a `tolerance` ε > 0 (extrapolated steps only, scheme.h): e = max_v |X_{τ/2∘τ/2} − X_τ|_v / h_v,
 //!   the local error estimate that step doubling provides (Hairer, Nørsett, Wanner I §II.4), must
@@ -70,7 +70,7 @@ struct AdaptiveOptions {
   double safety = 0.8;             //!< aim below the bound when predicting the next τ
   double growth = 1.25;            //!< largest growth factor of τ per accepted step
   double shrink = 0.5;             //!< factor applied to τ on a rejection
-  double max_volume_change = 1e-3; //!< relative change of a closed component's volume per step
+  double max_volume_change = 1e-3; //!< relative change of a component's material volume per step
   double min_tau = 1e-14;          //!< below this τ the run is declared unstable
   double max_tau = std::numeric_limits<double>::infinity();
   int max_rejections = 25;         //!< rejections in a row before the run is declared unstable
@@ -93,7 +93,7 @@ struct StepCheck {
   double displacement_ratio = 0;   //!< max τ|w|/h
   int inverted_triangles = 0;
   bool non_finite = false;
-  double volume_change = 0;        //!< largest relative volume change of a closed component
+  double volume_change = 0;        //!< largest relative material-volume change of a component
   double error_estimate = 0;       //!< max_v |X_{τ/2∘τ/2} − X_τ|_v / h_v of an extrapolated step (else 0)
   bool displacement_exceeded = false;
   bool volume_exceeded = false;
@@ -114,7 +114,7 @@ struct TrialMotion {
   const VertexVectors& error;         //!< the extrapolated step's error estimate (0 rows: none)
   const FaceIndices& triangles;
   const Eigen::VectorXd& edge_lengths; //!< mean length of the edges at each vertex (h_v)
-  double volume_change = 0;           //!< largest relative volume change of a closed component
+  double volume_change = 0;           //!< largest relative material-volume change of a component
 };
 
 //! The checks of the rule above on one trial: finite positions, no triangle turned over, and with

@@ -1,6 +1,7 @@
 #include "sdflow/flow/volume.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/geometry/material_volume.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/normals.h"
 #include "sdflow/geometry/topology.h"
@@ -16,10 +17,12 @@
 namespace sdflow {
 namespace {
 
-//! Signed volume of each component, and the derivative of each volume when every vertex moves
-//! along `direction` at unit speed: Σ_f (b×c·d_a + c×a·d_b + a×b·d_c)/6.
+//! Material volume of each component (material_volume.h), and the derivative of each volume when
+//! every vertex moves along `direction` at unit speed: Σ_f (b×c·d_a + c×a·d_b + a×b·d_c)/6. The
+//! boundary vertices do not move (their direction is zero), so neither do the caps.
 void volumes_and_rates(const VertexVectors& x, const VertexVectors& direction, const FaceIndices& faces,
-                       const std::vector<int>& component, std::vector<double>& volume, std::vector<double>& rate)
+                       const std::vector<int>& component, const std::vector<BoundaryLoop>& loops,
+                       std::vector<double>& volume, std::vector<double>& rate)
 {
   std::fill(volume.begin(), volume.end(), 0.0);
   std::fill(rate.begin(), rate.end(), 0.0);
@@ -30,6 +33,8 @@ void volumes_and_rates(const VertexVectors& x, const VertexVectors& direction, c
     rate[k] += (b.cross(c).dot(direction.row(faces(f, 0))) + c.cross(a).dot(direction.row(faces(f, 1))) +
                 a.cross(b).dot(direction.row(faces(f, 2)))) / 6.0;
   }
+  for (const BoundaryLoop& loop : loops)
+    volume[static_cast<std::size_t>(loop.component)] += cap_volume(x, loop.vertices);
 }
 
 } // namespace
@@ -56,7 +61,14 @@ VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& t
   if (faces.rows() != static_cast<Eigen::Index>(mesh.n_faces()) || component.size() != mesh.n_faces())
     throw InvalidParameter(fmt::format("restore_volumes: {} triangles and {} face components for a mesh of {} faces",
                                        faces.rows(), component.size(), mesh.n_faces()));
-  const VertexVectors normals = vertex_normals(mesh, faces);
+  // The boundary stays where it is (a fixed rim must, and the cap is then fixed too): the offset
+  // moves the other vertices only.
+  VertexVectors normals = vertex_normals(mesh, faces);
+  const bool open = std::find(components.closed.begin(), components.closed.end(), false) != components.closed.end();
+  const std::vector<BoundaryLoop> loops = open ? boundary_loop_vertices(mesh, component) : std::vector<BoundaryLoop>{};
+  for (const BoundaryLoop& loop : loops)
+    for (const int v : loop.vertices)
+      normals.row(v).setZero();
   std::vector<int> vertex_component(mesh.n_vertices(), -1);
   for (Eigen::Index f = 0; f < faces.rows(); ++f)
     for (int c = 0; c < 3; ++c)
@@ -70,11 +82,9 @@ VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& t
   constexpr int max_newton_iterations = 20;
   constexpr double round_off = 4 * std::numeric_limits<double>::epsilon();
   for (int iteration = 0; iteration < max_newton_iterations; ++iteration) {
-    volumes_and_rates(result.positions, normals, faces, component, volume, rate);
+    volumes_and_rates(result.positions, normals, faces, component, loops, volume, rate);
     bool converged = true;
     for (int k = 0; k < count; ++k) {
-      if (!components.closed[static_cast<std::size_t>(k)])
-        continue;
       const double error = volume[k] - target_volumes[k];
       if (std::abs(error) <= round_off * std::abs(target_volumes[k]))
         continue;
@@ -89,9 +99,9 @@ VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& t
       if (vertex_component[v] >= 0)
         result.positions.row(v) = start.row(v) + result.offsets[vertex_component[v]] * normals.row(v);
   }
-  volumes_and_rates(result.positions, normals, faces, component, volume, rate);
+  volumes_and_rates(result.positions, normals, faces, component, loops, volume, rate);
   for (int k = 0; k < count; ++k)
-    if (components.closed[static_cast<std::size_t>(k)])
+    if (target_volumes[k] != 0)
       result.max_relative_error =
           std::max(result.max_relative_error, std::abs(volume[k] - target_volumes[k]) / std::abs(target_volumes[k]));
   return result;
@@ -102,19 +112,18 @@ VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after)
   // The components of each surface, their topology and volumes: the two surfaces side by side.
   int old_count = 0, new_count = 0;
   std::vector<int> old_component, new_component;
-  std::vector<ComponentTopology> old_topology, new_topology;
   std::vector<double> old_volume, new_volume, new_area;
   std::vector<int> vertex_component(after.n_vertices(), -1);
   tbb::parallel_invoke(
     [&] {
       old_component = face_component_ids(before, &old_count);
-      old_topology = component_topology(before);
-      old_volume = component_volumes(vertex_positions(before), face_indices(before), old_component, old_count);
+      old_volume = material_volumes(vertex_positions(before), face_indices(before), old_component, old_count,
+                                    boundary_loop_vertices(before, old_component));
     },
     [&] {
       new_component = face_component_ids(after, &new_count);
-      new_topology = component_topology(after);
-      new_volume = component_volumes(vertex_positions(after), face_indices(after), new_component, new_count);
+      new_volume = material_volumes(vertex_positions(after), face_indices(after), new_component, new_count,
+                                    boundary_loop_vertices(after, new_component));
       new_area.assign(new_count, 0.0);
       for (auto f : after.faces()) {
         new_area[new_component[f.idx()]] += after.calc_face_area(f);
@@ -157,25 +166,23 @@ VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after)
 
   struct Group {
     double old_volume = 0, new_volume = 0, new_area = 0;
-    bool closed = true, has_old = false;
+    bool has_old = false;
   };
   std::vector<Group> group(old_count + new_count);
   for (int j = 0; j < old_count; ++j) {
     Group& g = group[find(j)];
     g.old_volume += old_volume[j];
-    g.closed = g.closed && old_topology[j].closed();
     g.has_old = true;
   }
   for (int k = 0; k < new_count; ++k) {
     Group& g = group[find(old_count + k)];
     g.new_volume += new_volume[k];
     g.new_area += new_area[k];
-    g.closed = g.closed && new_topology[k].closed();
   }
   std::vector<double> target = new_volume;
   for (int k = 0; k < new_count; ++k) {
     const Group& g = group[find(old_count + k)];
-    if (g.closed && g.has_old && g.new_area > 0)
+    if (g.has_old && g.new_area > 0)
       target[k] += (g.old_volume - g.new_volume) * new_area[k] / g.new_area;
   }
   return restore_volumes(after, target);
@@ -204,8 +211,9 @@ VolumeRestoration restore_volumes_kept(const Mesh& before, const Mesh& after, co
       source[new_vertex_component[vertex_map[v]]] = old_vertex_component[v];
   if (std::find(source.begin(), source.end(), -1) != source.end())
     return restore_volumes_from(before, after);
-  const std::vector<double> old_volume =
-      component_volumes(vertex_positions(before), face_indices(before), old_component, old_count);
+  const std::vector<double> old_volume = material_volumes(vertex_positions(before), face_indices(before),
+                                                         old_component, old_count,
+                                                         boundary_loop_vertices(before, old_component));
   std::vector<double> target(new_count);
   for (int k = 0; k < new_count; ++k)
     target[k] = old_volume[source[k]];

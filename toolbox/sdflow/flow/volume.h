@@ -1,7 +1,9 @@
 #pragma once
 //! \file volume.h
-//! \brief Optional exact volume conservation: after a step, each closed component is offset along
-//! its vertex normals (eq. 8) by one uniform distance that restores its enclosed volume.
+//! \brief Optional exact volume conservation: after a step, each component is offset along its
+//! vertex normals (eq. 8) by one uniform distance that restores its material volume
+//! (geometry/material_volume.h: the enclosed volume of a closed component, the volume closed by
+//! flat caps over the boundary loops of an open one). Boundary vertices are not moved.
 
 #include "sdflow/mesh.h"
 
@@ -11,12 +13,12 @@ namespace sdflow {
 
 struct VolumeRestoration {
   VertexVectors positions;        //!< the corrected positions (#V by 3)
-  std::vector<double> offsets;    //!< the normal offset of each component (0 for open ones)
-  double max_relative_error = 0;  //!< largest |V - V_target| / |V_target| left, over closed components
+  std::vector<double> offsets;    //!< the normal offset of each component
+  double max_relative_error = 0;  //!< largest |V - V_target| / |V_target| left, over the components
 };
 
-//! Offset each closed component so that its signed volume equals `target_volumes[c]` (components
-//! in the order of face_component_ids); open components are left alone. The volume is a cubic in
+//! Offset each component's non-boundary vertices so that its material volume equals
+//! `target_volumes[c]` (components in the order of face_component_ids). The volume is a cubic in
 //! the offset δ; Newton's method from δ = 0 reaches round-off in a few iterations.
 //! Throws InvalidParameter if the target count differs from the component count, SolverFailure if
 //! the volume cannot be restored (a component with zero volume gradient).
@@ -38,9 +40,9 @@ VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& t
 //! Offset the components of `after`, a re-triangulation of `before`, so that volume lost or gained
 //! by the re-triangulation is given back. Each component of `after` belongs to the components of
 //! `before` its vertices lie nearest to (10% of its vertices or more); components so linked form
-//! groups (one body that pinched off into two, two bodies that fused), and each closed group gets
-//! back Σ V_before − Σ V_after, shared among its new components in proportion to their areas.
-//! Groups with an open component are left alone. Throws SolverFailure as restore_volumes does.
+//! groups (one body that pinched off into two, two bodies that fused), and each group gets
+//! back Σ V_before − Σ V_after (material volumes), shared among its new components in proportion
+//! to their areas. Throws SolverFailure as restore_volumes does.
 VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after);
 
 //! The same for `after`, a remeshing of `before` that kept its components and the vertices

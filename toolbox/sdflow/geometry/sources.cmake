@@ -6,5 +6,6 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/geometry/laplacian.cpp
   sdflow/geometry/cotangent_cache.cpp
   sdflow/geometry/measures.cpp
+  sdflow/geometry/material_volume.cpp
   sdflow/geometry/quality.cpp
   sdflow/geometry/topology.cpp)

@@ -312,6 +312,8 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
     RemeshOptions remesh;
     remesh.edge_length = r.edge_length;
     remesh.iterations = options.remesh_iterations;
+    if (options.keep_boundary)
+      remesh.boundary = BoundaryMode::keep;
     collect_garbage(mesh);
     // Where sheets cross, their normals describe no smooth surface: project onto the flat triangles.
     // Stage 0 left the input as it was unless it joined components.

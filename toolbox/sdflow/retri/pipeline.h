@@ -42,6 +42,9 @@ struct RetriangulationOptions {
   //! triangles (remesh.h, RemeshOptions::curved_projection), so a remeshing does not thin a neck;
   //! onto the flat ones when the surface intersects itself (no smooth surface to lift onto there).
   bool curved_projection = true;
+  //! Stage 1 keeps the boundary loops' vertices where they are (BoundaryMode::keep), as a flow
+  //! with a fixed rim needs (flow/boundary_condition.h); off, it remeshes them along the loops.
+  bool keep_boundary = false;
   //! Run stages 3–5 even when nothing intersects (the paper's "after every step" application).
   bool always_rebuild = false;
   PointNormalsOptions normals;
