@@ -73,6 +73,30 @@ TEST(RestoreVolumesFrom, a_remeshed_body_gets_its_volume_back)
   EXPECT_NEAR(enclosed_volume(restored), enclosed_volume(before), round_off_volume * enclosed_volume(before));
 }
 
+TEST(RestoreVolumesFrom, an_open_surface_gets_its_material_volume_back_with_its_boundary_in_place)
+{
+  // A bump on a disk re-triangulated coarser (it loses 0.1% of the volume under it): the volume
+  // closed by the cap over its rim comes back, and the rim does not move.
+  const auto bump = [](int rings) {
+    Mesh disk = analytic::disk(rings);
+    for (auto v : disk.vertices()) {
+      auto p = disk.point(v);
+      p[2] = 0.3 * (1 - p[0] * p[0] - p[1] * p[1]);
+      disk.set_point(v, p);
+    }
+    return disk;
+  };
+  const Mesh before = bump(16);
+  Mesh after = bump(6);
+  ASSERT_GT(std::abs(material_volume(after) - material_volume(before)), 1e-3 * material_volume(before));
+  const VertexVectors x = vertex_positions(after);
+  set_vertex_positions(after, restore_volumes_from(before, after).positions);
+  EXPECT_NEAR(material_volume(after), material_volume(before), round_off_volume * material_volume(before));
+  for (auto v : after.vertices())
+    if (after.is_boundary(v))
+      EXPECT_EQ(vertex_positions(after).row(v.idx()), x.row(v.idx())) << v.idx();
+}
+
 TEST(RestoreVolumesFrom, pieces_of_one_body_share_its_volume_by_area)
 {
   // One body (an ellipsoid spanning both spheres) re-triangulated into two spheres of radii 1 and
