@@ -15,6 +15,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/single_precision_factor.cpp
   sdflow/flow/solver.cpp
   sdflow/flow/supernodal_cholesky.cpp
+  sdflow/flow/suitesparse_output.cpp
   sdflow/flow/surface_diffusion.cpp
   sdflow/flow/time_step.cpp
   sdflow/flow/volume.cpp)

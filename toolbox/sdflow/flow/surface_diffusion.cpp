@@ -159,6 +159,8 @@ StepRecord SurfaceDiffusion::step()
         tau = trial_step(next_step, trial, record, rejections, volumes);
       }
       break;
+    } catch (const TimeStepTooLarge&) {
+      throw; // a smaller τ is needed, not a new surface or adaptive steps in its place
     } catch (const SolverFailure& e) {
       if (retriangulate_ && !forced) {
         forced = true;
@@ -565,15 +567,19 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
         if (volumes[k] != 0)
           volume_change = std::max(volume_change, std::abs(after[k] - volumes[k]) / std::abs(volumes[k]));
     }
-    const StepCheck check = check_trial({.tau = tau,
-                                         .now = positions,
-                                         .next = trial.positions,
-                                         .w = trial.w,
-                                         .error = trial.error,
-                                         .triangles = triangles_,
-                                         .edge_lengths = edge_lengths,
-                                         .volume_change = volume_change},
-                                        controller_.adaptive() ? &adaptive : nullptr);
+    StepCheck check = check_trial({.tau = tau,
+                                   .now = positions,
+                                   .next = trial.positions,
+                                   .w = trial.w,
+                                   .error = trial.error,
+                                   .triangles = triangles_,
+                                   .edge_lengths = edge_lengths,
+                                   .volume_change = volume_change},
+                                  adaptive, controller_.adaptive());
+    logger().debug("step {}: the trial of τ = {} changes a closed component's volume by {:.3g} (relative)", next_step,
+                   tau, volume_change);
+    if (check.volume_exceeded && !controller_.adaptive())
+      check.adaptive_tau = automatic_tau(op_.rhs.cwiseQuotient(op_.areas).cwiseAbs(), op_.held, edge_lengths, adaptive);
     times.acceptance += watch.seconds();
     if (controller_.judge(next_step, tau, check))
       return tau;
