@@ -270,6 +270,7 @@ void run(const RunArguments& a)
       // What the flow and its re-triangulation cannot take is refused now, as stats refuses it,
       // rather than failing inside a step.
       check_span(built.mesh, p.input.string());
+      check_crossings(built.mesh, p.input.string());
       if (p.retriangulation.enabled)
         check_remeshed_size(built.mesh, p.retriangulation.pipeline.edge_length,
                             fmt::format("run --retriangulate --edge-length {}",

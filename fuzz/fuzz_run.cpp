@@ -1,6 +1,6 @@
 //! libFuzzer harness: two steps of `sdflow run` with its defaults (re-triangulation on) on a small
 //! mesh read from OFF text, after the checks `run` makes before step 1 (check_span,
-//! check_retriangulation_input). A refusal with a reason (an sdflow::Error) is fine, and so is a
+//! check_crossings, check_retriangulation_input). A refusal with a reason (an sdflow::Error) is fine, and so is a
 //! SolverFailure of the flow itself. Findings, besides a crash, a sanitizer report or another
 //! exception: a failure from inside the re-triangulation (a message from a stage, which no user
 //! should see) and a surface after the steps with a zero-area or non-finite face. Inputs above
@@ -52,6 +52,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   parameters.steps = 2;
   try {
     sdflow::check_span(mesh, "fuzz.off");
+    sdflow::check_crossings(mesh, "fuzz.off");
     sdflow::check_retriangulation_input(mesh, parameters.retriangulation.pipeline, "fuzz.off");
     sdflow::validate_run_parameters(parameters);
   } catch (const sdflow::Error&) {

@@ -211,6 +211,27 @@ TEST_F(HardeningSecond, a_far_away_vertex_is_refused_by_every_verb_that_meshes_w
   }
 }
 
+// A component that crosses itself (stats refuses it, TetGen) made the re-triangulation fail at step
+// 1 ("surface union: removing the overlap left 1 boundary loop(s) ... cannot be paired"); bodies
+// that overlap each other are still taken, and joined.
+TEST_F(HardeningSecond, a_component_that_crosses_itself_is_refused_before_step_1)
+{
+  Mesh folded = analytic::icosphere(2);
+  const Mesh::VertexHandle v(0);
+  folded.set_point(v, -1.5 * folded.point(v));
+  write_mesh(folded, dir / "folded.ply", {.encoding = Encoding::binary});
+  const auto r = run_sdflow("run --input " + path("folded.ply") + " --out " + path("folded") + " --steps 2");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  expect_mentions(r.output, "crosses itself");
+  expect_mentions(r.output, "--remove-self-intersections");
+  EXPECT_FALSE(fs::exists(dir / "folded" / "metrics.csv"));
+  write_mesh(analytic::disjoint_union(analytic::icosphere(3), analytic::icosphere(3, 1.0, Eigen::Vector3d(1.2, 0, 0))),
+             dir / "overlap.ply", {.encoding = Encoding::binary});
+  const auto joined = run_sdflow_streams("run --input " + path("overlap.ply") + " --out " + path("joined") +
+                                         " --steps 2 -q --json");
+  EXPECT_EQ(joined.exit_code, 0) << joined.err;
+}
+
 // A mesh too coarse for the re-triangulation ("nearest_neighbours: k = 18 is not in [2, 11]",
 // "re-triangulation: nothing is left ...") is refused before step 1 with what to do, and what it
 // says to do works.
@@ -268,6 +289,30 @@ TEST_F(HardeningSecond, a_sample_without_its_mesh_names_the_script_that_makes_it
   const auto r = run_sdflow("run " + path("samples/big.toml"));
   EXPECT_EQ(r.exit_code, 2) << r.output;
   expect_mentions(r.output, "make_meshes.sh");
+}
+
+// The fuzz_run harness's findings and the mutated meshes that reproduced this round's failures
+// (tests/data/fuzz_run/, README there): each is refused before step 1 with a reason in the user's
+// terms, or takes its two steps; none fails inside a stage.
+TEST_F(HardeningSecond, fuzzed_meshes_are_refused_up_front_or_take_their_steps)
+{
+  const fs::path data = fs::path(SDFLOW_SOURCE_DIR) / "tests/data/fuzz_run";
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(data)) {
+    if (entry.path().extension() != ".off")
+      continue;
+    ++files;
+    SCOPED_TRACE(entry.path().filename().string());
+    const auto r = run_sdflow_streams("run --steps 2 --json -q --input " + entry.path().string() + " --out " +
+                                      path(entry.path().stem().string()));
+    const auto message = json_query(r.out, "d.get('message', '')");
+    ASSERT_TRUE(message) << r.out << r.err;
+    EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 2) << r.exit_code << ": " << *message;
+    for (const std::string inside : {"nearest_neighbours", "nothing is left", "re-triangulation after step",
+                                     "has zero area", "cannot be paired", "points cannot make"})
+      EXPECT_EQ(message->find(inside), std::string::npos) << *message;
+  }
+  EXPECT_GT(files, 0);
 }
 
 } // namespace

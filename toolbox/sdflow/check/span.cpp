@@ -42,8 +42,10 @@ void check_span(const Mesh& mesh, std::string_view source)
   if (span.component < 0 || span.ratio() <= max_span_ratio)
     return;
   throw InvalidMesh(fmt::format("{}: component {} spans {:.3g} with edges as short as {:.3g} (ratio {:.2g}, above "
-                                "{:g}): a vertex far from the others? No edge length resolves such a surface; fix "
-                                "or remove that vertex (`sdflow stats` shows the same finding)",
+                                "{:g}): a vertex far from the others, or two almost at one point? No edge length "
+                                "resolves such a surface; move or remove that vertex (`sdflow repair "
+                                "--merge-tolerance` merges vertices closer than a fraction of the size; `sdflow "
+                                "stats` shows the same finding)",
                                 source, span.component, span.extent, span.shortest_edge, span.ratio(),
                                 max_span_ratio));
 }

@@ -5,6 +5,7 @@
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/limits.h"
+#include "sdflow/spatial/intersect.h"
 
 #include <fmt/format.h>
 
@@ -31,6 +32,23 @@ void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions&
   for (const auto f : mesh.faces())
     areas[static_cast<std::size_t>(component[static_cast<std::size_t>(f.idx())])] += mesh.calc_face_area(f);
   const double ell = options.edge_length > 0 ? options.edge_length : mean_edge_length(mesh);
+  // A closed component thinner than this for its area is taken for a collapsed double sheet and
+  // dropped (pipeline.h, stage 6): a body flattened by the input, not by the flow.
+  const std::vector<double> volumes = component_volumes(mesh);
+  const std::vector<ComponentTopology> topology = component_topology(mesh);
+  for (int k = 0; k < count; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    const double thickness = std::abs(volumes[i]) / areas[i];
+    if (!topology[i].closed() || thickness >= options.min_component_thickness * ell)
+      continue;
+    throw InvalidMesh(fmt::format(
+        "{}: {} is too thin for the edge length ℓ = {:.3g}{}: it encloses {:.3g} for an area of {:.3g} (a mean "
+        "thickness of {:.3g}, below {:g} ℓ), which the re-triangulation drops as a collapsed sheet. Give "
+        "--edge-length {:.3g} or shorter, or check the file's scale along each axis",
+        source, count > 1 ? fmt::format("component {}", k) : std::string("the surface"), ell,
+        options.edge_length > 0 ? "" : " (its mean edge length)", std::abs(volumes[i]), areas[i], thickness,
+        options.min_component_thickness, thickness / options.min_component_thickness / 2));
+  }
   const double needed = std::max(min_retriangulated_vertices, options.normals.neighbours + 2.0);
   const auto smallest = std::min_element(areas.begin(), areas.end());
   const double vertices = estimated_vertices(*smallest, ell);
@@ -46,6 +64,23 @@ void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions&
       source, count > 1 ? fmt::format("component {}", smallest - areas.begin()) : std::string("the surface"),
       *smallest, ell, options.edge_length > 0 ? "" : " (its mean edge length)", vertices, needed, suggested,
       suggested));
+}
+
+void check_crossings(const Mesh& mesh, std::string_view source)
+{
+  const std::vector<int> component = face_component_ids(mesh);
+  int crossing_itself = 0, first = -1;
+  for (const FacePair& pair : self_intersections(mesh))
+    if (component[static_cast<std::size_t>(pair.first)] == component[static_cast<std::size_t>(pair.second)] &&
+        crossing_itself++ == 0)
+      first = pair.first;
+  if (crossing_itself == 0)
+    return;
+  throw InvalidMesh(fmt::format("{}: the surface crosses itself: {} pair(s) of faces of one component intersect (face "
+                                "{} and others), so which side is inside is not defined there (`sdflow intersections` "
+                                "lists them). `sdflow repair --remove-self-intersections` cuts them out and closes the "
+                                "surface again",
+                                source, crossing_itself, first));
 }
 
 } // namespace sdflow

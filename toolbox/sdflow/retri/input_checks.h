@@ -22,10 +22,18 @@ inline constexpr double min_retriangulated_vertices = 20;
 double edge_length_for_vertices(double area, double vertices);
 
 //! Refuse (InvalidMesh naming `source`) a surface that `options` cannot re-triangulate: a vertex
-//! far from the others (check_span, span.h), or a component that the target edge length ℓ
-//! (options.edge_length, or the mean edge length when 0) leaves with fewer than
+//! far from the others (check_span, span.h), a closed component thinner than the debris bound
+//! (options.min_component_thickness · ℓ) for the target edge length ℓ (options.edge_length, or the
+//! mean edge length when 0), or a component that ℓ leaves with fewer than
 //! max(min_retriangulated_vertices, options.normals.neighbours + 2) vertices. The message gives the
 //! `--edge-length` that would do, and the `sdflow remesh` command that refines the file.
 void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions& options, std::string_view source);
+
+//! Refuse (InvalidMesh naming `source`) a surface with a component that crosses itself, as TetGen
+//! refuses it for `stats`: which side is inside is not defined there, and the re-triangulation
+//! would have to guess a surgery the flow did not bring. Components that cross each other are
+//! bodies that overlap (validation reads the one it finds inside the other as a cavity), which the
+//! re-triangulation joins (pipeline.h, stage 0): they are taken.
+void check_crossings(const Mesh& mesh, std::string_view source);
 
 } // namespace sdflow
