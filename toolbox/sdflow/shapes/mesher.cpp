@@ -91,8 +91,8 @@ std::string box_text(const Eigen::AlignedBox3d& b)
                      b.max().y(), b.min().z(), b.max().z());
 }
 
-//! Marching tetrahedra, clipping, and projection of every vertex onto the surface or its rim.
-Mesh initial_triangulation(ImplicitSurface& surface, double cell, const ProjectionOptions& projection)
+//! Marching tetrahedra and clipping (a surface that leaves its box is clipped by it from then on).
+Mesh marched_triangulation(ImplicitSurface& surface, double cell)
 {
   Mesh mesh = marching_tetrahedra(surface, {.cell_size = cell});
   if (mesh.n_faces() == 0)
@@ -109,6 +109,13 @@ Mesh initial_triangulation(ImplicitSurface& surface, double cell, const Projecti
       throw InvalidParameter(fmt::format("no part of the level set f = 0 of '{}' lies in its clipping region",
                                          surface.name));
   }
+  return mesh;
+}
+
+//! Marching tetrahedra, clipping, and projection of every vertex onto the surface or its rim.
+Mesh initial_triangulation(ImplicitSurface& surface, double cell, const ProjectionOptions& projection)
+{
+  Mesh mesh = marched_triangulation(surface, cell);
   for (auto v : mesh.vertices()) {
     const Eigen::Vector3d p = to_eigen(mesh.point(v));
     mesh.set_point(v, to_point(mesh.is_boundary(v) ? project_to_boundary_curve(surface, p, projection)
@@ -193,9 +200,9 @@ MesherResult mesh_implicit_surface(const ImplicitSurface& input, const MesherOpt
   if (options.check_topology) {
     TopologyCount coarse = topology_count(mesh);
     for (int halving = 0;; ++halving) {
+      // The topology is the marching grid's: the projection, the costly part, moves no edge.
       ImplicitSurface finer_surface = surface;
-      Mesh finer = initial_triangulation(finer_surface, result.grid_cell / 2, projection);
-      const TopologyCount fine = topology_count(finer);
+      const TopologyCount fine = topology_count(marched_triangulation(finer_surface, result.grid_cell / 2));
       if (fine == coarse)
         break;
       if (halving == kMaxGridHalvings || result.grid_cell / 4 < kFinestGridPerEdge * ell)
@@ -206,10 +213,10 @@ MesherResult mesh_implicit_surface(const ImplicitSurface& input, const MesherOpt
             surface.name, coarse.text(), result.grid_cell, fine.text(), result.grid_cell / 2));
       logger().info("mesher: '{}' on a grid of spacing {:.3g} has {}, on one of {:.3g} {}: refining the grid",
                     surface.name, result.grid_cell, coarse.text(), result.grid_cell / 2, fine.text());
-      mesh = std::move(finer);
       surface = std::move(finer_surface);
-      coarse = fine;
       result.grid_cell /= 2;
+      mesh = initial_triangulation(surface, result.grid_cell, projection);
+      coarse = fine;
     }
   }
   result.initial_vertices = mesh.n_vertices();
