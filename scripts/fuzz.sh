@@ -10,6 +10,9 @@
 #   scripts/fuzz.sh --seconds 600    longer runs (README: "Fuzzing")
 #   scripts/fuzz.sh --only ply       one harness (fuzz_read_ply); --jobs N builds with N jobs
 #   scripts/fuzz.sh --no-build       run what build/fuzz already holds
+#   scripts/fuzz.sh --build-dir DIR  build and run the harnesses in DIR (default build/fuzz); a DIR
+#                                    already configured with SDFLOW_BUILD_FUZZERS (scripts/test.sh
+#                                    --sanitize's build/sanitize, as CI does) is built, not configured
 #   scripts/fuzz.sh --seed N         libFuzzer's random seed (default: a new one each run); CI fixes
 #                                    it, so that a clean checkout fuzzes the same inputs each time
 set -euo pipefail
@@ -19,6 +22,7 @@ only=""
 jobs=$(nproc)
 build=1
 seed=0
+dir=build/fuzz
 while (($#)); do
   case "$1" in
     --seconds) seconds=$2; shift 2 ;;
@@ -26,16 +30,17 @@ while (($#)); do
     --jobs) jobs=$2; shift 2 ;;
     --no-build) build=0; shift ;;
     --seed) seed=$2; shift 2 ;;
+    --build-dir) dir=$2; shift 2 ;;
     *) echo "fuzz.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
 
 [[ $seed =~ ^[0-9]+$ ]] || { echo "fuzz.sh: --seed takes a non-negative integer, got '$seed'" >&2; exit 2; }
-dir=build/fuzz
 harnesses=(read_off read_obj read_ply read_stl read_vtp validate repair scenario schedule checkpoint)
 if [[ -n $only ]]; then harnesses=("$only"); fi
 if ((build)); then
   scripts/install-deps.sh --fuzz
+  grep -q '^SDFLOW_BUILD_FUZZERS:BOOL=ON' "$dir/CMakeCache.txt" 2>/dev/null ||
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
     -DCMAKE_CXX_COMPILER=clang++ -DSDFLOW_BUILD_FUZZERS=ON -DSDFLOW_BUILD_TESTS=OFF -DSDFLOW_BUILD_CLI=OFF \
     -DSDFLOW_BUILD_MESHLAB_PLUGIN=OFF > /dev/null

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Installs the dependencies, builds sdflow and runs the whole test suite on an optimised build.
 #   scripts/test.sh              the suite, Python's pytest included (the README's test command; CI runs it first)
-#   scripts/test.sh --sanitize   the suite under AddressSanitizer + UndefinedBehaviorSanitizer (CI runs it next)
+#   scripts/test.sh --sanitize   the suite under AddressSanitizer + UndefinedBehaviorSanitizer, built with
+#                                clang in build/sanitize together with the libFuzzer harnesses, which
+#                                scripts/fuzz.sh --build-dir build/sanitize then runs (CI does both)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/install-deps.sh
+if [[ "${1:-}" == "--sanitize" ]]; then scripts/install-deps.sh --fuzz; else scripts/install-deps.sh; fi
 jobs=$(nproc)
 
 run_suite() { # build directory, then extra CMake arguments
@@ -19,9 +21,11 @@ run_suite() { # build directory, then extra CMake arguments
 if [[ "${1:-}" == "--sanitize" ]]; then
   export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
   # Line tables only (-g1): enough for the sanitizers' stack traces, and much quicker to compile and
-  # link than full debug information, which CI's time budget does not afford.
-  run_suite build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
-    -DSDFLOW_SANITIZE=ON
+  # link than full debug information, which CI's time budget does not afford. Clang, with the fuzz
+  # harnesses: the toolbox is compiled once, instrumented for both (the tests run with libFuzzer's
+  # coverage counters in, which cost them little).
+  run_suite build/sanitize -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DSDFLOW_SANITIZE=ON -DSDFLOW_BUILD_FUZZERS=ON
 else
   # The Python module and its pytest suite (ctest runs it) are part of the optimised build only: an
   # extension built with AddressSanitizer would need the sanitizer runtime preloaded into python3.

@@ -602,7 +602,7 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
                                    .edge_lengths = edge_lengths,
                                    .volume_change = volume_change},
                                   adaptive, controller_.adaptive());
-    logger().debug("step {}: the trial of τ = {} changes a closed component's volume by {:.3g} (relative)", next_step,
+    logger().debug("step {}: the trial of τ = {} changes a component's material volume by {:.3g} (relative)", next_step,
                    tau, volume_change);
     if (check.volume_exceeded && !controller_.adaptive())
       check.adaptive_tau = automatic_tau(op_.rhs.cwiseQuotient(op_.areas).cwiseAbs(), op_.held, edge_lengths, adaptive);

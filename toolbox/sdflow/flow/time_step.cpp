@@ -232,9 +232,9 @@ std::string TimeStepController::too_large(long step, double tau, const StepCheck
     advice = fmt::format("the adaptive control would start from τ = {:.3g} on this surface, {:.3g} times smaller: use "
                          "adaptive time steps (--adaptive), or a τ of about that size",
                          check.adaptive_tau, tau / check.adaptive_tau);
-  return fmt::format("step {}: τ = {:g} is too large for the scheme: the step changes the volume of a closed "
-                     "component by {:.3g} (relative), {:.3g} times the bound of {:g} (adaptive.max_volume_change), "
-                     "so it is no approximation of the flow, which keeps volumes{}; {}",
+  return fmt::format("step {}: τ = {:g} is too large for the scheme: the step changes the material volume of a "
+                     "component (closed, or open with its boundary) by {:.3g} (relative), {:.3g} times the bound "
+                     "of {:g} (adaptive.max_volume_change), so it is no approximation of the flow, which keeps volumes{}; {}",
                      step, tau, check.volume_change, check.volume_change / bound, bound,
                      retries > 0 ? fmt::format(" (also after {} halvings of the table's τ)", retries) : "", advice);
 }
