@@ -4,6 +4,7 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/simulation.h"
 #include "sdflow/flow/surface_diffusion.h"
+#include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/io/io.h"
 #include "sdflow/shapes/catalogue.h"
@@ -15,7 +16,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -81,6 +84,71 @@ TEST(SurfaceDiffusion, a_dumbbell_pinches_off_in_memory_exactly_as_its_recorded_
   const Mesh last = read_mesh(dir / fmt::format("run/snapshots/step_{:06d}.ply", flow.steps())).mesh;
   EXPECT_EQ(vertex_positions(last), vertex_positions(flow.mesh()));
   EXPECT_EQ(face_indices(last), face_indices(flow.mesh()));
+}
+
+//! A unit icosphere (642 vertices) whose vertices are moved radially by uniform noise of ±a fifth
+//! of its mean edge length: noise the mesh does not resolve (|ΔH| h³ of order 20).
+Mesh noisy_sphere()
+{
+  Mesh sphere = analytic::icosphere(3, 1.0);
+  const double ell = mean_edge_length(sphere);
+  std::mt19937 rng(32);
+  std::uniform_real_distribution<double> noise(-0.2 * ell, 0.2 * ell);
+  for (const auto v : sphere.vertices()) {
+    const Eigen::Vector3d p = to_eigen(sphere.point(v));
+    sphere.set_point(v, to_point(p * (1 + noise(rng))));
+  }
+  return sphere;
+}
+
+//! Root-mean-square deviation of the vertices' distances to the origin from their mean.
+double radial_roughness(const Mesh& mesh)
+{
+  double sum = 0, squares = 0;
+  for (const auto v : mesh.vertices()) {
+    const double r = to_eigen(mesh.point(v)).norm();
+    sum += r;
+    squares += r * r;
+  }
+  const double n = static_cast<double>(mesh.n_vertices());
+  return std::sqrt(std::max(squares / n - (sum / n) * (sum / n), 0.0));
+}
+
+TEST(SurfaceDiffusion, start_steps_damp_noise_keep_the_volume_and_free_the_pace)
+{
+  const Mesh start = noisy_sphere();
+  const double ell = mean_edge_length(start), volume = enclosed_volume(start);
+  const double ell4 = std::pow(ell, 4);
+  // The same flow without start steps: the noise holds τ far below ℓ⁴ step after step.
+  RunParameters without = adaptive_run(12);
+  without.time_step.adaptive.start_steps = 0;
+  SurfaceDiffusion slow(start, without);
+  double slow_tau = 0;
+  while (!slow.finished())
+    slow_tau = std::max(slow_tau, slow.step().tau);
+  EXPECT_LT(slow_tau, 0.1 * ell4);
+
+  SurfaceDiffusion flow(start, adaptive_run(12));
+  int start_steps = 0;
+  double largest_tau = 0;
+  while (!flow.finished()) {
+    const StepRecord step = flow.step();
+    if (step.start) {
+      ++start_steps;
+      EXPECT_EQ(step.event.rfind("start", 0), 0u) << step.event;
+      // Each start step gives every closed component its volume back.
+      EXPECT_NEAR(enclosed_volume(flow.mesh()), volume, 1e-9 * volume) << "step " << flow.steps();
+    } else {
+      largest_tau = std::max(largest_tau, step.tau);
+    }
+  }
+  EXPECT_GE(start_steps, 1);
+  EXPECT_LE(start_steps, flow.parameters().time_step.adaptive.start_steps);
+  // The start steps take the noise away (a sphere's own radius does not change), and the pace is
+  // then that of the scales the mesh resolves: τ well above ℓ⁴ within the twelve steps.
+  EXPECT_LT(radial_roughness(flow.mesh()), 0.1 * radial_roughness(start));
+  EXPECT_GT(largest_tau, 10 * ell4);
+  EXPECT_NEAR(enclosed_volume(flow.mesh()), volume, 1e-3 * volume);
 }
 
 TEST(SurfaceDiffusion, a_restored_state_continues_bit_for_bit)

@@ -7,6 +7,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/intersection_guard.cpp
   sdflow/flow/parameter_schema.cpp
   sdflow/flow/parameters.cpp
+  sdflow/flow/resolution_check.cpp
   sdflow/flow/retriangulation.cpp
   sdflow/flow/run_lock.cpp
   sdflow/flow/scheme.cpp

@@ -142,6 +142,7 @@ StepRecord SurfaceDiffusion::step()
         note(next_step, time_, fmt::format("no acceptable step ({}): re-triangulating, then trying again", e.what()));
         const VertexVectors before = vertex_positions(mesh_);
         const RetriangulationReport report = call_retriangulation(mesh_, true, record.times);
+        note_refusal(report, events);
         if (report.changed()) {
           adopt_retriangulation(report, before, events, record.times);
           restart_controller();
@@ -162,12 +163,14 @@ StepRecord SurfaceDiffusion::step()
   }
   if (rejections > 0)
     events.insert(events.begin(), "rejected");
+  if (record.start)
+    events.insert(events.begin(), "start");
 
   VertexVectors accepted; // the last accepted surface, kept while the guard looks at the new one
   if (guard_)
     accepted = vertex_positions(mesh_);
   set_vertex_positions(mesh_, trial.positions);
-  if (p_.conserve_volume)
+  if (p_.conserve_volume || record.start)
     set_vertex_positions(
         mesh_, restore_volumes(mesh_, volumes, {triangles_, topology_.face_component, topology_.closed}).positions);
   if (guard_) {
@@ -194,6 +197,7 @@ StepRecord SurfaceDiffusion::step()
       look_and_try_ahead(before, events, record.times);
     } else {
       const RetriangulationReport report = call_retriangulation(mesh_, false, record.times);
+      note_refusal(report, events);
       if (report.changed())
         adopt_retriangulation(report, before, events, record.times);
       else
@@ -281,6 +285,10 @@ void SurfaceDiffusion::renew_topology()
 void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
 {
   own_hook_ = !hook;
+  // The start phase's ℓ: the run's re-triangulation length when it has one (fixed in run.toml, so
+  // a resumed run finds the same), else the mean edge length.
+  start_length_ = p_.retriangulation.pipeline.edge_length > 0 ? p_.retriangulation.pipeline.edge_length
+                                                              : mean_edge_length(mesh_);
   if (hook) {
     retriangulate_ = std::move(hook);
     return;
@@ -291,7 +299,7 @@ void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
     return;
   }
   if (!(schedule.pipeline.edge_length > 0))
-    schedule.pipeline.edge_length = mean_edge_length(mesh_);
+    schedule.pipeline.edge_length = start_length_;
   schedule.pipeline.keep_boundary = p_.scheme.boundary == BoundaryCondition::fixed;
   retriangulate_ = make_retriangulation_hook(schedule);
 }
@@ -333,6 +341,15 @@ RetriangulationReport SurfaceDiffusion::call_retriangulation(Mesh& mesh, bool fo
 
 //! Take the re-triangulated mesh: new connectivity and operators, fresh factorisations with the
 //! orderings carried from the surface `before` it (carried_ordering.h), its events.
+void SurfaceDiffusion::note_refusal(const RetriangulationReport& report, std::vector<std::string>& events)
+{
+  if (!report.refused)
+    return;
+  if (std::find(events.begin(), events.end(), "refused") == events.end())
+    events.emplace_back("refused");
+  note(step_, time_, fmt::format("re-triangulation refused: {}", report.detail));
+}
+
 void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report, const VertexVectors& before,
                                              std::vector<std::string>& events, StepTimes& times)
 {
@@ -470,6 +487,7 @@ void SurfaceDiffusion::look_and_try_ahead(const VertexVectors& before, std::vect
     return;
   }
   rewind(kept);
+  note_refusal(report, events);
   if (hook_failure || !report.changed()) {
     // The trial's factors may be newer than its rewound bookkeeping: the next solves factorise
     // afresh. (The flow's own hook changes the surface whenever it decides to, or fails.)
@@ -497,17 +515,26 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
   volumes = material_volumes(positions, triangles_, topology_.face_component, topology_.count, topology_.loops);
   times.acceptance += watch.seconds();
   const AdaptiveOptions& adaptive = p_.time_step.adaptive;
+  // The start phase (time_step.h) decides on the automatic τ of the surface, every start step.
+  const bool may_start = p_.time_step.mode == TimeStepMode::adaptive && adaptive.initial_tau == 0 &&
+                         next_step <= adaptive.start_steps;
   const bool need_automatic_tau =
       controller_.adaptive() && controller_.state().next_tau == 0 && adaptive.initial_tau == 0;
-  const double automatic =
-      need_automatic_tau ? automatic_tau(op_.rhs.cwiseQuotient(op_.areas).cwiseAbs(), op_.held, edge_lengths, adaptive)
-                         : 0.0;
+  const Eigen::VectorXd explicit_speed =
+      need_automatic_tau || may_start ? Eigen::VectorXd(op_.rhs.cwiseQuotient(op_.areas).cwiseAbs())
+                                      : Eigen::VectorXd();
+  const double automatic = need_automatic_tau ? automatic_tau(explicit_speed, op_.held, edge_lengths, adaptive) : 0.0;
+  const double tau_s = may_start ? start_tau(adaptive, start_length_) : 0.0;
+  bool start = may_start &&
+               is_start_step(adaptive, next_step, unresolved_variation(explicit_speed, op_.held, edge_lengths));
+  int start_retries = 0;
   const double time_left = std::isfinite(p_.end_time) ? p_.end_time - time_ : std::numeric_limits<double>::infinity();
   const std::array<Eigen::VectorXd, 2> guesses = warm_starts(previous_w_, earlier_w_);
   for (;;) {
     if (cancel_trials_ && cancel_trials_->load())
       throw TrialsCancelled();
-    const double tau = controller_.propose(next_step, automatic, time_left);
+    const double tau = start ? std::min(std::ldexp(tau_s, -2 * start_retries), time_left)
+                             : controller_.propose(next_step, automatic, time_left);
     trial = p_.scheme.extrapolate
                 ? extrapolated_step(mesh_, op_, tau, p_.scheme, solver_, half_solver_, &*cache_, guesses)
                 : solve_step(mesh_, op_, tau, p_.scheme.beta, solver_, guesses);
@@ -550,6 +577,20 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
                                          .volume_change = volume_change},
                                         controller_.adaptive() ? &adaptive : nullptr);
     times.acceptance += watch.seconds();
+    if (start) {
+      // Stability alone: the volumes are restored after the step, and the modes it damps are the
+      // ones the displacement bound would have followed step by step.
+      if (!check.non_finite && check.inverted_triangles == 0) {
+        controller_.accept_start_step(tau);
+        record.start = true;
+        return tau;
+      }
+      ++rejections;
+      ++rejected_trials_;
+      note(next_step, time_, fmt::format("rejected start step τ = {}: {}", tau, check.describe()));
+      start = ++start_retries <= kStartRetries;
+      continue;
+    }
     if (controller_.judge(next_step, tau, check))
       return tau;
     ++rejections;

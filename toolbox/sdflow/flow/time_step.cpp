@@ -9,6 +9,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 namespace sdflow {
@@ -164,13 +165,14 @@ TimeStepController::TimeStepController(const TimeStepOptions& options, TimeStepS
     if (!(a.max_displacement > 0) || !(a.safety > 0 && a.safety <= 1) || !(a.growth >= 1) ||
         !(a.shrink > 0 && a.shrink < 1) || !(a.max_volume_change > 0) || !(a.min_tau > 0) ||
         !(a.max_tau >= a.min_tau) || a.max_rejections < 1 || !(a.initial_tau >= 0) ||
-        !(a.tolerance >= 0 && std::isfinite(a.tolerance)))
+        !(a.tolerance >= 0 && std::isfinite(a.tolerance)) || a.start_steps < 0 ||
+        !(a.start_damping > 0 && std::isfinite(a.start_damping)))
       throw InvalidParameter(fmt::format(
           "adaptive τ: need max_displacement > 0 ({}), 0 < safety ≤ 1 ({}), growth ≥ 1 ({}), 0 < shrink < 1 ({}), "
           "max_volume_change > 0 ({}), 0 < min_tau ≤ max_tau ({}, {}), max_rejections ≥ 1 ({}), initial_tau ≥ 0 ({}), "
-          "tolerance ≥ 0 ({})",
+          "tolerance ≥ 0 ({}), start_steps ≥ 0 ({}), start_damping > 0 ({})",
           a.max_displacement, a.safety, a.growth, a.shrink, a.max_volume_change, a.min_tau, a.max_tau,
-          a.max_rejections, a.initial_tau, a.tolerance));
+          a.max_rejections, a.initial_tau, a.tolerance, a.start_steps, a.start_damping));
     break;
   }
 }
@@ -298,6 +300,32 @@ StepCheck check_trial(const TrialMotion& trial, const AdaptiveOptions* bounds)
     c.error_exceeded = a.tolerance > 0 && c.error_estimate > a.tolerance;
   }
   return c;
+}
+
+double start_tau(const AdaptiveOptions& options, double edge_length)
+{
+  return options.start_damping * std::pow(edge_length / std::numbers::pi, 4);
+}
+
+double unresolved_variation(const Eigen::VectorXd& explicit_speed, const std::vector<bool>& held,
+                            const Eigen::VectorXd& edge_lengths)
+{
+  double variation = 0;
+  for (Eigen::Index v = 0; v < explicit_speed.size(); ++v)
+    if (held.empty() || !held[v])
+      variation = std::max(variation, explicit_speed[v] * std::pow(edge_lengths[v], 3));
+  return variation;
+}
+
+bool is_start_step(const AdaptiveOptions& options, long step, double variation)
+{
+  return step <= options.start_steps && variation > kUnresolvedVariation;
+}
+
+void TimeStepController::accept_start_step(double tau)
+{
+  state_.rejections = 0;
+  state_.next_tau = tau;
 }
 
 double automatic_tau(const Eigen::VectorXd& explicit_speed, const std::vector<bool>& held,

@@ -16,6 +16,14 @@
 //!   be ≤ ε, and the next τ is also scaled by at most safety · √(ε / e) (the estimate is O(τ²)).
 //! - After `max_rejections` rejections in a row, or when τ would fall below `min_tau`, the run stops
 //!   with SolverFailure: the flow cannot be continued stably from this surface.
+//! Start phase (adaptive steps of a run's first `start_steps` steps): while the surface has a vertex
+//! whose curvature varies faster than its edges resolve, |ΔH|_v h_v³ > kUnresolvedVariation (noise,
+//! a sharp edge, a crease, a sliver), that vertex, not the scales the run resolves, would set τ. The
+//! step then takes τ_s = start_damping · (ℓ/π)⁴, for the run's edge length ℓ, accepted on stability
+//! alone (finite positions, no triangle turned over; else a quarter of it, up to kStartRetries times)
+//! with the volume of each closed component restored: one backward-Euler step damps the wavelength
+//! 2ℓ, the shortest a mesh of edge ℓ carries, by 1 + start_damping. The rule above takes over at the
+//! first step whose surface is resolved everywhere, or after start_steps steps (is_start_step).
 //! With constant τ or a schedule, a step that turns a triangle over or produces a non-finite
 //! position stops the run at once (SolverFailure), unless `schedule_retries` > 0: then a schedule's
 //! step is tried again with τ halved, up to that many times in a row, and the next step returns to
@@ -77,6 +85,10 @@ struct AdaptiveOptions {
   //! ε, the bound on the local error estimate of extrapolated steps relative to the local edge
   //! length (0: off, the displacement bound alone sets τ).
   double tolerance = 0;
+  //! Start phase (the rule at the top): at most this many of a run's first steps (0: none).
+  int start_steps = 3;
+  //! Start phase: τ_s · (π/ℓ)⁴, the damping of the wavelength 2ℓ per start step (> 0).
+  double start_damping = 10;
 };
 
 struct TimeStepOptions {
@@ -128,6 +140,27 @@ StepCheck check_trial(const TrialMotion& trial, const AdaptiveOptions* bounds);
 double automatic_tau(const Eigen::VectorXd& explicit_speed, const std::vector<bool>& held,
                      const Eigen::VectorXd& edge_lengths, const AdaptiveOptions& options);
 
+//! |ΔH|_v h_v³ above which the curvature at v varies faster than its edges resolve: on a smooth
+//! surface with n edges per radius of curvature r (h = r/n) it is about 1/n³, below 0.02 for the
+//! meshes of the validation (docs/validation.md); noise of amplitude a gives about 100 a/h, a
+//! crease of angle θ about θ.
+constexpr double kUnresolvedVariation = 1;
+
+//! Quarterings of τ_s a start step tries when a triangle turns over, before it gives up and the
+//! step is left to the adaptive rule.
+constexpr int kStartRetries = 3;
+
+//! τ_s = start_damping · (ℓ/π)⁴ of the start phase for the run's edge length ℓ (> 0).
+double start_tau(const AdaptiveOptions& options, double edge_length);
+
+//! The largest |ΔH|_v h_v³ over the vertices not `held` (explicit_speed = |ΔH|, edge_lengths = h).
+double unresolved_variation(const Eigen::VectorXd& explicit_speed, const std::vector<bool>& held,
+                            const Eigen::VectorXd& edge_lengths);
+
+//! Whether step `step` (1-based) of an adaptive run is a start step: within start_steps, and the
+//! surface's unresolved_variation above kUnresolvedVariation.
+bool is_start_step(const AdaptiveOptions& options, long step, double variation);
+
 //! The state of the time-step controller between steps (saved in checkpoints).
 struct TimeStepState {
   double next_tau = 0;   //!< adaptive steps: τ to try next (0 before the first step)
@@ -152,6 +185,11 @@ public:
   //! in adaptive mode the next proposal is smaller; throws SolverFailure when the run is unstable
   //! (any failure in constant or schedule mode, too many rejections or τ < min_tau in adaptive mode).
   bool judge(long step, double tau, const StepCheck& check);
+
+  //! A start step of `tau` was accepted (the start phase at the top): the next adaptive step tries
+  //! it again, and the rule above shrinks it as the bounds ask (the automatic τ, from the explicit
+  //! speed, would be set again by what the start steps left of the unresolved scales).
+  void accept_start_step(double tau);
 
   //! Schedule mode: cover the table's step for flow step `step`, which failed, with adaptive steps
   //! (the rule at the top of this file). Starts from the automatic τ.
