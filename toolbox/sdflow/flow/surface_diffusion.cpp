@@ -515,7 +515,7 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
   volumes = material_volumes(positions, triangles_, topology_.face_component, topology_.count, topology_.loops);
   times.acceptance += watch.seconds();
   const AdaptiveOptions& adaptive = p_.time_step.adaptive;
-  // The start phase (time_step.h) decides on the automatic τ of the surface, every start step.
+  // The start phase (time_step.h) decides on the surface's unresolved variation, every start step.
   const bool may_start = p_.time_step.mode == TimeStepMode::adaptive && adaptive.initial_tau == 0 &&
                          next_step <= adaptive.start_steps;
   const bool need_automatic_tau =
@@ -524,20 +524,22 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
       need_automatic_tau || may_start ? Eigen::VectorXd(op_.rhs.cwiseQuotient(op_.areas).cwiseAbs())
                                       : Eigen::VectorXd();
   const double automatic = need_automatic_tau ? automatic_tau(explicit_speed, op_.held, edge_lengths, adaptive) : 0.0;
-  const double tau_s = may_start ? start_tau(adaptive, start_length_) : 0.0;
-  bool start = may_start &&
-               is_start_step(adaptive, next_step, unresolved_variation(explicit_speed, op_.held, edge_lengths));
+  const std::vector<bool> resolved =
+      may_start ? resolved_vertices(explicit_speed, op_.held, edge_lengths) : std::vector<bool>{};
+  bool start = may_start && is_start_step(adaptive, next_step, resolved, op_.held);
+  double start_trial_tau = may_start ? start_tau(adaptive, start_length_) : 0.0;
   int start_retries = 0;
   const double time_left = std::isfinite(p_.end_time) ? p_.end_time - time_ : std::numeric_limits<double>::infinity();
   const std::array<Eigen::VectorXd, 2> guesses = warm_starts(previous_w_, earlier_w_);
   for (;;) {
     if (cancel_trials_ && cancel_trials_->load())
       throw TrialsCancelled();
-    const double tau = start ? std::min(std::ldexp(tau_s, -2 * start_retries), time_left)
-                             : controller_.propose(next_step, automatic, time_left);
-    trial = p_.scheme.extrapolate
-                ? extrapolated_step(mesh_, op_, tau, p_.scheme, solver_, half_solver_, &*cache_, guesses)
-                : solve_step(mesh_, op_, tau, p_.scheme.beta, solver_, guesses);
+    const double tau = start ? std::min(start_trial_tau, time_left) : controller_.propose(next_step, automatic, time_left);
+    // A start step is backward Euler: with the scheme's β = ½ a mode far shorter than its time
+    // scale would come out flipped, not damped (its factor (1 − τk⁴/2)/(1 + τk⁴/2) tends to −1).
+    trial = start                   ? solve_step(mesh_, op_, tau, kStartBeta, solver_, guesses)
+            : p_.scheme.extrapolate ? extrapolated_step(mesh_, op_, tau, p_.scheme, solver_, half_solver_, &*cache_, guesses)
+                                    : solve_step(mesh_, op_, tau, p_.scheme.beta, solver_, guesses);
     record.cg_iterations += trial.solve.iterations;
     factorisations_ += trial.factorisations;
     times.operators += trial.operators_seconds;
@@ -578,17 +580,25 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
                                         controller_.adaptive() ? &adaptive : nullptr);
     times.acceptance += watch.seconds();
     if (start) {
-      // Stability alone: the volumes are restored after the step, and the modes it damps are the
-      // ones the displacement bound would have followed step by step.
-      if (!check.non_finite && check.inverted_triangles == 0) {
+      // The displacement bound holds where the surface is resolved; elsewhere backward Euler damps
+      // what the mesh cannot follow, and the volumes are restored after the step.
+      const double resolved_ratio = resolved_displacement_ratio(tau, trial.w, edge_lengths, resolved);
+      if (!check.non_finite && check.inverted_triangles == 0 && resolved_ratio <= adaptive.max_displacement) {
         controller_.accept_start_step(tau);
         record.start = true;
         return tau;
       }
       ++rejections;
       ++rejected_trials_;
-      note(next_step, time_, fmt::format("rejected start step τ = {}: {}", tau, check.describe()));
-      start = ++start_retries <= kStartRetries;
+      note(next_step, time_,
+           fmt::format("rejected start step τ = {}: {}, normal displacement {:.3g} of the local edge length where "
+                       "the surface is resolved",
+                       tau, check.describe(), resolved_ratio));
+      start_trial_tau = tau * (resolved_ratio > adaptive.max_displacement
+                                   ? std::min(adaptive.shrink, adaptive.safety * adaptive.max_displacement / resolved_ratio)
+                                   : kStartShrink);
+      // Below the τ the rule itself would try, a start step gains nothing.
+      start = ++start_retries <= kStartRetries && start_trial_tau > automatic;
       continue;
     }
     if (controller_.judge(next_step, tau, check))

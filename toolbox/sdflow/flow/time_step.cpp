@@ -307,19 +307,34 @@ double start_tau(const AdaptiveOptions& options, double edge_length)
   return options.start_damping * std::pow(edge_length / std::numbers::pi, 4);
 }
 
-double unresolved_variation(const Eigen::VectorXd& explicit_speed, const std::vector<bool>& held,
-                            const Eigen::VectorXd& edge_lengths)
+std::vector<bool> resolved_vertices(const Eigen::VectorXd& explicit_speed, const std::vector<bool>& held,
+                                    const Eigen::VectorXd& edge_lengths)
 {
-  double variation = 0;
+  std::vector<bool> resolved(static_cast<std::size_t>(explicit_speed.size()), false);
   for (Eigen::Index v = 0; v < explicit_speed.size(); ++v)
-    if (held.empty() || !held[v])
-      variation = std::max(variation, explicit_speed[v] * std::pow(edge_lengths[v], 3));
-  return variation;
+    resolved[v] = (held.empty() || !held[v]) && explicit_speed[v] * std::pow(edge_lengths[v], 3) <= kUnresolvedVariation;
+  return resolved;
 }
 
-bool is_start_step(const AdaptiveOptions& options, long step, double variation)
+double resolved_displacement_ratio(double tau, const Eigen::VectorXd& w, const Eigen::VectorXd& edge_lengths,
+                                   const std::vector<bool>& resolved)
 {
-  return step <= options.start_steps && variation > kUnresolvedVariation;
+  double ratio = 0;
+  for (Eigen::Index v = 0; v < w.size(); ++v)
+    if (resolved[v])
+      ratio = std::max(ratio, tau * std::abs(w[v]) / edge_lengths[v]);
+  return ratio;
+}
+
+bool is_start_step(const AdaptiveOptions& options, long step, const std::vector<bool>& resolved,
+                   const std::vector<bool>& held)
+{
+  if (step > options.start_steps)
+    return false;
+  for (std::size_t v = 0; v < resolved.size(); ++v)
+    if (!resolved[v] && (held.empty() || !held[v]))
+      return true;
+  return false;
 }
 
 void TimeStepController::accept_start_step(double tau)

@@ -19,11 +19,13 @@
 //! Start phase (adaptive steps of a run's first `start_steps` steps): while the surface has a vertex
 //! whose curvature varies faster than its edges resolve, |ΔH|_v h_v³ > kUnresolvedVariation (noise,
 //! a sharp edge, a crease, a sliver), that vertex, not the scales the run resolves, would set τ. The
-//! step then takes τ_s = start_damping · (ℓ/π)⁴, for the run's edge length ℓ, accepted on stability
-//! alone (finite positions, no triangle turned over; else a quarter of it, up to kStartRetries times)
-//! with the volume of each closed component restored: one backward-Euler step damps the wavelength
-//! 2ℓ, the shortest a mesh of edge ℓ carries, by 1 + start_damping. The rule above takes over at the
-//! first step whose surface is resolved everywhere, or after start_steps steps (is_start_step).
+//! step is then a backward-Euler step (β = kStartBeta = 1, scheme.h) whose displacement bound holds
+//! only at the resolved vertices: it tries τ_s = start_damping · (ℓ/π)⁴ for the run's edge length ℓ
+//! (which damps the wavelength 2ℓ, the shortest a mesh of edge ℓ carries, by 1 + start_damping),
+//! shrinks it as that bound asks (by kStartShrink when a triangle turns over), up to kStartRetries
+//! times and not below the automatic τ, and restores the volume of each closed component after it.
+//! The rule above takes over at the first step whose surface is resolved everywhere, or after
+//! start_steps steps (is_start_step), from the last start step's τ.
 //! With constant τ or a schedule, a step that turns a triangle over or produces a non-finite
 //! position stops the run at once (SolverFailure), unless `schedule_retries` > 0: then a schedule's
 //! step is tried again with τ halved, up to that many times in a row, and the next step returns to
@@ -141,25 +143,36 @@ double automatic_tau(const Eigen::VectorXd& explicit_speed, const std::vector<bo
                      const Eigen::VectorXd& edge_lengths, const AdaptiveOptions& options);
 
 //! |ΔH|_v h_v³ above which the curvature at v varies faster than its edges resolve: on a smooth
-//! surface with n edges per radius of curvature r (h = r/n) it is about 1/n³, below 0.02 for the
-//! meshes of the validation (docs/validation.md); noise of amplitude a gives about 100 a/h, a
-//! crease of angle θ about θ.
+//! surface with n edges per radius of curvature r (h = r/n) it is about 1/n³; noise of amplitude a
+//! gives about 100 a/h, a crease of angle θ about θ.
 constexpr double kUnresolvedVariation = 1;
 
-//! Quarterings of τ_s a start step tries when a triangle turns over, before it gives up and the
-//! step is left to the adaptive rule.
-constexpr int kStartRetries = 3;
+//! β of a start step (scheme.h): backward Euler, which damps a mode by 1/(1 + τk⁴) where the
+//! scheme's β = ½ would flip the modes it does not resolve in time.
+constexpr double kStartBeta = 1;
+
+//! Trials a start step makes before it leaves the step to the adaptive rule.
+constexpr int kStartRetries = 6;
+
+//! The factor on a start step's τ when a triangle turned over.
+constexpr double kStartShrink = 0.25;
 
 //! τ_s = start_damping · (ℓ/π)⁴ of the start phase for the run's edge length ℓ (> 0).
 double start_tau(const AdaptiveOptions& options, double edge_length);
 
-//! The largest |ΔH|_v h_v³ over the vertices not `held` (explicit_speed = |ΔH|, edge_lengths = h).
-double unresolved_variation(const Eigen::VectorXd& explicit_speed, const std::vector<bool>& held,
-                            const Eigen::VectorXd& edge_lengths);
+//! Per vertex: not `held`, and |ΔH|_v h_v³ ≤ kUnresolvedVariation (explicit_speed = |ΔH|,
+//! edge_lengths = h): the curvature there varies no faster than the edges resolve.
+std::vector<bool> resolved_vertices(const Eigen::VectorXd& explicit_speed, const std::vector<bool>& held,
+                                    const Eigen::VectorXd& edge_lengths);
 
-//! Whether step `step` (1-based) of an adaptive run is a start step: within start_steps, and the
-//! surface's unresolved_variation above kUnresolvedVariation.
-bool is_start_step(const AdaptiveOptions& options, long step, double variation);
+//! max τ|w_v|/h_v over the `resolved` vertices (0 when there is none).
+double resolved_displacement_ratio(double tau, const Eigen::VectorXd& w, const Eigen::VectorXd& edge_lengths,
+                                   const std::vector<bool>& resolved);
+
+//! Whether step `step` (1-based) of an adaptive run is a start step: within start_steps, and some
+//! vertex not held is not `resolved` (resolved_vertices).
+bool is_start_step(const AdaptiveOptions& options, long step, const std::vector<bool>& resolved,
+                   const std::vector<bool>& held);
 
 //! The state of the time-step controller between steps (saved in checkpoints).
 struct TimeStepState {

@@ -47,6 +47,25 @@ double ray_distance(const Mesh& mesh, const Bvh& bvh, Mesh::VertexHandle v, cons
   return std::numeric_limits<double>::infinity();
 }
 
+//! A ray that meets the surface exactly at a vertex or along an edge can slip between the faces
+//! there in floating point (a symmetric mesh aims every ray at such a point): a ray that meets
+//! nothing is cast again tilted by this angle (radians) in two directions across it.
+constexpr double kMissTilt = 1e-3;
+
+//! ray_distance, cast again tilted (kMissTilt) when it meets nothing.
+double robust_ray_distance(const Mesh& mesh, const Bvh& bvh, Mesh::VertexHandle v, const Eigen::Vector3d& direction,
+                           double offset, double t_max, const std::vector<int>& component, int skipped)
+{
+  double d = ray_distance(mesh, bvh, v, direction, offset, t_max, component, skipped);
+  if (std::isfinite(d))
+    return d;
+  const Eigen::Vector3d a = direction.unitOrthogonal(), b = direction.cross(a);
+  for (const Eigen::Vector3d& across : {a, b})
+    d = std::min(d, ray_distance(mesh, bvh, v, (direction + kMissTilt * across).normalized(), offset, t_max,
+                                 component, skipped));
+  return d;
+}
+
 //! Each vertex's value replaced by the median over itself and its neighbours.
 std::vector<double> neighbourhood_medians(const Mesh& mesh, const std::vector<double>& values)
 {
@@ -93,11 +112,11 @@ LocalThickness local_thickness(const Mesh& mesh, const LocalThicknessOptions& op
       if (mesh.is_isolated(v) || !(normal.squaredNorm() > 0.5))
         continue;
       const double offset = kOriginOffset * lengths[i];
-      t.inward[i] = ray_distance(mesh, bvh, v, -normal, offset, t_max);
+      t.inward[i] = robust_ray_distance(mesh, bvh, v, -normal, offset, t_max, component, -1);
       const int own_component = options.gaps_between_components_only
                                     ? component[static_cast<std::size_t>(mesh.vf_range(v).begin()->idx())]
                                     : -1;
-      t.outward[i] = ray_distance(mesh, bvh, v, normal, offset, t_max, component, own_component);
+      t.outward[i] = robust_ray_distance(mesh, bvh, v, normal, offset, t_max, component, own_component);
     }
   });
   if (options.median_over_neighbours) {
