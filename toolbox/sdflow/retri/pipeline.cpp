@@ -275,7 +275,10 @@ StageOne remesh_without_own_crossings(const Mesh& input, const std::vector<FaceP
     StageOne s{std::move(remeshed.mesh), {}};
     s.pairs = self_intersections(s.mesh);
     r.remesh = remeshed.statistics;
-    if (options.refinement_rounds == 0 || s.pairs.empty())
+    // Only a surface that does not cross itself is guarded: where the flow's sheets crossed, the
+    // surgery's remeshing around them is the paper's (the local surgery and the tests of its
+    // outcome against this pipeline rely on it), and the hook checks the outcome.
+    if (options.refinement_rounds == 0 || s.pairs.empty() || !crossings.empty())
       return s;
     const std::vector<Eigen::Vector3d> own =
         own_crossing_points(input, crossings, s.mesh, s.pairs, kOwnCrossingReach * ell);

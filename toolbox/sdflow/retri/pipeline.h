@@ -45,10 +45,9 @@ struct RetriangulationOptions {
   //! Stage 1 keeps the boundary loops' vertices where they are (BoundaryMode::keep), as a flow
   //! with a fixed rim needs (flow/boundary_condition.h); off, it remeshes them along the loops.
   bool keep_boundary = false;
-  //! Stage 1 must not make the surface cross itself where it did not: where the remeshed surface has
-  //! intersecting faces farther than 3ℓ from every crossing of its input (a thin part collapsed, two
-  //! close sheets pulled through each other), stage 2 would cut them and the rebuild change the
-  //! topology where the flow did not. Stage 1 is then done again with the targets there halved and
+  //! Stage 1 must not make a surface that does not cross itself cross (a thin part collapsed, two
+  //! close sheets pulled through each other, a crease): stage 2 would cut it and the rebuild change
+  //! the topology where the flow did not. Stage 1 is then done again with the targets there halved and
   //! kept below half the local thickness (spatial/local_thickness.h), up to this many times; if it
   //! still crosses there, it is refused: the surface keeps its triangles (stage 1 skipped).
   //! 0: the remeshing's own crossings are cut like the flow's (the paper's pipeline).
