@@ -207,48 +207,21 @@ std::vector<double> adapted_targets(const Mesh& clean, const std::vector<FacePai
   return target;
 }
 
-//! How far from the input's crossings, in units of ℓ, a crossing of the remeshed surface counts as
-//! the remeshing's own (the local surgery's first patch radius: the flow's crossings are remeshed
-//! within it).
-constexpr double kOwnCrossingReach = 3;
-
 //! Around a crossing the remeshing made, the input's vertices within this many ℓ get finer targets.
 constexpr double kRefinementRadius = 2;
 
 //! The finest target a refinement asks for, as a fraction of ℓ: four halvings of the curvature floor.
 constexpr double kFinestRefinement = 1.0 / 64;
 
-//! The vertices of the faces of `remeshed` in `pairs` that lie farther than `reach` from every
-//! vertex of the faces of `input` in `crossings` (all of them when there are none): where the
-//! remeshing made the surface cross itself.
-std::vector<Eigen::Vector3d> own_crossing_points(const Mesh& input, const std::vector<FacePair>& crossings,
-                                                  const Mesh& remeshed, const std::vector<FacePair>& pairs,
-                                                  double reach)
+//! The vertices of the faces of `remeshed` in `pairs`: where the remeshing made it cross itself.
+std::vector<Eigen::Vector3d> crossing_points(const Mesh& remeshed, const std::vector<FacePair>& pairs)
 {
-  std::vector<Eigen::Vector3d> sites, points;
-  for (const FacePair& pair : crossings)
-    for (const int f : {pair.first, pair.second})
-      for (const auto v : input.fv_range(input.face_handle(f)))
-        sites.push_back(to_eigen(input.point(v)));
+  std::vector<Eigen::Vector3d> points;
   for (const FacePair& pair : pairs)
     for (const int f : {pair.first, pair.second})
       for (const auto v : remeshed.fv_range(remeshed.face_handle(f)))
         points.push_back(to_eigen(remeshed.point(v)));
-  if (sites.empty() || points.empty())
-    return points;
-  const VertexVectors site_rows = point_rows(sites), point_rows_ = point_rows(points);
-  const std::vector<int> nearest = nearest_points(site_rows, point_rows_);
-  // A pair is the flow's when one of its faces has a vertex near the input's crossings.
-  std::vector<Eigen::Vector3d> own;
-  for (std::size_t pair = 0; pair < pairs.size(); ++pair) {
-    bool near = false;
-    for (std::size_t k = 6 * pair; k < 6 * pair + 6 && !near; ++k)
-      near = (point_rows_.row(static_cast<Eigen::Index>(k)) - site_rows.row(nearest[k])).norm() <= reach;
-    if (!near)
-      own.insert(own.end(), points.begin() + static_cast<std::ptrdiff_t>(6 * pair),
-                 points.begin() + static_cast<std::ptrdiff_t>(6 * pair + 6));
-  }
-  return own;
+  return points;
 }
 
 //! Stage 1 as it is kept: the remeshed surface (and its intersecting pairs, as stage 2 needs them),
@@ -260,9 +233,9 @@ struct StageOne {
 
 //! Stage 1 refused where it makes crossings of its own (RetriangulationOptions::refinement_rounds):
 //! remesh `input` (garbage-collected; `crossings` its own intersecting pairs) with `targets` at its
-//! vertices (empty: the uniform ℓ of `remesh`), and where the result crosses itself away from
-//! `crossings`, again with the targets there halved and below half the local thickness, until it
-//! does not or the rounds are spent; then the input is kept.
+//! vertices (empty: the uniform ℓ of `remesh`); when the input does not cross itself and the result
+//! does, again with the targets around the crossings halved and below half the local thickness,
+//! until it does not or the rounds are spent; then the input is kept.
 StageOne remesh_without_own_crossings(const Mesh& input, const std::vector<FacePair>& crossings,
                                       std::vector<double> targets, RemeshOptions remesh,
                                       const RetriangulationOptions& options, double ell, RetriangulationResult& r)
@@ -280,12 +253,9 @@ StageOne remesh_without_own_crossings(const Mesh& input, const std::vector<FaceP
     // outcome against this pipeline rely on it), and the hook checks the outcome.
     if (options.refinement_rounds == 0 || s.pairs.empty() || !crossings.empty())
       return s;
-    const std::vector<Eigen::Vector3d> own =
-        own_crossing_points(input, crossings, s.mesh, s.pairs, kOwnCrossingReach * ell);
-    if (own.empty())
-      return s;
+    const std::vector<Eigen::Vector3d> own = crossing_points(s.mesh, s.pairs);
     if (round == 0)
-      r.remeshing_crossings = static_cast<int>(own.size() / 6);
+      r.remeshing_crossings = static_cast<int>(s.pairs.size());
     if (round == options.refinement_rounds) {
       r.remeshing_refused = true;
       r.remesh = {};
@@ -538,11 +508,11 @@ std::string retriangulation_summary(const RetriangulationResult& r)
     s += fmt::format(" (locally: a patch of {} faces)", r.patch_faces);
   if (r.remeshing_crossings > 0)
     s += r.remeshing_refused
-             ? fmt::format("; the remeshing made {} face pairs cross away from any crossing of the flow, even {} times "
-                           "finer there: refused, the surface kept its triangles",
+             ? fmt::format("; the remeshing made {} face pairs of a surface that did not cross itself cross, even {} "
+                           "times finer there: refused, the surface kept its triangles",
                            r.remeshing_crossings, r.refinements)
-             : fmt::format("; the remeshing made {} face pairs cross away from any crossing of the flow: redone {} "
-                           "times finer there",
+             : fmt::format("; the remeshing made {} face pairs of a surface that did not cross itself cross: redone "
+                           "{} times finer there",
                            r.remeshing_crossings, r.refinements);
   if (r.uniform_fallback)
     s += "; uniform ℓ (the adapted one left crossing sheets)";
