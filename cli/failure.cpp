@@ -11,6 +11,7 @@
 #include <iostream>
 #include <new>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sdflow::cli {
@@ -77,13 +78,25 @@ bool json_requested(const CLI::App& app)
   return false;
 }
 
-int report_failure(CLI::App& app, std::exception_ptr failure)
+bool json_in_arguments(int argc, const char* const* argv)
+{
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view argument = argv[i];
+    if (argument == "--")
+      return false;
+    if (argument == "--json")
+      return true;
+  }
+  return false;
+}
+
+int report_failure(CLI::App& app, std::exception_ptr failure, bool json_asked)
 {
   try {
     std::rethrow_exception(failure);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e) == 0 ? 0 : 2;
-    if (code != 0 && json_requested(app))
+    if (code != 0 && (json_requested(app) || json_asked))
       print_failure_json({code, "usage", "", e.what(), {}});
     return code;
   } catch (const ExitStatus& e) {

@@ -71,7 +71,7 @@ int main(int argc, char** argv)
   try {
     app.parse(argc, argv);
   } catch (...) {
-    return sdflow::cli::report_failure(app, std::current_exception());
+    return sdflow::cli::report_failure(app, std::current_exception(), sdflow::cli::json_in_arguments(argc, argv));
   }
   return 0;
 }

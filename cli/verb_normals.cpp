@@ -4,6 +4,7 @@
 
 #include "common_options.h"
 #include "json_report.h"
+#include "neighbourhood_check.h"
 #include "verbs.h"
 #include "work_progress.h"
 
@@ -14,6 +15,7 @@
 #include <toml++/toml.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -36,6 +38,7 @@ void run(NormalsArguments& args)
   WorkProgress progress("normals");
   progress.stage("reading " + args.input);
   const PointCloud input = read_point_cloud(args.input);
+  check_neighbourhood(input.points.rows(), args.options.neighbours, args.input);
   progress.stage(fmt::format("fitting and orienting the normals of {} points", input.points.rows()));
   const OrientedPoints oriented = oriented_point_normals(input.points, args.options);
   progress.stage("writing " + args.output);
@@ -69,11 +72,18 @@ void add_normals_verb(CLI::App& app)
       ->capture_default_str()
       ->check(CLI::Range(6, 1000));
   verb->add_option("--agreement-angle", args->agreement_degrees,
-                   "Degrees within which a neighbour's normal agrees with a point's")
-      ->capture_default_str();
+                   "Degrees within which a neighbour's normal agrees with a point's (above 0, below 180)")
+      ->capture_default_str()
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            const double degrees = std::strtod(text.c_str(), nullptr);
+            return degrees > 0 && degrees < 180 ? std::string() : "must be above 0 and below 180 degrees, got " + text;
+          },
+          "", ""));
   verb->add_option("--min-agreement", args->options.orientation.min_agreement,
-                   "Fraction of agreeing neighbours below which a point is removed")
-      ->capture_default_str();
+                   "Fraction of agreeing neighbours below which a point is removed (0 to 1)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   add_encoding_flags(*verb, args->encoding);
   add_json_flag(*verb, args->json);
   verb->callback([args] { run(*args); });

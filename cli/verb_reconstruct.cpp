@@ -3,6 +3,7 @@
 
 #include "common_options.h"
 #include "json_report.h"
+#include "neighbourhood_check.h"
 #include "verbs.h"
 #include "work_progress.h"
 
@@ -44,6 +45,7 @@ void run(ReconstructArguments& args)
   const bool estimated = cloud.normals.rows() == 0;
   std::size_t removed = 0;
   if (estimated) {
+    check_neighbourhood(cloud.points.rows(), args.normals.neighbours, args.input);
     progress.stage(fmt::format("estimating the normals of {} points", cloud.points.rows()));
     const OrientedPoints oriented = oriented_point_normals(cloud.points, args.normals);
     removed = oriented.removed.size();

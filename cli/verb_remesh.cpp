@@ -6,6 +6,7 @@
 #include "verbs.h"
 #include "work_progress.h"
 
+#include "sdflow/check/span.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/io/io.h"
 #include "sdflow/limits.h"
@@ -47,6 +48,7 @@ void run(const RemeshArguments& args)
   WorkProgress progress("remesh");
   progress.stage("reading " + args.input);
   const BuiltMesh input = read_mesh(args.input);
+  check_span(input.mesh, args.input); // a far vertex would also make the size estimate meaningless
   check_remeshed_size(input.mesh, args.edge_length, fmt::format("remesh --edge-length {}", args.edge_length), limits);
   progress.stage(fmt::format("{} iterations to edge length {:.6g}", args.iterations, args.edge_length));
   // Projection onto the input surface (its BVH) and its boundary polylines: the defaults.

@@ -6,9 +6,11 @@
 #include "verbs.h"
 #include "work_progress.h"
 
+#include "sdflow/check/span.h"
 #include "sdflow/io/io.h"
 #include "sdflow/io/repair.h"
 #include "sdflow/limits.h"
+#include "sdflow/retri/input_checks.h"
 #include "sdflow/retri/pipeline.h"
 
 #include <fmt/format.h>
@@ -96,8 +98,10 @@ void run(const RetriangulateArguments& args)
   const SizeLimits limits{.force = args.force};
   check_count(args.options.remesh_iterations, limits.max_iterations, "--remesh-iterations", limits);
   const BuiltMesh input = read_mesh_or_repair(args.input);
+  check_span(input.mesh, args.input); // a far vertex would also make the size estimate meaningless
   check_remeshed_size(input.mesh, args.options.edge_length,
                       fmt::format("retriangulate --edge-length {}", args.options.edge_length), limits);
+  check_retriangulation_input(input.mesh, args.options, args.input);
   WorkProgress progress("retriangulate");
   progress.stage(fmt::format("re-triangulating {} faces", input.mesh.n_faces()));
   const RetriangulationResult result = retriangulate(input.mesh, args.options);

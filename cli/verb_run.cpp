@@ -13,12 +13,14 @@
 #include "repair_hint.h"
 #include "verbs.h"
 
+#include "sdflow/check/span.h"
 #include "sdflow/errors.h"
 #include "sdflow/flow/parameter_schema.h"
 #include "sdflow/flow/simulation.h"
 #include "sdflow/io/io.h"
 #include "sdflow/limits.h"
 #include "sdflow/log.h"
+#include "sdflow/retri/input_checks.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -147,8 +149,13 @@ private:
     }
     return start_fraction_;
   }
+  //! H:MM:SS; an estimate beyond what a run can take (or not a number) as "--:--:--", which
+  //! also keeps the rounding to an integer from overflowing.
   static std::string clock_text(double seconds)
   {
+    constexpr double longest = 1e4 * 3600; // ten thousand hours
+    if (!(seconds >= 0 && seconds < longest))
+      return "--:--:--";
     const long s = std::lround(seconds);
     return fmt::format("{}:{:02d}:{:02d}", s / 3600, (s / 60) % 60, s % 60);
   }
@@ -236,6 +243,12 @@ void run(const RunArguments& a)
   apply_flags(a, p);
   if (!resuming && p.input.empty())
     throw InvalidParameter("no input mesh: give --input MESH or `input` in the scenario file");
+  // The samples' large meshes are made by a script beside them, not shipped.
+  if (const auto maker = std::filesystem::path(a.scenario).parent_path() / "make_meshes.sh";
+      !resuming && !a.scenario.empty() && !std::filesystem::exists(p.input) && std::filesystem::exists(maker))
+    throw IoError(fmt::format("{}: no such file: this sample's mesh is made by {}; run it once with the sdflow "
+                              "binary: {} SDFLOW",
+                              p.input.string(), maker.string(), shell_word(maker.string())));
   if (p.output_dir.empty())
     throw InvalidParameter("no run directory: give --out DIR or `out` in the scenario file");
   validate_run_parameters(p);
@@ -254,11 +267,19 @@ void run(const RunArguments& a)
       BuiltMesh built = p.repair ? read_mesh_or_repair(p.input) : read_mesh_or_suggest_repair(p.input);
       for (const auto& f : built.findings)
         logger().warn("{}: {}", p.input.string(), f.message);
+      // What the flow and its re-triangulation cannot take is refused now, as stats refuses it,
+      // rather than failing inside a step.
+      check_span(built.mesh, p.input.string());
+      check_crossings(built.mesh, p.input.string());
       if (p.retriangulation.enabled)
         check_remeshed_size(built.mesh, p.retriangulation.pipeline.edge_length,
                             fmt::format("run --retriangulate --edge-length {}",
                                         p.retriangulation.pipeline.edge_length),
                             limits);
+      if (p.retriangulation.enabled)
+        check_retriangulation_input(built.mesh, p.retriangulation.pipeline, p.input.string());
+      check_end_time(built.mesh, p.end_time,
+                     p.time_step.mode == TimeStepMode::constant ? p.time_step.tau : 0.0, limits);
       result = run_simulation(built.mesh, options);
     }
   } catch (...) {

@@ -3,7 +3,10 @@
 # UndefinedBehaviorSanitizer on the whole toolbox) and runs each for a short time on a copy of the
 # seed corpus in fuzz/corpus/. A crash, a leak of a non-sdflow exception or a sanitizer report
 # stops the script with the reproducer (crash-*, in build/fuzz/findings/NAME/).
-#   scripts/fuzz.sh                  every harness for 10 s (CI: about 1.5 minutes in all)
+#   scripts/fuzz.sh                  every harness but fuzz_run for 10 s (CI: about 2 minutes in all)
+#   scripts/fuzz.sh --only run       fuzz_run, two steps of a run: not in CI yet, because it still finds
+#                                    failures inside the re-triangulation on overlapping bodies (issue 33's
+#                                    note), which would stop CI until they are fixed
 #   scripts/fuzz.sh --seconds 600    longer runs (README: "Fuzzing")
 #   scripts/fuzz.sh --only ply       one harness (fuzz_read_ply); --jobs N builds with N jobs
 #   scripts/fuzz.sh --no-build       run what build/fuzz already holds
@@ -48,7 +51,11 @@ for h in "${harnesses[@]}"; do
   mkdir -p "$work" "$findings"
   cp -n "$seeds"/* "$work"/ 2>/dev/null || true
   log=$dir/fuzz_$h.log
-  if "$dir/fuzz/fuzz_$h" -seed="$seed" -max_total_time="$seconds" -max_len=4096 -rss_limit_mb=2048 -timeout=10 \
+  # fuzz_run's inputs are OFF files of up to a few hundred vertices; two steps of a run take well
+  # under a second each, so 10 s (its -timeout) is a slow failure.
+  max_len=4096
+  [[ $h == run ]] && max_len=20000
+  if "$dir/fuzz/fuzz_$h" -seed="$seed" -max_total_time="$seconds" -max_len="$max_len" -rss_limit_mb=2048 -timeout=10 \
        -artifact_prefix="$findings/" -print_final_stats=1 "$work" > "$log" 2>&1; then
     runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo '?')
     echo "fuzz.sh: fuzz_$h: $runs executions in ${seconds} s, no finding"

@@ -49,7 +49,7 @@ fi
 work=$(realpath "$work")
 
 torus_vertices=(5000 15000 30000)
-dumbbell_vertices=(5000 10000 20000)
+dumbbell_vertices=(5000 10000 20000 40000)
 capsule_ratios=(5 6 7 7.5 8 9 10 12)
 capsule_edges=(0.2 0.15 0.11)
 paper_capsule_edge=0.13
@@ -166,15 +166,25 @@ relative_error() { # VALUE REFERENCE
 event_table() { # NAME genus|components REFERENCE VERTEX_COUNTS...
   local name=$1 what=$2 ref=$3 d=() p=() n a b
   shift 3
-  echo "| vertices | default | error | --preset paper | error | volume drift (default) | wall time default / paper |"
-  echo "|---|---|---|---|---|---|---|"
+  echo "| vertices | default | error | order | --preset paper | error | volume drift (default) | wall time default / paper |"
+  echo "|---|---|---|---|---|---|---|---|"
+  local previous_h="" previous_a=""
   for n in "$@"; do
     a=$(event_time "${name}_${n}_default" "$what") b=$(event_time "${name}_${n}_paper" "$what")
     d+=("$(h_of "$n")" "$a") p+=("$(h_of "$n")" "$b")
-    echo "| $(vertices "${name}_${n}_default") | $a | $(relative_error "$a" "$ref") | $b | $(relative_error "$b" "$ref") | $(volume_drift "${name}_${n}_default") | $(seconds "${name}_${n}_default") / $(seconds "${name}_${n}_paper") |"
+    echo "| $(vertices "${name}_${n}_default") | $a | $(relative_error "$a" "$ref") | $(observed_order "$previous_h" "$previous_a" "$(h_of "$n")" "$a" "$ref") | $b | $(relative_error "$b" "$ref") | $(volume_drift "${name}_${n}_default") | $(seconds "${name}_${n}_default") / $(seconds "${name}_${n}_paper") |"
+    previous_h=$(h_of "$n") previous_a=$a
   done
-  echo "| extrapolated | $(extrapolate "${d[@]}") | | $(extrapolate "${p[@]}") | | | |"
+  # From the three finest resolutions: the coarser ones are the farthest from the asymptotic range.
+  echo "| extrapolated | $(extrapolate "${d[@]: -6}") | | | $(extrapolate "${p[@]: -6}") | | | |"
   echo
+}
+# The observed order of the error against the reference between two resolutions, log(e1/e2) / log(h1/h2).
+observed_order() { # H1 V1 H2 V2 REFERENCE
+  awk -v h1="$1" -v a="$2" -v h2="$3" -v b="$4" -v r="$5" 'BEGIN {
+    if (h1 == "" || a !~ /^[0-9.]+$/ || b !~ /^[0-9.]+$/ || r + 0 <= 0 || a == r || b == r) { printf "–"; exit }
+    q = (a - r) / (b - r)
+    if (q <= 0) printf "–"; else printf "%.2g", log(q) / log(h1 / h2) }'
 }
 h_of() { awk -v n="$1" 'BEGIN { printf "%.6g", 1 / sqrt(n) }'; } # resolution from a vertex count
 

@@ -133,6 +133,55 @@ TEST(TimeStepController, schedule_retries_halve_the_tables_tau_then_return_to_it
   }
 }
 
+// Issue 33: τ = 1e300 lost 8% of a sphere's volume and exited 0. A step that breaks the volume
+// bound is refused in every mode, and the failure says by how much τ is too large.
+TEST(TimeStepController, constant_and_tabled_steps_that_break_the_volume_bound_are_too_large)
+{
+  const AdaptiveOptions bounds; // max_volume_change 1e-3
+  const VertexVectors x = VertexVectors::Zero(3, 3);
+  const Eigen::VectorXd w = Eigen::VectorXd::Zero(3), h = Eigen::VectorXd::Ones(3);
+  const FaceIndices no_faces(0, 3);
+  const VertexVectors no_error(0, 3);
+  const auto check = [&](double volume_change, bool adaptive) {
+    return check_trial({.tau = 1, .now = x, .next = x, .w = w, .error = no_error, .triangles = no_faces,
+                        .edge_lengths = h, .volume_change = volume_change},
+                       bounds, adaptive);
+  };
+  EXPECT_FALSE(check(0.9e-3, false).volume_exceeded);
+  EXPECT_TRUE(check(1.1e-3, false).volume_exceeded);
+  EXPECT_TRUE(check(1.1e-3, true).volume_exceeded);
+
+  StepCheck lost = check(0.08, false);
+  lost.adaptive_tau = 1e-3;
+  TimeStepController constant({.mode = TimeStepMode::constant, .tau = 1e300});
+  try {
+    constant.judge(1, 1e300, lost);
+    FAIL() << "expected TimeStepTooLarge";
+  } catch (const TimeStepTooLarge& e) {
+    const std::string text = e.what();
+    EXPECT_NE(text.find("too large for the scheme"), std::string::npos) << text;
+    EXPECT_NE(text.find("80 times the bound"), std::string::npos) << text;
+    EXPECT_NE(text.find("1e+303 times smaller"), std::string::npos) << text;
+  }
+  // A table with retries halves its τ first, as for any failed step, and then gives up the same way.
+  TimeStepController table({.mode = TimeStepMode::schedule, .schedule = TauSchedule({{1, 10, 0.2}}),
+                            .schedule_retries = 1});
+  EXPECT_FALSE(table.judge(1, 0.2, lost));
+  EXPECT_DOUBLE_EQ(table.propose(1, 0.0, 100.0), 0.1);
+  EXPECT_THROW(table.judge(1, 0.1, lost), TimeStepTooLarge);
+  // Inverted triangles keep their own failure (SolverFailure, which a table covers by adaptive steps).
+  StepCheck inverted = lost;
+  inverted.inverted_triangles = 2;
+  TimeStepController plain({.mode = TimeStepMode::constant, .tau = 0.5});
+  try {
+    plain.judge(1, 0.5, inverted);
+    FAIL() << "expected SolverFailure";
+  } catch (const TimeStepTooLarge&) {
+    FAIL() << "turned-over triangles are not reported as a volume failure";
+  } catch (const SolverFailure&) {
+  }
+}
+
 TEST(TimeStepController, schedule_retries_apply_to_schedules_only_and_are_bounded)
 {
   // Without retries a schedule stops at the first unstable step, as the paper's tables would.

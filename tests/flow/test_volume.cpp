@@ -97,6 +97,22 @@ TEST(RestoreVolumesFrom, an_open_surface_gets_its_material_volume_back_with_its_
       EXPECT_EQ(vertex_positions(after).row(v.idx()), x.row(v.idx())) << v.idx();
 }
 
+TEST(RestoreVolumesFrom, an_open_surface_returned_turned_over_is_left_alone)
+{
+  Mesh before = analytic::disk(8);
+  for (auto v : before.vertices()) {
+    auto p = before.point(v);
+    p[2] = 0.3 * (1 - p[0] * p[0] - p[1] * p[1]);
+    before.set_point(v, p);
+  }
+  FaceIndices reversed = face_indices(before);
+  reversed.col(1).swap(reversed.col(2));
+  const Mesh after = make_mesh(vertex_positions(before), reversed);
+  ASSERT_NEAR(material_volume(after), -material_volume(before), 1e-12);
+  EXPECT_EQ(restore_volumes_from(before, after).positions, vertex_positions(after))
+      << "restoring +V on a surface whose material volume reads −V would push it far off";
+}
+
 TEST(RestoreVolumesFrom, pieces_of_one_body_share_its_volume_by_area)
 {
   // One body (an ellipsoid spanning both spheres) re-triangulated into two spheres of radii 1 and

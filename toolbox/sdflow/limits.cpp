@@ -64,6 +64,29 @@ void check_remeshed_size(const Mesh& mesh, double edge_length, std::string_view 
   check_surface_size(estimated_vertices(surface_area(mesh), edge_length), what, limits);
 }
 
+void check_end_time(const Mesh& mesh, double end_time, double constant_tau, const SizeLimits& limits)
+{
+  if (limits.force || !std::isfinite(end_time))
+    return;
+  Eigen::AlignedBox3d box;
+  for (const auto v : mesh.vertices())
+    box.extend(to_eigen(mesh.point(v)));
+  const double diagonal = box.isEmpty() ? 0.0 : box.diagonal().norm();
+  const double latest = limits.max_end_time_scales * std::pow(diagonal, 4);
+  if (std::isfinite(diagonal) && end_time > latest)
+    throw InvalidParameter(fmt::format("--end-time {:g} is more than {:g} times D⁴ = {:.3g} for the surface's "
+                                       "bounding-box diagonal D = {:.3g}: surface diffusion brings a body of that "
+                                       "size to rest long before (its slowest shape mode decays within about D⁴ / "
+                                       "3500), so the run would step through its equilibrium to no purpose; give an "
+                                       "end time up to {:.3g}, or --force",
+                                       end_time, limits.max_end_time_scales, std::pow(diagonal, 4), diagonal, latest));
+  if (constant_tau > 0 && end_time / constant_tau > static_cast<double>(limits.max_steps))
+    throw InvalidParameter(fmt::format("--end-time {:g} with --tau {:g} takes {:.3g} steps, more than the limit of {} "
+                                       "(it would run for a very long time); use a larger τ, adaptive time steps "
+                                       "(--adaptive), an earlier end, or --force",
+                                       end_time, constant_tau, end_time / constant_tau, limits.max_steps));
+}
+
 void check_count(long count, long limit, std::string_view what, const SizeLimits& limits)
 {
   if (!limits.force && count > limit)

@@ -23,6 +23,11 @@ struct SizeLimits {
   long max_iterations = 1000;
   //! Most time steps of one run.
   long max_steps = 100'000'000;
+  //! Latest end time of a run, in units of D⁴ for the bounding-box diagonal D of its surface.
+  //! Surface diffusion relaxes a body of size D long before: the slowest shape mode of a sphere of
+  //! radius R decays at the rate 24/R⁴ (Mullins 1957), so D⁴ ≈ 144 R⁴ is some 3500 decay times. A
+  //! later end only steps through the equilibrium, with τ held near the displacement bound.
+  double max_end_time_scales = 1000;
   //! Memory per vertex of the heaviest verb (measured peak of `run --retriangulate`, rounded up).
   double bytes_per_vertex = 2048;
   //! Skip every check (`--force`).
@@ -46,6 +51,10 @@ void check_surface_size(double vertices, std::string_view what, const SizeLimits
 //! Check the surface `mesh` becomes when re-triangulated to `edge_length` (the estimate above
 //! from its area).
 void check_remeshed_size(const Mesh& mesh, double edge_length, std::string_view what, const SizeLimits& limits = {});
+
+//! Refuse a run of `mesh` to `end_time` (finite) later than max_end_time_scales · D⁴, or, with a
+//! constant τ (`constant_tau` > 0), one that needs more than max_steps steps to get there.
+void check_end_time(const Mesh& mesh, double end_time, double constant_tau, const SizeLimits& limits = {});
 
 //! Refuse more than `limit` iterations or steps (`what` names the option).
 void check_count(long count, long limit, std::string_view what, const SizeLimits& limits = {});

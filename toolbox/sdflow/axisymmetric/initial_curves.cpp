@@ -91,9 +91,10 @@ GeneratingCurve dumbbell(const DumbbellParameters& parameters, int nodes)
   check_count(nodes, 16);
   const DumbbellProfile profile(parameters);
   const double radius = parameters.radius, centre = parameters.separation / 2, join = profile.join();
-  // The caps by angle about their centres, the isthmus by z: the cap meets the isthmus where
-  // |z| = join, at the angle whose cosine is (centre − join) / R.
-  const double joint_angle = std::acos((centre - join) / radius);
+  // The caps by angle about their centres (from their far poles), the isthmus by z: the cap meets
+  // the isthmus where |z| = join, beyond its equator (join < centre), at the angle whose cosine is
+  // (join − centre) / R.
+  const double joint_angle = std::acos((join - centre) / radius);
   const int cap = nodes / 4, isthmus = nodes - 2 * cap;
   GeneratingCurve c;
   c.points.emplace_back(0, -centre - radius);

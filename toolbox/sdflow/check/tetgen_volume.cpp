@@ -1,5 +1,6 @@
 #include "sdflow/check/tetgen_volume.h"
 
+#include "sdflow/check/span.h"
 #include "sdflow/errors.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
@@ -20,10 +21,6 @@ namespace {
 
 //! A closed component is flat when |volume| ≤ this × area^(3/2) (as validation decides).
 constexpr double flat_volume_tolerance = 1e-10;
-//! Largest ratio of a component's extent to its shortest edge handed to TetGen. Measured with
-//! Debian's TetGen 1.5.0 on an octahedron with one vertex moved out along x: 1e8 (ratio 7·10⁷)
-//! tetrahedralises, 3e8 (ratio 2·10⁸) crashes the process; 10⁶ keeps a wide margin.
-constexpr double max_extent_ratio = 1e6;
 
 //! TetGen's documented exit codes (tetgen.h, terminatetetgen).
 std::string tetgen_failure(int code)
@@ -58,11 +55,11 @@ void screen_for_tetgen(const std::vector<double>& points, const std::vector<int>
     throw InvalidMesh(fmt::format("TetGen volume check: component {} encloses no volume (area {:.6g}, volume {:.3g}): "
                                   "a flat, degenerate body that TetGen cannot tetrahedralise", component, area, volume));
   const double extent = box.diagonal().norm();
-  if (!(extent <= max_extent_ratio * shortest))
+  if (!(extent <= max_span_ratio * shortest))
     throw InvalidMesh(fmt::format("TetGen volume check: component {} spans {:.3g} with edges as short as {:.3g} "
                                   "(ratio {:.2g}, above {:g}): beyond what TetGen's tolerances can tetrahedralise "
                                   "reliably; a vertex far from the others? (skip the cross-check with --no-tetgen)",
-                                  component, extent, shortest, extent / shortest, max_extent_ratio));
+                                  component, extent, shortest, extent / shortest, max_span_ratio));
 }
 
 double tet_volume(const double* a, const double* b, const double* c, const double* d)

@@ -297,6 +297,15 @@ std::vector<ParameterEntry> build_schema()
     bind<bool>(e, &RunParameters::conserve_volume);
   }
   {
+    auto& e = add(entry("refinement", "--refinement", ParameterType::real,
+                        "s, the refinement of the curvature-adapted sizing and the time-step bound: edges per "
+                        "radius × √s, displacement bound ÷ s, so event times converge as ℓ shrinks (0: automatic, "
+                        "max(1, R / (8 ℓ)) for the initial surface's typical radius of curvature R, written to "
+                        "run.toml as a number; 1: the sizing and bound as given)"));
+    e.range = {.min = 0, .max = 1e6};
+    bind<double>(e, &RunParameters::refinement);
+  }
+  {
     auto& e = add(entry("look_ahead", "--look-ahead", ParameterType::boolean,
                         "Take the next step's first trial on the second core while the surface is looked at for "
                         "re-triangulation (the same results either way; off: one after the other)"));

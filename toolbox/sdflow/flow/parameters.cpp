@@ -214,6 +214,7 @@ void apply_preset(const std::string& name, RunParameters& p)
     paper.retriangulation.restore_volume = false;
     paper.retriangulation.local = false;
     paper.retriangulation.local_surgery = false;
+    paper.refinement = 1;
     source = &paper;
   } else if (name != "default") {
     throw InvalidParameter(fmt::format("preset must be \"paper\" or \"default\", got \"{}\"", name));
@@ -230,6 +231,7 @@ void apply_preset(const std::string& name, RunParameters& p)
   p.retriangulation.restore_volume = source->retriangulation.restore_volume;
   p.retriangulation.local = source->retriangulation.local;
   p.retriangulation.local_surgery = source->retriangulation.local_surgery;
+  p.refinement = source->refinement;
 }
 
 void read_run_parameters(const std::filesystem::path& file, RunParameters& p)

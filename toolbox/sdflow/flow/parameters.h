@@ -51,6 +51,10 @@ struct RunParameters {
   Eigen::Vector3d reference_centre = Eigen::Vector3d::Zero();
   double reference_radius = 1.0;
   RetriangulationSchedule retriangulation;
+  //! s > 0, the refinement of the adapted sizing and the displacement bound (flow/refinement.h): the
+  //! run uses edges per radius × √s and max_displacement ÷ s; 0: automatic, from the initial
+  //! surface's typical radius of curvature and ℓ, fixed when the flow starts (written to run.toml).
+  double refinement = 0;
 };
 
 //! The names of the `curvature` key: "cotangent" (H = ½ N·ΔX, the default), "normal_integral"

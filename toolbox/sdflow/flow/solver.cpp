@@ -3,6 +3,7 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/carried_ordering.h"
 #include "sdflow/flow/single_precision_factor.h"
+#include "sdflow/flow/suitesparse_output.h"
 #include "sdflow/flow/supernodal_cholesky.h"
 #include "sdflow/log.h"
 #include "sdflow/stopwatch.h"
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
 
 namespace sdflow {
 namespace {
@@ -64,6 +66,24 @@ Eigen::VectorXd held_rhs(const FlowSystem& s, const Eigen::VectorXd& rhs)
     if (is_held(s.held, i))
       b[i] = 0;
   return b;
+}
+
+//! Why M + τβ L M⁻¹ L was not positive definite to working precision. L M⁻¹ L is only positive
+//! semi-definite (constants are in its null space): once its τβ multiple dwarfs M by the inverse of
+//! the rounding error, M is lost in the sum and the matrix is singular in floating point.
+std::string factorisation_failure(const FlowSystem& s, const SparseMatrix& a)
+{
+  double dominance = 0; // largest diagonal entry of A over that of M
+  for (Eigen::Index i = 0; i < a.rows(); ++i)
+    dominance = std::max(dominance, a.coeff(i, i) / s.areas[i]);
+  constexpr double lost_in_rounding = 1e13;
+  if (dominance > lost_in_rounding)
+    return fmt::format("CHOLMOD factorisation failed on a {}x{} system: with τβ = {:.3g} the bi-Laplacian term is up "
+                       "to {:.3g} times the mass term, which is lost in rounding (the system is singular in floating "
+                       "point): τ is far too large for this surface",
+                       a.rows(), a.cols(), s.tau_beta, dominance);
+  return fmt::format("CHOLMOD factorisation failed on a {}x{} system (not positive definite to working precision: "
+                     "degenerate triangles?)", a.rows(), a.cols());
 }
 
 void check_finite(const Eigen::VectorXd& w, const char* what)
@@ -157,8 +177,7 @@ struct FlowSolver::Impl {
     const bool positive_definite = cholesky.factorise(a);
     set_factorisation_threads(1);
     if (!positive_definite)
-      throw SolverFailure(fmt::format("CHOLMOD factorisation failed on a {}x{} system (not positive definite "
-                                      "to working precision: degenerate triangles?)", a.rows(), a.cols()));
+      throw SolverFailure(factorisation_failure(s, a));
     if (options.policy == FactorisationPolicy::reuse)
       preconditioner.emplace(cholesky.factor());
     factorised = true;
@@ -270,6 +289,7 @@ struct FlowSolver::Impl {
           it.valueRef() += 1.0;
       }
     Eigen::VectorXd b = held_rhs(s, rhs).cwiseQuotient(s.areas);
+    route_suitesparse_output();
     Eigen::SPQR<SparseMatrix> qr;
     set_factorisation_threads(blas_threads_for(a.rows(), options.blas));
     qr.compute(a);

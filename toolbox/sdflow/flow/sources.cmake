@@ -7,6 +7,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/intersection_guard.cpp
   sdflow/flow/parameter_schema.cpp
   sdflow/flow/parameters.cpp
+  sdflow/flow/refinement.cpp
   sdflow/flow/resolution_check.cpp
   sdflow/flow/retriangulation.cpp
   sdflow/flow/run_lock.cpp
@@ -15,6 +16,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/single_precision_factor.cpp
   sdflow/flow/solver.cpp
   sdflow/flow/supernodal_cholesky.cpp
+  sdflow/flow/suitesparse_output.cpp
   sdflow/flow/surface_diffusion.cpp
   sdflow/flow/time_step.cpp
   sdflow/flow/volume.cpp)

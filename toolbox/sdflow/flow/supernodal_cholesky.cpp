@@ -1,6 +1,7 @@
 #include "sdflow/flow/supernodal_cholesky.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/flow/suitesparse_output.h"
 
 #include <Eigen/CholmodSupport>
 #include <fmt/format.h>
@@ -18,6 +19,7 @@ struct SupernodalCholesky::Impl {
 
   Impl()
   {
+    route_suitesparse_output();
     cholmod_start(&common);
     common.supernodal = CHOLMOD_SUPERNODAL;
     common.final_asis = 1;

@@ -2,6 +2,7 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/flow/blas_threads.h"
+#include "sdflow/flow/refinement.h"
 #include "sdflow/flow/volume.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
@@ -37,12 +38,34 @@ std::string join_events(const std::vector<std::string>& events)
   return s;
 }
 
+//! The parameters with their refinement fixed (refinement.h): an automatic one from `surface` and
+//! the run's ℓ (given, or the surface's mean edge length).
+RunParameters with_refinement(RunParameters p, const Mesh& surface)
+{
+  if (p.refinement != 0) // given (validated with the rest)
+    return p;
+  const double ell = p.retriangulation.pipeline.edge_length > 0 ? p.retriangulation.pipeline.edge_length
+                                                                  : mean_edge_length(surface);
+  // A surface without edges has no ℓ: it is refused later, with the reason.
+  p.refinement = ell > 0 && std::isfinite(ell) ? automatic_refinement(surface, ell) : 1;
+  return p;
+}
+
+//! The time-step options the run's controller works with: the adaptive bound refined.
+TimeStepOptions refined_time_step(const RunParameters& p)
+{
+  TimeStepOptions options = p.time_step;
+  options.adaptive = refined(options.adaptive, p.refinement);
+  return options;
+}
+
 } // namespace
 
 std::string FlowNote::line() const { return fmt::format("step {} t={}: {}", step, time, text); }
 
 SurfaceDiffusion::SurfaceDiffusion(const Mesh& initial, RunParameters parameters, RetriangulationHook retriangulate)
-    : p_(std::move(parameters)), solver_(p_.solver), half_solver_(p_.solver), controller_(p_.time_step)
+    : p_(with_refinement(std::move(parameters), initial)), solver_(p_.solver), half_solver_(p_.solver),
+      controller_(refined_time_step(p_))
 {
   validate_flow_parameters(p_);
   mesh_ = canonical(initial);
@@ -54,8 +77,8 @@ SurfaceDiffusion::SurfaceDiffusion(const Mesh& initial, RunParameters parameters
 
 SurfaceDiffusion::SurfaceDiffusion(const FlowState& state, RunParameters parameters,
                                    RetriangulationHook retriangulate)
-    : p_(std::move(parameters)), solver_(p_.solver), half_solver_(p_.solver),
-      controller_(p_.time_step, state.time_step)
+    : p_(with_refinement(std::move(parameters), make_mesh(state.positions, state.triangles))), solver_(p_.solver),
+      half_solver_(p_.solver), controller_(refined_time_step(p_), state.time_step)
 {
   validate_flow_parameters(p_);
   step_ = state.step;
@@ -124,7 +147,7 @@ StepRecord SurfaceDiffusion::step()
   const auto restart_controller = [&] {
     TimeStepState s = controller_before;
     s.rejections = 0;
-    controller_ = TimeStepController(p_.time_step, s);
+    controller_ = TimeStepController(refined_time_step(p_), s);
   };
   bool fell_back = false;
   for (bool forced = false, taken = false;;) {
@@ -136,6 +159,8 @@ StepRecord SurfaceDiffusion::step()
         tau = trial_step(next_step, trial, record, rejections, volumes);
       }
       break;
+    } catch (const TimeStepTooLarge&) {
+      throw; // a smaller τ is needed, not a new surface or adaptive steps in its place
     } catch (const SolverFailure& e) {
       if (retriangulate_ && !forced) {
         forced = true;
@@ -301,7 +326,9 @@ void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
   if (!(schedule.pipeline.edge_length > 0))
     schedule.pipeline.edge_length = start_length_;
   schedule.pipeline.keep_boundary = p_.scheme.boundary == BoundaryCondition::fixed;
-  retriangulate_ = make_retriangulation_hook(schedule);
+  RetriangulationSchedule refined_schedule = schedule;
+  refined_schedule.pipeline = refined(schedule.pipeline, p_.refinement);
+  retriangulate_ = make_retriangulation_hook(refined_schedule);
 }
 
 void SurfaceDiffusion::restore_solver(FlowSolver& solver, const VertexVectors& positions,
@@ -430,7 +457,7 @@ SurfaceDiffusion::TrialBookkeeping SurfaceDiffusion::bookkeeping() const
 //! The bookkeeping back to `before`; the solvers keep their factors (the caller drops them).
 void SurfaceDiffusion::rewind(const TrialBookkeeping& before)
 {
-  controller_ = TimeStepController(p_.time_step, before.controller);
+  controller_ = TimeStepController(refined_time_step(p_), before.controller);
   solver_.rewind(before.solver);
   half_solver_.rewind(before.half_solver);
   has_anchor_ = before.has_anchor;
@@ -514,7 +541,7 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
   const Eigen::VectorXd edge_lengths = vertex_mean_edge_lengths(mesh_);
   volumes = material_volumes(positions, triangles_, topology_.face_component, topology_.count, topology_.loops);
   times.acceptance += watch.seconds();
-  const AdaptiveOptions& adaptive = p_.time_step.adaptive;
+  const AdaptiveOptions adaptive = refined(p_.time_step.adaptive, p_.refinement);
   // The start phase (time_step.h) decides on the surface's unresolved variation, every start step.
   const bool may_start = p_.time_step.mode == TimeStepMode::adaptive && adaptive.initial_tau == 0 &&
                          next_step <= adaptive.start_steps;
@@ -569,15 +596,19 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
         if (volumes[k] != 0)
           volume_change = std::max(volume_change, std::abs(after[k] - volumes[k]) / std::abs(volumes[k]));
     }
-    const StepCheck check = check_trial({.tau = tau,
-                                         .now = positions,
-                                         .next = trial.positions,
-                                         .w = trial.w,
-                                         .error = trial.error,
-                                         .triangles = triangles_,
-                                         .edge_lengths = edge_lengths,
-                                         .volume_change = volume_change},
-                                        controller_.adaptive() ? &adaptive : nullptr);
+    StepCheck check = check_trial({.tau = tau,
+                                   .now = positions,
+                                   .next = trial.positions,
+                                   .w = trial.w,
+                                   .error = trial.error,
+                                   .triangles = triangles_,
+                                   .edge_lengths = edge_lengths,
+                                   .volume_change = volume_change},
+                                  adaptive, controller_.adaptive());
+    logger().debug("step {}: the trial of τ = {} changes a closed component's volume by {:.3g} (relative)", next_step,
+                   tau, volume_change);
+    if (check.volume_exceeded && !controller_.adaptive())
+      check.adaptive_tau = automatic_tau(op_.rhs.cwiseQuotient(op_.areas).cwiseAbs(), op_.held, edge_lengths, adaptive);
     times.acceptance += watch.seconds();
     if (start) {
       // The displacement bound holds where the surface is resolved; elsewhere backward Euler damps

@@ -208,7 +208,7 @@ bool TimeStepController::judge(long step, double tau, const StepCheck& check)
       cover_table_step(step, tau);
     return accepted;
   }
-  if (!check.non_finite && check.inverted_triangles == 0) {
+  if (!check.non_finite && check.inverted_triangles == 0 && !check.volume_exceeded) {
     state_.rejections = 0;
     return true;
   }
@@ -217,10 +217,28 @@ bool TimeStepController::judge(long step, double tau, const StepCheck& check)
     ++state_.rejections;
     return false;
   }
+  if (!check.non_finite && check.inverted_triangles == 0)
+    throw TimeStepTooLarge(too_large(step, tau, check, retries));
   throw SolverFailure(fmt::format("step {} with τ = {:g} is unstable: {}{}. Use a smaller τ, β ≥ 1/2, {}or "
                                   "adaptive time steps", step, tau, check.describe(),
                                   retries > 0 ? fmt::format(" after {} halvings of the table's τ", retries) : "",
                                   options_.mode == TimeStepMode::schedule ? "schedule retries, " : ""));
+}
+
+//! Why a constant or tabled τ that broke the volume bound is too large, and by how much.
+std::string TimeStepController::too_large(long step, double tau, const StepCheck& check, int retries) const
+{
+  const double bound = options_.adaptive.max_volume_change;
+  std::string advice = "use adaptive time steps (--adaptive), or a smaller τ";
+  if (check.adaptive_tau > 0 && check.adaptive_tau < tau)
+    advice = fmt::format("the adaptive control would start from τ = {:.3g} on this surface, {:.3g} times smaller: use "
+                         "adaptive time steps (--adaptive), or a τ of about that size",
+                         check.adaptive_tau, tau / check.adaptive_tau);
+  return fmt::format("step {}: τ = {:g} is too large for the scheme: the step changes the volume of a closed "
+                     "component by {:.3g} (relative), {:.3g} times the bound of {:g} (adaptive.max_volume_change), "
+                     "so it is no approximation of the flow, which keeps volumes{}; {}",
+                     step, tau, check.volume_change, check.volume_change / bound, bound,
+                     retries > 0 ? fmt::format(" (also after {} halvings of the table's τ)", retries) : "", advice);
 }
 
 bool TimeStepController::judge_adaptive(long step, double tau, const StepCheck& check)
@@ -273,7 +291,7 @@ void TimeStepController::fall_back_to_adaptive(long step)
   state_.rejections = 0;
 }
 
-StepCheck check_trial(const TrialMotion& trial, const AdaptiveOptions* bounds)
+StepCheck check_trial(const TrialMotion& trial, const AdaptiveOptions& bounds, bool adaptive)
 {
   StepCheck c;
   if (!trial.next.allFinite()) {
@@ -293,11 +311,10 @@ StepCheck check_trial(const TrialMotion& trial, const AdaptiveOptions* bounds)
       ++c.inverted_triangles;
   }
   c.volume_change = trial.volume_change;
-  if (bounds) {
-    const AdaptiveOptions& a = *bounds;
-    c.displacement_exceeded = c.displacement_ratio > a.max_displacement;
-    c.volume_exceeded = c.volume_change > a.max_volume_change;
-    c.error_exceeded = a.tolerance > 0 && c.error_estimate > a.tolerance;
+  c.volume_exceeded = c.volume_change > bounds.max_volume_change;
+  if (adaptive) {
+    c.displacement_exceeded = c.displacement_ratio > bounds.max_displacement;
+    c.error_exceeded = bounds.tolerance > 0 && c.error_estimate > bounds.tolerance;
   }
   return c;
 }

@@ -26,15 +26,20 @@
 //! times and not below the automatic τ, and restores the volume of each closed component after it.
 //! The rule above takes over at the first step whose surface is resolved everywhere, or after
 //! start_steps steps (is_start_step), from the last start step's τ.
-//! With constant τ or a schedule, a step that turns a triangle over or produces a non-finite
-//! position stops the run at once (SolverFailure), unless `schedule_retries` > 0: then a schedule's
+//! With constant τ or a schedule, a step that turns a triangle over, produces a non-finite
+//! position or changes a closed component's volume by more than `max_volume_change` (the adaptive
+//! bound: such a step is no approximation of the flow, which keeps volumes) stops the run at once
+//! (SolverFailure; TimeStepTooLarge for the volume, which says by how much τ is too large), unless
+//! `schedule_retries` > 0: then a schedule's
 //! step is tried again with τ halved, up to that many times in a row, and the next step returns to
 //! the table's τ (the step count follows the table; the time falls behind it by what was halved).
-//! A table step that still fails (after a re-triangulation, surface_diffusion.h) is covered by
+//! A table step that still fails (after a re-triangulation, surface_diffusion.h) for a reason other
+//! than the volume bound is covered by
 //! adaptive steps instead (fall_back_to_adaptive): they advance the time by exactly the table's τ
 //! for that step, and the adaptive steps go on through the following table steps while the adaptive
 //! rule's τ stays below the table's; the table then resumes where its count stands.
 
+#include "sdflow/errors.h"
 #include "sdflow/mesh.h"
 
 #include <Eigen/Core>
@@ -102,6 +107,13 @@ struct TimeStepOptions {
   AdaptiveOptions adaptive;
 };
 
+//! A constant or tabled τ too large for the scheme: its step broke the volume bound, so it is no
+//! approximation of the flow. Neither a re-triangulation nor adaptive steps in its place change that.
+class TimeStepTooLarge : public SolverFailure {
+public:
+  using SolverFailure::SolverFailure;
+};
+
 //! Why a trial step was not accepted.
 struct StepCheck {
   double displacement_ratio = 0;   //!< max τ|w|/h
@@ -112,6 +124,9 @@ struct StepCheck {
   bool displacement_exceeded = false;
   bool volume_exceeded = false;
   bool error_exceeded = false;
+  //! Steps of a constant or tabled τ that broke the volume bound: the τ the adaptive rule would
+  //! start with on this surface (automatic_tau), to say how much smaller τ should be (0: unknown).
+  double adaptive_tau = 0;
   bool failed() const
   {
     return non_finite || inverted_triangles > 0 || displacement_exceeded || volume_exceeded || error_exceeded;
@@ -131,9 +146,9 @@ struct TrialMotion {
   double volume_change = 0;           //!< largest relative material-volume change of a component
 };
 
-//! The checks of the rule above on one trial: finite positions, no triangle turned over, and with
-//! `bounds` (adaptive steps) the displacement, volume and error bounds.
-StepCheck check_trial(const TrialMotion& trial, const AdaptiveOptions* bounds);
+//! The checks of the rule above on one trial: finite positions, no triangle turned over, the
+//! volume bound of `bounds` in every mode, and when `adaptive` the displacement and error bounds.
+StepCheck check_trial(const TrialMotion& trial, const AdaptiveOptions& bounds, bool adaptive);
 
 //! τ of the first adaptive step when no initial τ is given: the explicit speed |ΔH| bounds the
 //! semi-implicit one (the inverse of I + τβΔ² is a contraction), so safety · max_displacement ·
@@ -218,6 +233,7 @@ public:
 
 private:
   bool judge_adaptive(long step, double tau, const StepCheck& check);
+  std::string too_large(long step, double tau, const StepCheck& check, int retries) const;
   void cover_table_step(long step, double tau);
 
   TimeStepOptions options_;

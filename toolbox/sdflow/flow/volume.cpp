@@ -114,6 +114,7 @@ VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after)
   std::vector<int> old_component, new_component;
   std::vector<double> old_volume, new_volume, new_area;
   std::vector<int> vertex_component(after.n_vertices(), -1);
+  std::vector<bool> new_open;
   tbb::parallel_invoke(
     [&] {
       old_component = face_component_ids(before, &old_count);
@@ -122,8 +123,11 @@ VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after)
     },
     [&] {
       new_component = face_component_ids(after, &new_count);
-      new_volume = material_volumes(vertex_positions(after), face_indices(after), new_component, new_count,
-                                    boundary_loop_vertices(after, new_component));
+      const std::vector<BoundaryLoop> loops = boundary_loop_vertices(after, new_component);
+      new_volume = material_volumes(vertex_positions(after), face_indices(after), new_component, new_count, loops);
+      new_open.assign(new_count, false);
+      for (const BoundaryLoop& loop : loops)
+        new_open[static_cast<std::size_t>(loop.component)] = true;
       new_area.assign(new_count, 0.0);
       for (auto f : after.faces()) {
         new_area[new_component[f.idx()]] += after.calc_face_area(f);
@@ -166,7 +170,7 @@ VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after)
 
   struct Group {
     double old_volume = 0, new_volume = 0, new_area = 0;
-    bool has_old = false;
+    bool has_old = false, open = false;
   };
   std::vector<Group> group(old_count + new_count);
   for (int j = 0; j < old_count; ++j) {
@@ -178,11 +182,16 @@ VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after)
     Group& g = group[find(old_count + k)];
     g.new_volume += new_volume[k];
     g.new_area += new_area[k];
+    g.open = g.open || new_open[static_cast<std::size_t>(k)];
   }
   std::vector<double> target = new_volume;
   for (int k = 0; k < new_count; ++k) {
     const Group& g = group[find(old_count + k)];
-    if (g.has_old && g.new_area > 0)
+    // A rebuild from points orients closed components by their volume but may return an open one
+    // the other way round, which negates its material volume: giving that back would offset the
+    // surface by far more than a re-triangulation moves it, so such a group is left alone.
+    const bool turned_over = g.open && g.old_volume * g.new_volume <= 0;
+    if (g.has_old && g.new_area > 0 && !turned_over)
       target[k] += (g.old_volume - g.new_volume) * new_area[k] / g.new_area;
   }
   return restore_volumes(after, target);

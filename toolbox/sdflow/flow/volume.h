@@ -42,7 +42,9 @@ VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& t
 //! `before` its vertices lie nearest to (10% of its vertices or more); components so linked form
 //! groups (one body that pinched off into two, two bodies that fused), and each group gets
 //! back Σ V_before − Σ V_after (material volumes), shared among its new components in proportion
-//! to their areas. Throws SolverFailure as restore_volumes does.
+//! to their areas. A group with an open component whose material volume changed sign (a rebuild
+//! from points that returned the open surface turned over) is left alone. Throws SolverFailure
+//! as restore_volumes does.
 VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after);
 
 //! The same for `after`, a remeshing of `before` that kept its components and the vertices

@@ -371,8 +371,10 @@ UnionResult join(const Mesh& a, const Mesh& b, const std::vector<bool>& remove_a
     ++result.joined_loops;
   }
   if (faces.empty() && a.n_faces() > 0 && b.n_faces() > 0)
-    throw InvalidMesh(fmt::format("surface union: nothing is left after removing the overlap ({} + {} faces "
-                                  "removed): the surfaces coincide over large parts, which has no single boundary",
+    throw InvalidMesh(fmt::format("surface union: the two bodies overlap so much that no face of either lies "
+                                  "outside the other ({} + {} faces inside or crossing), so there is no boundary "
+                                  "left to join: they are the same body twice, or meshed too coarsely for their "
+                                  "overlap (refine them, `sdflow remesh`)",
                                   result.removed_faces_a, result.removed_faces_b));
   try {
     result.mesh = compact(x, faces);

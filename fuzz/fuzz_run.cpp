@@ -1,0 +1,80 @@
+//! libFuzzer harness: two steps of `sdflow run` with its defaults (re-triangulation on) on a small
+//! mesh read from OFF text, after the checks `run` makes before step 1 (check_span,
+//! check_crossings, check_retriangulation_input). A refusal with a reason (an sdflow::Error) is fine, and so is a
+//! SolverFailure of the flow itself. Findings, besides a crash, a sanitizer report or another
+//! exception: a failure from inside the re-triangulation (a message from a stage, which no user
+//! should see) and a surface after the steps with a zero-area or non-finite face. Inputs above
+//! `max_vertices` are skipped, which keeps each under about a second; libFuzzer's -timeout catches
+//! a slow one (scripts/fuzz.sh).
+#include "fuzz_common.h"
+
+#include "sdflow/check/span.h"
+#include "sdflow/flow/parameters.h"
+#include "sdflow/flow/surface_diffusion.h"
+#include "sdflow/retri/input_checks.h"
+
+#include <tbb/global_control.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <string>
+
+namespace {
+
+constexpr std::size_t max_vertices = 400;
+
+[[noreturn]] void finding(const std::string& what)
+{
+  std::fprintf(stderr, "fuzz_run: %s\n", what.c_str());
+  std::abort();
+}
+
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+  sdflow::fuzz::quiet();
+  // One thread: a finding replays exactly (the look-ahead's trial runs beside the look otherwise).
+  static tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  sdflow::Mesh mesh;
+  try {
+    const sdflow::PolygonSoup soup =
+        sdflow::detail::read_off(sdflow::detail::without_byte_order_mark(bytes, sdflow::MeshFormat::off), "fuzz.off");
+    if (soup.points.size() > max_vertices)
+      return 0;
+    mesh = sdflow::build_mesh(soup, "fuzz.off").mesh;
+  } catch (const sdflow::Error&) {
+    return 0;
+  }
+  sdflow::RunParameters parameters;
+  parameters.steps = 2;
+  try {
+    sdflow::check_span(mesh, "fuzz.off");
+    sdflow::check_crossings(mesh, "fuzz.off");
+    sdflow::check_retriangulation_input(mesh, parameters.retriangulation.pipeline, "fuzz.off");
+    sdflow::validate_run_parameters(parameters);
+  } catch (const sdflow::Error&) {
+    return 0; // refused up front, as `run` refuses it
+  }
+  std::optional<sdflow::SurfaceDiffusion> made;
+  try {
+    made.emplace(mesh, parameters);
+  } catch (const sdflow::Error&) {
+    return 0; // a mesh the scheme cannot use, refused with its reason before step 1
+  }
+  sdflow::SurfaceDiffusion& flow = *made;
+  try {
+    while (!flow.finished())
+      flow.step();
+    sdflow::check_geometry(flow.mesh(), "the surface after two steps");
+  } catch (const sdflow::SolverFailure& e) {
+    if (std::string_view(e.what()).find("re-triangulation after step") != std::string_view::npos)
+      finding(e.what());
+  } catch (const sdflow::InvalidMesh& e) {
+    finding(e.what());
+  } catch (const sdflow::Error&) {
+  }
+  return 0;
+}

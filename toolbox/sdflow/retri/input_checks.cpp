@@ -1,0 +1,86 @@
+#include "sdflow/retri/input_checks.h"
+
+#include "sdflow/check/span.h"
+#include "sdflow/errors.h"
+#include "sdflow/geometry/measures.h"
+#include "sdflow/geometry/topology.h"
+#include "sdflow/limits.h"
+#include "sdflow/spatial/intersect.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace sdflow {
+
+double edge_length_for_vertices(double area, double vertices)
+{
+  // estimated_vertices: area / (√3/4 ℓ²) / 2 = vertices.
+  return std::sqrt(area / (vertices * std::sqrt(3.0) / 2.0));
+}
+
+void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions& options, std::string_view source)
+{
+  check_span(mesh, source);
+  int count = 0;
+  const std::vector<int> component = face_component_ids(mesh, &count);
+  if (count == 0)
+    throw InvalidMesh(fmt::format("{}: the surface has no triangles to re-triangulate", source));
+  std::vector<double> areas(static_cast<std::size_t>(count), 0.0);
+  for (const auto f : mesh.faces())
+    areas[static_cast<std::size_t>(component[static_cast<std::size_t>(f.idx())])] += mesh.calc_face_area(f);
+  const double ell = options.edge_length > 0 ? options.edge_length : mean_edge_length(mesh);
+  // A closed component thinner than this for its area is taken for a collapsed double sheet and
+  // dropped (pipeline.h, stage 6): a body flattened by the input, not by the flow.
+  const std::vector<double> volumes = component_volumes(mesh);
+  const std::vector<ComponentTopology> topology = component_topology(mesh);
+  for (int k = 0; k < count; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    const double thickness = std::abs(volumes[i]) / areas[i];
+    if (!topology[i].closed() || thickness >= options.min_component_thickness * ell)
+      continue;
+    throw InvalidMesh(fmt::format(
+        "{}: {} is too thin for the edge length ℓ = {:.3g}{}: it encloses {:.3g} for an area of {:.3g} (a mean "
+        "thickness of {:.3g}, below {:g} ℓ), which the re-triangulation drops as a collapsed sheet. Give "
+        "--edge-length {:.3g} or shorter, or check the file's scale along each axis",
+        source, count > 1 ? fmt::format("component {}", k) : std::string("the surface"), ell,
+        options.edge_length > 0 ? "" : " (its mean edge length)", std::abs(volumes[i]), areas[i], thickness,
+        options.min_component_thickness, thickness / options.min_component_thickness / 2));
+  }
+  const double needed = std::max(min_retriangulated_vertices, options.normals.neighbours + 2.0);
+  const auto smallest = std::min_element(areas.begin(), areas.end());
+  const double vertices = estimated_vertices(*smallest, ell);
+  if (vertices >= needed)
+    return;
+  // Twice the need, so that the suggestion is not itself at the edge.
+  const double suggested = edge_length_for_vertices(*smallest, 2 * needed);
+  throw InvalidMesh(fmt::format(
+      "{}: {} (area {:.3g}) is too coarse to re-triangulate at the edge length ℓ = {:.3g}{}: it would have about "
+      "{:.0f} vertices, fewer than the {:.0f} the re-triangulation needs (coarser, a body loses its shape and is "
+      "dropped as debris). Give --edge-length {:.3g} or shorter, or refine the file first with `sdflow remesh "
+      "--edge-length {:.3g}`",
+      source, count > 1 ? fmt::format("component {}", smallest - areas.begin()) : std::string("the surface"),
+      *smallest, ell, options.edge_length > 0 ? "" : " (its mean edge length)", vertices, needed, suggested,
+      suggested));
+}
+
+void check_crossings(const Mesh& mesh, std::string_view source)
+{
+  const std::vector<int> component = face_component_ids(mesh);
+  int crossing_itself = 0, first = -1;
+  for (const FacePair& pair : self_intersections(mesh))
+    if (component[static_cast<std::size_t>(pair.first)] == component[static_cast<std::size_t>(pair.second)] &&
+        crossing_itself++ == 0)
+      first = pair.first;
+  if (crossing_itself == 0)
+    return;
+  throw InvalidMesh(fmt::format("{}: the surface crosses itself: {} pair(s) of faces of one component intersect (face "
+                                "{} and others), so which side is inside is not defined there (`sdflow intersections` "
+                                "lists them). `sdflow repair --remove-self-intersections` cuts them out and closes the "
+                                "surface again",
+                                source, crossing_itself, first));
+}
+
+} // namespace sdflow

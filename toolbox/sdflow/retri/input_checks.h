@@ -1,0 +1,39 @@
+#pragma once
+//! \file input_checks.h
+//! \brief What the re-triangulation (pipeline.h) needs of its input, checked before it runs so
+//! that a surface it cannot handle is refused in the user's terms (InvalidMesh: which component,
+//! why, the command that helps) instead of failing inside a stage ("nothing is left", "k = 18 is
+//! not in [2, 11]"). `run` (with re-triangulation on) and `retriangulate` check this up front.
+
+#include "sdflow/mesh.h"
+#include "sdflow/retri/pipeline.h"
+
+#include <string_view>
+
+namespace sdflow {
+
+//! Fewest vertices a component re-triangulated to ℓ may have: coarser than an icosahedron, a
+//! closed body loses its shape and is dropped as debris (fewer than min_component_faces), and
+//! the rebuild's jet normals fit `normals.neighbours` points.
+inline constexpr double min_retriangulated_vertices = 20;
+
+//! The edge length a component of `area` needs to be re-triangulated with `vertices` vertices
+//! (the inverse of estimated_vertices, limits.h).
+double edge_length_for_vertices(double area, double vertices);
+
+//! Refuse (InvalidMesh naming `source`) a surface that `options` cannot re-triangulate: a vertex
+//! far from the others (check_span, span.h), a closed component thinner than the debris bound
+//! (options.min_component_thickness · ℓ) for the target edge length ℓ (options.edge_length, or the
+//! mean edge length when 0), or a component that ℓ leaves with fewer than
+//! max(min_retriangulated_vertices, options.normals.neighbours + 2) vertices. The message gives the
+//! `--edge-length` that would do, and the `sdflow remesh` command that refines the file.
+void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions& options, std::string_view source);
+
+//! Refuse (InvalidMesh naming `source`) a surface with a component that crosses itself, as TetGen
+//! refuses it for `stats`: which side is inside is not defined there, and the re-triangulation
+//! would have to guess a surgery the flow did not bring. Components that cross each other are
+//! bodies that overlap (validation reads the one it finds inside the other as a cavity), which the
+//! re-triangulation joins (pipeline.h, stage 0): they are taken.
+void check_crossings(const Mesh& mesh, std::string_view source);
+
+} // namespace sdflow
