@@ -50,6 +50,10 @@ void run(const IntersectionsArguments& args)
   // uses need a surface, repaired when the file is damaged (io/repair.h).
   std::size_t faces = 0;
   std::vector<FacePair> pairs;
+  //! One surface whose search merged bit-identical points at a pinch: the pairs of its repaired
+  //! copy, which splits such points (io/repair.h, non-manifold-vertex), and how many it split.
+  std::optional<std::size_t> repaired_pairs;
+  std::size_t split_points = 0;
   std::optional<RemovalResult> removal;
   WorkProgress progress("intersections");
   progress.stage("reading " + args.mesh);
@@ -70,10 +74,27 @@ void run(const IntersectionsArguments& args)
     write_mesh(removal->mesh, args.output,
                {.encoding = args.encoding, .vertex_fields = surface_fields(removal->mesh)});
   } else {
-    const TriangleSoup soup = triangle_soup(read_polygon_soup(args.mesh), args.mesh);
+    const PolygonSoup polygons = read_polygon_soup(args.mesh);
+    const TriangleSoup soup = triangle_soup(polygons, args.mesh);
     faces = static_cast<std::size_t>(soup.triangles.rows());
     progress.stage(fmt::format("testing {} faces against each other", faces));
     pairs = self_intersections(soup.positions, soup.triangles);
+    if (soup.merged_vertices > 0) {
+      // Faces meeting at a merged point share it as a corner here. A repair keeps such a point
+      // where one fan of faces meets (a seam) but splits it where several do (a pinch), and its
+      // copy then decides the faces that met only there without the shared corner: the counts
+      // can differ, and the repaired copy's is given beside this one (issue 32).
+      try {
+        const RepairResult repaired = repair_soup(polygons, args.mesh);
+        split_points = repaired.count("non-manifold-vertex");
+        if (split_points > 0) {
+          progress.stage("testing the repaired copy's faces");
+          repaired_pairs = self_intersections(repaired.mesh).size();
+        }
+      } catch (const Error&) {
+        // A file no repair fixes has no repaired copy to compare with.
+      }
+    }
   }
   progress.finish();
   int degenerate = 0;
@@ -89,6 +110,10 @@ void run(const IntersectionsArguments& args)
       root.insert("other", args.other);
     else
       root.insert("degenerate_faces", degenerate);
+    if (repaired_pairs) {
+      root.insert("repaired_intersecting_pairs", static_cast<int64_t>(*repaired_pairs));
+      root.insert("repair_split_points", static_cast<int64_t>(split_points));
+    }
     if (removal) {
       root.insert("output", args.output);
       root.insert("removed_faces", static_cast<int64_t>(removal->removed_faces.size()));
@@ -106,6 +131,13 @@ void run(const IntersectionsArguments& args)
                              args.mesh, args.other, pairs.size());
   for (const FacePair& p : pairs)
     std::cout << fmt::format("  {} {}\n", p.first, p.second);
+  if (repaired_pairs)
+    std::cout << fmt::format(
+        "its repaired copy (sdflow repair) has {} intersecting pair(s){}: the repair splits {} point(s) where separate "
+        "fans of faces meet, which this search takes as one corner (bit-identical points merged), so faces that "
+        "met only there are neighbours here and are tested as strangers there\n",
+        *repaired_pairs, *repaired_pairs == pairs.size() ? ", the same count" : fmt::format(", not {}", pairs.size()),
+        split_points);
   if (removal)
     std::cout << fmt::format("removed {} face(s) and {} vertex(es); {} pinched vertex(es) remain; wrote {}\n",
                              removal->removed_faces.size(), removal->removed_vertices.size(),

@@ -52,15 +52,15 @@ void scan_metrics(const std::filesystem::path& file, double& area0, double& volu
     std::stringstream ss(line);
     for (std::string field; std::getline(ss, field, ',');)
       f.push_back(field);
-    if (f.size() < 13)
-      throw IoError(fmt::format("{}:{}: expected 14 columns", file.string(), number));
+    if (f.size() < 14)
+      throw IoError(fmt::format("{}:{}: expected 15 columns", file.string(), number));
     try {
       if (rows == 0) {
         area0 = std::stod(f[7]);
         volume0 = std::stod(f[8]);
       }
-      if (f.size() == 14 && !f[13].empty() && f[13] != "rejected") {
-        std::string name = f[13];
+      if (f.size() == 15 && !f[14].empty() && f[14] != "rejected") {
+        std::string name = f[14];
         if (name.rfind("rejected+", 0) == 0)
           name = name.substr(9);
         events.push_back({std::stod(f[1]), name});

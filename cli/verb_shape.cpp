@@ -13,6 +13,7 @@
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/expression.h"
 #include "sdflow/shapes/mesher.h"
+#include "sdflow/shapes/packing.h"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -30,6 +31,7 @@ struct ShapeArguments {
   std::string name;
   bool list = false;
   std::string expression;
+  std::string spheres; //!< packing: a CSV of x,y,z,r
   std::vector<double> box;
   double feature_size = 0;
   double edge_length = 0;
@@ -66,7 +68,8 @@ void print_catalogue(bool json)
       std::cout << fmt::format("  --{:<20} {:<12.10g} {}\n", p.name, p.default_value, p.description);
   }
   std::cout << "expression: any level set f(x, y, z) = 0 (muparser syntax), negative inside\n"
-               "  --expr \"...\" --box xmin,ymin,zmin,xmax,ymax,zmax [--feature-size s]\n";
+               "  --expr \"...\" --box xmin,ymin,zmin,xmax,ymax,zmax [--feature-size s]\n"
+               "packing from a file: sdflow shape packing --spheres FILE.csv (x,y,z,r a line) [--blend k]\n";
 }
 
 ImplicitSurface chosen_surface(const ShapeArguments& args)
@@ -94,6 +97,14 @@ ImplicitSurface chosen_surface(const ShapeArguments& args)
   std::map<std::string, double> parameters;
   for (const auto& name : given)
     parameters[name] = args.values.at(name);
+  if (!args.spheres.empty()) {
+    if (args.name != "packing")
+      throw InvalidParameter(fmt::format("--spheres belongs to the packing shape, not '{}'", args.name));
+    for (const auto& name : given)
+      if (name != "blend")
+        throw InvalidParameter(fmt::format("--{} makes a packing; --spheres reads one (only --blend applies)", name));
+    return packing_surface(read_packing_csv(args.spheres), {.blend = parameters.contains("blend") ? parameters["blend"] : PackingSurfaceOptions{}.blend});
+  }
   return make_shape(args.name, parameters);
 }
 
@@ -171,6 +182,7 @@ void add_shape_verb(CLI::App& app)
   verb->add_option("--expr", args->expression, "Level set f(x, y, z) = 0 to mesh (muparser syntax), negative inside");
   verb->add_option("--box", args->box, "Box for --expr: xmin,ymin,zmin,xmax,ymax,zmax")->delimiter(',')->expected(6);
   verb->add_option("--feature-size", args->feature_size, "For --expr: smallest neck or gap to resolve");
+  verb->add_option("--spheres", args->spheres, "For packing: a CSV file of spheres, one x,y,z,r a line");
   auto* length = verb->add_option("--edge-length", args->edge_length, "Target edge length");
   auto* count = verb->add_option("--vertices", args->vertices, "Approximate vertex count (within a few percent)");
   length->excludes(count);

@@ -52,6 +52,8 @@ toml::table to_json_table(const std::string& file, const BuiltMesh& built, const
       t.insert("tetgen_volume", *c.tetgen_volume);
       t.insert("tetrahedra", c.tetrahedra);
     }
+    if (c.crossing_faces > 0)
+      t.insert("crossing_faces", static_cast<int64_t>(c.crossing_faces));
     components.push_back(std::move(t));
   }
   const MeshQuality& q = s.quality;
@@ -79,6 +81,8 @@ toml::table to_json_table(const std::string& file, const BuiltMesh& built, const
                                 {"boundary_valence", histogram(q.boundary_valence_histogram)}}}};
   if (s.tetgen_volume)
     root.insert("tetgen_volume", *s.tetgen_volume);
+  if (!s.tetgen_skipped.empty())
+    root.insert("tetgen_skipped", s.tetgen_skipped);
   if (std::isfinite(s.curvature.deviation_pct))
     root.insert("curvature_deviation_pct", s.curvature.deviation_pct);
   return root;
@@ -98,6 +102,8 @@ void print_text(const std::string& file, const BuiltMesh& built, const MeshStati
       std::cout << fmt::format(", volume {:.10g}", c.volume);
     if (c.tetgen_volume)
       std::cout << fmt::format(" (TetGen {:.10g}, {} tetrahedra)", *c.tetgen_volume, c.tetrahedra);
+    if (c.crossing_faces > 0)
+      std::cout << fmt::format("; {} face(s) in intersecting pairs", c.crossing_faces);
     std::cout << '\n';
   }
   std::cout << fmt::format("  area {:.10g}\n  volume {:.10g}", s.area, s.volume);
@@ -106,6 +112,8 @@ void print_text(const std::string& file, const BuiltMesh& built, const MeshStati
                                               std::abs(*s.tetgen_volume - s.volume) / std::abs(s.volume))
                                 : fmt::format("  (TetGen {:.10g}, difference {:.2e})", *s.tetgen_volume,
                                               std::abs(*s.tetgen_volume - s.volume)));
+  if (!s.tetgen_skipped.empty())
+    std::cout << fmt::format("  ({})", s.tetgen_skipped);
   std::cout << fmt::format("\n  mean curvature H̃ {:.8g}, deviation H_dev {:.6g} ({})\n", s.curvature.mean,
                            s.curvature.deviation,
                            std::isfinite(s.curvature.deviation_pct) ? fmt::format("{:.4g}% of |H̃|", s.curvature.deviation_pct)

@@ -26,7 +26,7 @@ samples/make_meshes.sh "$sdflow"
 
 names=("$@")
 [[ ${#names[@]} -gt 0 ]] || names=(sphere_accuracy ellipsoid_relax ellipsoid_quarter_beta ellipsoid_explicit torus
-                                   dumbbell sintering spheres_on_plane)
+                                   dumbbell sintering spheres_on_plane compact_27 compact_100)
 index=0
 for name in "${names[@]}"; do
   index=$((index + 1))
@@ -39,13 +39,13 @@ for name in "${names[@]}"; do
   "$sdflow" plot "$out" > /dev/null
   awk -F, -v name="$name" -v status="$status" '
     NR == 2 { a0 = $8; v0 = $9; topo0 = $6 "/" $7 }
-    NR > 1 { last = $0; split($14, ev, "+"); for (i in ev) if (ev[i] != "") n[ev[i]]++ }
+    NR > 1 { last = $0; split($15, ev, "+"); for (i in ev) if (ev[i] != "") n[ev[i]]++ }
     END {
       split(last, f, ",")
       events = ""
       for (e in n) events = events e " " n[e] " "
-      printf "%-24s %s steps, t = %.4g, area %+.2f%%, volume %+.3f%%, H_dev %.2f%%, components/genus %s -> %s/%s%s%s\n",
-             name, f[1], f[2], 100 * (f[8] / a0 - 1), (v0 != 0 ? 100 * (f[9] / v0 - 1) : 0), f[11], topo0, f[6], f[7],
+      printf "%-24s %s steps, t = %.4g, area %+.2f%%, volume (debris included) %+.3f%%, H_dev %.2f%%, components/genus %s -> %s/%s%s%s\n",
+             name, f[1], f[2], 100 * (f[8] / a0 - 1), (v0 != 0 ? 100 * ((f[9] + f[14]) / v0 - 1) : 0), f[11], topo0, f[6], f[7],
              (events == "" ? "" : ", events: " events), (status == 3 ? " (stopped as unstable)" : "")
     }' "$out/metrics.csv"
 done

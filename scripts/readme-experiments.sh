@@ -43,7 +43,7 @@ measure() { # RUN_DIR
         c = $6; g = $7
       }
     }
-    NR > 1 { last = $0; if ($14 ~ /fallback/) fallbacks++ }
+    NR > 1 { last = $0; if ($15 ~ /fallback/) fallbacks++ }
     END {
       split(last, f, ",")
       printf "%s%s steps to t = %.4g", (stopped == "" ? "" : stopped " "), f[1], f[2]

@@ -4,6 +4,7 @@
 #   docs/images/NAME_start.png         the initial surface
 #   docs/images/NAME_before_event.png  the last snapshot before the first topology change (if any)
 #   docs/images/NAME_after_event.png   the first snapshot after it (if any)
+#   docs/images/NAME_middle.png        the snapshot nearest half the run's final time
 #   docs/images/NAME_end.png           the last snapshot
 # and docs/images/NAME_area_volume.png, NAME_curvature_deviation.png.
 #   scripts/readme-figures.sh torus dumbbell sintering spheres_on_plane
@@ -28,6 +29,11 @@ for name in "$@"; do
   }
   draw "${steps[0]}" start
   draw "${steps[-1]}" end
+  # The snapshot whose time is nearest half the final time.
+  middle=$(for s in "${steps[@]}"; do echo "$s $(time_of "$s")"; done |
+           awk -v half="$(awk -F, 'END { print $2 / 2 }' "$run/metrics.csv")" \
+               '{ d = $2 - half; if (d < 0) d = -d; if (best == "" || d < bd) { best = $1; bd = d } } END { print best }')
+  draw "$middle" middle
   if [[ -n $event ]]; then
     before=${steps[0]} after=""
     for s in "${steps[@]}"; do

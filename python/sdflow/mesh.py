@@ -177,9 +177,11 @@ def shape(name=None, *, vertices=None, edge_length=None, expression=None, box=No
           iterations=10, edges_per_radius=0.0, grid_cell=0.0, force=False, **parameters):
     """Mesh a catalogue shape (``shape("torus", vertices=15000, major=3, minor=1.5)``) or a formula
     f(x, y, z) = 0, negative inside (``shape(expression="x^2+y^2+z^2-1", box=(-2, -2, -2, 2, 2, 2),
-    edge_length=0.1)``), as `sdflow shape` does: give vertices or edge_length. Returns a MeshResult
+    edge_length=0.1)``), as `sdflow shape` does: give vertices or edge_length. Parameters spelt with
+    hyphens take underscores (``shape("packing", count=20, min_distance=2.4, edge_length=0.15)``). Returns a MeshResult
     (closed components oriented outward) whose info has the edge length used and angle statistics."""
-    V, F, info = _sdflow.mesh_shape(name or "", {k: float(v) for k, v in parameters.items()}, expression or "",
+    V, F, info = _sdflow.mesh_shape(name or "", {k.replace("_", "-"): float(v) for k, v in parameters.items()},
+                                    expression or "",
                                     [float(b) for b in box] if box is not None else [], float(feature_size),
                                     float(edge_length or 0), int(vertices or 0), int(iterations),
                                     float(edges_per_radius), float(grid_cell), bool(force))

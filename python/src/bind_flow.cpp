@@ -41,6 +41,7 @@ py::dict metrics_dict(long step, double time, double tau, const FlowMetrics& m, 
   d["curvature_deviation_pct"] = m.curvature_deviation_pct;
   d["d1"] = m.d1;
   d["d2"] = m.d2;
+  d["debris_volume"] = m.debris_volume;
   d["event"] = event;
   return d;
 }

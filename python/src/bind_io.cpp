@@ -96,6 +96,8 @@ py::dict stats_dict(const std::optional<std::string>& file, BuiltMesh& built, bo
   root["volume"] = s.volume;
   if (s.tetgen_volume)
     root["tetgen_volume"] = *s.tetgen_volume;
+  if (!s.tetgen_skipped.empty())
+    root["tetgen_skipped"] = s.tetgen_skipped;
   root["self_intersecting_pairs"] = s.self_intersecting_pairs;
   root["mean_curvature"] = s.curvature.mean;
   root["curvature_deviation"] = s.curvature.deviation;

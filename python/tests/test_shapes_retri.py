@@ -35,6 +35,18 @@ def test_shape_catalogue_and_errors():
         sdflow.shape("torus", vertices=10 ** 9)  # the plausibility limit
 
 
+def test_packing_is_in_the_catalogue_and_meshes_its_ring(cli, tmp_path):
+    assert "min-distance" in sdflow.shapes()["packing"]["parameters"]
+    # Four spheres in a ring: genus 1, as `sdflow shape packing` makes it.
+    ring = sdflow.shape("packing", nx=2, ny=2, nz=1, edge_length=0.25)
+    V, F = ring.V, ring.F
+    cli("shape", "packing", "--nx", 2, "--ny", 2, "--nz", 1, "--edge-length", 0.25, "-o", tmp_path / "p.ply")
+    np.testing.assert_array_equal(V, sdflow.read(tmp_path / "p.ply").V)
+    np.testing.assert_array_equal(F, sdflow.read(tmp_path / "p.ply").F)
+    with pytest.raises(sdflow.InvalidParameter):
+        sdflow.shape("packing", count=10, spacing=1.8, min_distance=1.0, edge_length=0.2)
+
+
 def test_retriangulate_equals_sdflow_retriangulate(cli, cli_json, meshes, tmp_path):
     report = cli_json("retriangulate", meshes["dumbbell"], "-o", tmp_path / "r.ply", "--edge-length", 0.4, "--json")
     V, F = sdflow.read(meshes["dumbbell"])

@@ -50,6 +50,27 @@ TEST_F(RetriCommands, intersections_json_counts_and_lists_the_exact_pairs)
   EXPECT_NE(text.output.find(fmt::format("  {} {}\n", expected[0].first, expected[0].second)), std::string::npos);
 }
 
+// Issue 32: a point given twice (bit-identical) where two bodies meet is one corner for the
+// search of the file's faces, and two vertices in its repaired copy: both counts are given, and why.
+TEST_F(RetriCommands, intersections_of_a_soup_with_a_pinch_point_give_the_repaired_copys_count)
+{
+  std::ofstream(path("pinch.off")) << "OFF\n8 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n0 0 0\n-2 0 0\n0 -2 0\n0 0 -2\n"
+                                      "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 4 5 6\n3 4 7 5\n3 4 6 7\n3 5 7 6\n";
+  const auto r = analytic::run_sdflow("intersections --json " + path("pinch.off"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("\"intersecting_pairs\" : 0"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"repair_split_points\" : 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"repaired_intersecting_pairs\" : 0"), std::string::npos) << r.output;
+  const auto text = analytic::run_sdflow("intersections " + path("pinch.off"));
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("repaired copy (sdflow repair) has 0 intersecting pair(s), the same count"),
+            std::string::npos) << text.output;
+  // A valid file has nothing merged: no second count.
+  write_mesh(analytic::icosphere(2), path("sphere.off"));
+  EXPECT_EQ(analytic::run_sdflow("intersections --json " + path("sphere.off")).output.find("repaired_intersecting"),
+            std::string::npos);
+}
+
 TEST_F(RetriCommands, intersections_output_has_none_left)
 {
   write_mesh(pushed_through_icosphere(), path("pushed.off"));

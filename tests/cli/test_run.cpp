@@ -50,9 +50,9 @@ TEST(PlotCommand, topology_events_are_marked_and_a_bad_table_is_refused)
   test::TempDir dir;
   fs::create_directories(dir / "run");
   test::write_file(dir / "run/metrics.csv", std::string(metrics_header) + "\n"
-                   "0,0,0,100,196,1,0,10,2,-1,5,0,0,\n"
-                   "1,0.5,0.5,100,196,1,0,9.5,2,-1,4,0,0,rejected\n"
-                   "2,1,0.5,120,236,2,0,9,2,-1,3,0,0,rejected+split\n");
+                   "0,0,0,100,196,1,0,10,2,-1,5,0,0,0,\n"
+                   "1,0.5,0.5,100,196,1,0,9.5,2,-1,4,0,0,0,rejected\n"
+                   "2,1,0.5,120,236,2,0,9,2,-1,3,0,0,0,rejected+split\n");
   const auto r = analytic::run_sdflow("plot " + (dir / "run").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string script = test::read_file(dir / "run/plots/plots.gnuplot");
@@ -139,7 +139,7 @@ TEST(RunCommand, killed_run_leaves_complete_files_and_resumes_bit_for_bit)
   std::getline(metrics, line);
   EXPECT_EQ(line, metrics_header);
   while (std::getline(metrics, line))
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 13) << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 14) << line;
   for (const auto& entry : fs::directory_iterator(dir / "killed/snapshots")) {
     if (entry.path().extension() == ".ply") {
       EXPECT_NO_THROW(read_mesh(entry.path())) << entry.path();

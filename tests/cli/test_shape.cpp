@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <set>
 #include <vector>
 
@@ -38,7 +39,8 @@ TEST_F(ShapeCommand, list_names_every_shape_and_parameter)
 {
   const auto r = analytic::run_sdflow("shape --list");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  for (const char* s : {"sphere", "ellipsoid", "torus", "dumbbell", "sintering", "spheres-on-plane", "--major", "--minor",
+  for (const char* s : {"sphere", "ellipsoid", "torus", "dumbbell", "sintering", "spheres-on-plane", "packing",
+                        "--min-distance", "--spheres", "--major", "--minor",
                         "--neck-width", "--neck-radius", "--disk-radius", "--blend", "--expr"})
     EXPECT_NE(r.output.find(s), std::string::npos) << s;
 }
@@ -83,6 +85,25 @@ TEST_F(ShapeCommand, bad_parameters_are_refused_with_reasons)
   expect_refused("shape sphere --edge-length 0.5 --vertices 100" + out, {"excludes"});
   expect_refused("shape sphere --edge-length 0.5", {"-o"});
   expect_refused("shape sphere --edge-length 0.5 -o " + (dir / "x.xyz").string(), {"x.xyz"});
+}
+
+// Issue 32: a packing from a CSV of spheres; --spheres belongs to it, and a bad line is named.
+TEST_F(ShapeCommand, packing_reads_its_spheres_from_a_csv)
+{
+  std::ofstream(dir / "two.csv") << "x,y,z,r\n0,0,0,1\n0.9,1.1,0.7,0.8\n";
+  const fs::path out = dir / "two.ply";
+  const auto r = analytic::run_sdflow("shape packing --spheres " + (dir / "two.csv").string() +
+                                      " --edge-length 0.2 -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto components = component_topology(read_mesh(out).mesh);
+  ASSERT_EQ(components.size(), 1u);
+  EXPECT_EQ(components[0].genus, 0);
+  std::ofstream(dir / "bad.csv") << "0,0,0,1\n1,1\n";
+  const std::string o = " --edge-length 0.2 -o " + (dir / "x.ply").string();
+  expect_refused("shape packing --spheres " + (dir / "bad.csv").string() + o, {"bad.csv:2"});
+  expect_refused("shape torus --spheres " + (dir / "two.csv").string() + o, {"--spheres belongs to the packing"});
+  expect_refused("shape packing --count 3 --spheres " + (dir / "two.csv").string() + o, {"--count"});
+  expect_refused("shape packing --count 10 --min-distance 1" + o, {"min-distance"});
 }
 
 TEST_F(ShapeCommand, remesh_reaches_the_target_length_and_keeps_topology)

@@ -85,6 +85,26 @@ TEST_F(StatsCommand, bad_input_exits_with_code_two_and_says_why)
   EXPECT_NE(n.output.find("vertex 1"), std::string::npos) << n.output;
 }
 
+// Issue 32: a repaired file whose bodies cross each other is reported, not refused: the warning,
+// TetGen left out with the reason, exit 0.
+TEST_F(StatsCommand, crossing_repaired_file_is_warned_about_and_tetgen_skipped)
+{
+  write_mesh(analytic::disjoint_union(analytic::icosphere(3, 1.0), analytic::icosphere(3, 1.0, Eigen::Vector3d(1, 0, 0))),
+             dir / "overlap.off");
+  const auto repaired = analytic::run_sdflow("repair " + (dir / "overlap.off").string() + " -o " +
+                                             (dir / "overlap.ply").string());
+  ASSERT_EQ(repaired.exit_code, 0) << repaired.output;
+  const auto r = analytic::run_sdflow("stats --json " + (dir / "overlap.ply").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("\"self-intersection\""), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"tetgen_skipped\""), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"crossing_faces\""), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("\"tetgen_volume\""), std::string::npos) << r.output;
+  const auto text = analytic::run_sdflow("stats " + (dir / "overlap.ply").string());
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("TetGen not called on 2 closed component(s)"), std::string::npos) << text.output;
+}
+
 TEST_F(StatsCommand, usage_errors_exit_with_code_two)
 {
   EXPECT_EQ(analytic::run_sdflow("stats").exit_code, 2);

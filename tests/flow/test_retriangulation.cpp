@@ -44,8 +44,8 @@ MetricsSummary summarise(const fs::path& file)
     std::stringstream ss(line);
     for (std::string f; std::getline(ss, f, ',');)
       fields.push_back(f);
-    if (fields.size() == 14)
-      for (std::stringstream events(fields[13]); std::getline(events, line, '+');)
+    if (fields.size() == 15)
+      for (std::stringstream events(fields[14]); std::getline(events, line, '+');)
         s.events.insert(line);
     s.last = fields;
   }

@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 //! metrics.csv as rows of fields (header excluded).
 //! The rows of a CSV file with `header` (metrics.csv by default) and `columns` fields a row.
 std::vector<std::vector<std::string>> read_metrics(const fs::path& file, const char* header = metrics_header,
-                                                   std::size_t columns = 14)
+                                                   std::size_t columns = 15)
 {
   std::ifstream in(file);
   std::string line;
@@ -42,7 +42,7 @@ std::vector<std::vector<std::string>> read_metrics(const fs::path& file, const c
 }
 
 double column(const std::vector<std::string>& row, int c) { return std::stod(row[c]); }
-constexpr int time_col = 1, area_col = 7, volume_col = 8, deviation_col = 10, event_col = 13;
+constexpr int time_col = 1, area_col = 7, volume_col = 8, deviation_col = 10, debris_col = 13, event_col = 14;
 
 RunParameters constant_tau(const fs::path& out, double tau, long steps, double beta = 0.5)
 {
@@ -226,20 +226,22 @@ TEST(Simulation, timings_csv_splits_each_steps_wall_time_by_stage)
   p.retriangulation.every = 3;
   run_simulation(analytic::ellipsoid(3, 5, 4, 3), {.parameters = p});
 
-  const auto rows = read_metrics(dir / "run/timings.csv", timings_header, 19);
+  const auto rows = read_metrics(dir / "run/timings.csv", timings_header, 20);
   ASSERT_EQ(rows.size(), 6u) << "one row per step, none for step 0";
   double solve = 0, cpu = 0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     SCOPED_TRACE(i + 1);
-    ASSERT_EQ(rows[i].size(), 19u);
+    ASSERT_EQ(rows[i].size(), 20u);
     EXPECT_EQ(rows[i][0], std::to_string(i + 1));
     double parts = 0;
     for (std::size_t c = 2; c < 17; ++c) {
       EXPECT_GE(column(rows[i], static_cast<int>(c)), 0.0) << "column " << c;
       parts += column(rows[i], static_cast<int>(c));
     }
-    const double total = column(rows[i], 1), other = column(rows[i], 17);
-    EXPECT_NEAR(parts + other, total, 1e-5) << "the stages and `other` make up the total";
+    const double total = column(rows[i], 1), other = column(rows[i], 17), side_by_side = column(rows[i], 19);
+    EXPECT_GE(side_by_side, 0.0);
+    EXPECT_NEAR(parts + other, total + side_by_side, 1e-5)
+        << "the stages and `other` make up the total and the seconds counted twice";
     EXPECT_GE(other, -1e-5) << "the stages are parts of the step: they cannot exceed it";
     // The pipeline's remeshing ran after steps 3 and 6 only (every = 3).
     const double remesh = column(rows[i], 9);
@@ -254,6 +256,31 @@ TEST(Simulation, timings_csv_splits_each_steps_wall_time_by_stage)
   EXPECT_GT(solve, 0.0);
   EXPECT_GT(cpu, 0.0) << "the step's CPU time is recorded";
   EXPECT_NE(test::read_file(dir / "run/events.log").find("time by stage: "), std::string::npos);
+}
+
+// Issue 32: the volume of debris dropped whole goes to metrics.csv (debris_volume, summed) and to
+// events.log, and the material's volume, debris included, stays what it was.
+TEST(Simulation, debris_dropped_whole_is_counted_in_the_material_volume)
+{
+  test::TempDir dir;
+  RunParameters p = constant_tau(dir / "run", 1e-4, 2);
+  p.retriangulation.enabled = true;
+  p.retriangulation.always = true;
+  // The small sphere, refined to its curvature, stays below this; the large one far above it.
+  p.retriangulation.pipeline.min_component_faces = 1500;
+  const Mesh drop = analytic::icosphere(1, 0.2, {6, 0, 0});
+  run_simulation(analytic::disjoint_union(analytic::icosphere(4, 2.0), drop), {.parameters = p});
+
+  const auto rows = read_metrics(dir / "run/metrics.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(column(rows[0], debris_col), 0.0);
+  const double debris = column(rows[1], debris_col);
+  EXPECT_NEAR(debris, enclosed_volume(drop), 0.02 * enclosed_volume(drop)) << "the drop's volume, as the step left it";
+  EXPECT_EQ(column(rows[2], debris_col), debris) << "a sum so far: it stays";
+  const double material0 = column(rows[0], volume_col);
+  for (const auto& row : rows)
+    EXPECT_LT(std::abs(column(row, volume_col) + column(row, debris_col) - material0), 1e-6 * material0);
+  EXPECT_NE(test::read_file(dir / "run/events.log").find("dropped whole as debris"), std::string::npos);
 }
 
 TEST(Simulation, retriangulation_hook_events_reach_the_metrics_and_new_connectivity_is_used)

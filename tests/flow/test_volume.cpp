@@ -142,6 +142,20 @@ TEST(RestoreVolumesFrom, separate_bodies_keep_their_own_volumes)
     EXPECT_NEAR(got[k], want[k], 1e-10 * want[k]) << k;
 }
 
+// Issue 32: a body dropped whole (debris) is given to no one, and its volume is reported.
+TEST(RestoreVolumesFrom, a_body_dropped_whole_is_reported_and_given_to_no_one)
+{
+  const Mesh drop = analytic::icosphere(2, 0.5, {-5, 0, 0});
+  const Mesh before = analytic::disjoint_union(drop, analytic::icosphere(4, 2.0, {5, 0, 0}));
+  Mesh after = analytic::icosphere(3, 2.0, {5, 0, 0});
+  const VolumeRestoration restored = restore_volumes_from(before, after);
+  ASSERT_EQ(restored.dropped_volumes.size(), 1u);
+  EXPECT_NEAR(restored.dropped_volumes[0], enclosed_volume(drop), 1e-12);
+  set_vertex_positions(after, restored.positions);
+  EXPECT_NEAR(enclosed_volume(after), component_volumes(before)[1], 1e-10 * enclosed_volume(after))
+      << "the body that is left gets its own volume back, not the drop's";
+}
+
 TEST(RestoreVolumesKept, each_body_gets_back_the_volume_of_the_one_its_kept_vertices_came_from)
 {
   // The bodies listed the other way round after the remeshing, the small one shrunk: each gets

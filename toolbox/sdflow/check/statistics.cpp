@@ -6,6 +6,8 @@
 #include "sdflow/geometry/normals.h"
 #include "sdflow/spatial/intersect.h"
 
+#include <fmt/format.h>
+
 namespace sdflow {
 
 MeshStatistics mesh_statistics(const Mesh& mesh, const StatisticsOptions& options)
@@ -32,16 +34,36 @@ MeshStatistics mesh_statistics(const Mesh& mesh, const StatisticsOptions& option
       s.volume += volumes[c];
     }
   }
-  if (options.intersection_check)
-    s.self_intersecting_pairs = static_cast<long>(self_intersections(mesh).size());
+  if (options.intersection_check) {
+    const std::vector<FacePair> pairs = self_intersections(mesh);
+    s.self_intersecting_pairs = static_cast<long>(pairs.size());
+    std::vector<char> crossing(mesh.n_faces(), 0);
+    for (const FacePair& p : pairs)
+      crossing[p.first] = crossing[p.second] = 1;
+    for (std::size_t f = 0; f < crossing.size(); ++f)
+      s.components[face_id[f]].crossing_faces += crossing[f];
+  }
   if (options.tetgen_check) {
+    std::vector<int> checked;
+    int skipped = 0;
+    for (std::size_t c = 0; c < s.components.size(); ++c) {
+      if (s.components[c].crossing_faces == 0)
+        checked.push_back(static_cast<int>(c));
+      else if (s.components[c].topology.closed())
+        ++skipped;
+    }
     double total = 0;
-    for (const ComponentVolumeCheck& check : tetgen_volume_check(mesh)) {
+    for (const ComponentVolumeCheck& check : tetgen_volume_check(mesh, checked)) {
       s.components[check.component].tetgen_volume = check.tetgen_volume;
       s.components[check.component].tetrahedra = check.tetrahedra;
       total += check.tetgen_volume;
     }
-    s.tetgen_volume = total;
+    if (skipped == 0)
+      s.tetgen_volume = total;
+    else
+      s.tetgen_skipped = fmt::format("TetGen not called on {} closed component(s) with faces in intersecting pairs: "
+                                     "it tetrahedralises only a surface that does not cross itself",
+                                     skipped);
   }
   s.curvature = curvature_deviation(mean_curvature(mesh, vertex_normals(mesh)), mixed_voronoi_areas(mesh));
   s.quality = mesh_quality(mesh);

@@ -8,6 +8,7 @@
 #include "sdflow/mesh.h"
 
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace sdflow {
@@ -18,6 +19,9 @@ struct ComponentStatistics {
   double volume = 0;                   //!< divergence theorem; 0 for components with boundary
   std::optional<double> tetgen_volume; //!< TetGen's tetrahedral volume, closed components only
   int tetrahedra = 0;
+  //! Faces of this component in an intersecting pair: TetGen is not called on it (it refuses a
+  //! surface that crosses itself), and its volume is not that of a solid.
+  long crossing_faces = 0;
 };
 
 struct MeshStatistics {
@@ -27,7 +31,10 @@ struct MeshStatistics {
   int boundary_loops = 0; //!< summed over components
   double area = 0;
   double volume = 0;                   //!< summed over closed components
-  std::optional<double> tetgen_volume; //!< summed over closed components, when checked
+  //! Summed over closed components, when every one was checked (none crosses a face).
+  std::optional<double> tetgen_volume;
+  //! Why TetGen was not called on some closed components (empty when it was on all or not asked).
+  std::string tetgen_skipped;
   CurvatureDeviation curvature;        //!< H̃ and H_dev with eq. (9) and mixed Voronoi areas
   //! Pairs of triangles that intersect (not counting neighbours meeting at their shared vertex or
   //! edge): components crossing each other or one crossing itself. Where there are any, the
@@ -37,7 +44,9 @@ struct MeshStatistics {
 };
 
 struct StatisticsOptions {
-  //! Cross-check each closed component's volume with TetGen (costs a tetrahedralisation).
+  //! Cross-check each closed component's volume with TetGen (costs a tetrahedralisation); with
+  //! the intersection check on, components with a face in an intersecting pair are left out
+  //! (MeshStatistics::tetgen_skipped says so): TetGen refuses a crossing surface.
   bool tetgen_check = true;
   //! Count the intersecting triangle pairs (spatial/intersect.h).
   bool intersection_check = true;

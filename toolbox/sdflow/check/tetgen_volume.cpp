@@ -158,11 +158,21 @@ double ComponentVolumeCheck::relative_difference() const
 std::vector<ComponentVolumeCheck> tetgen_volume_check(const Mesh& mesh)
 {
   int count = 0;
+  face_component_ids(mesh, &count);
+  std::vector<int> all(static_cast<std::size_t>(count));
+  for (int c = 0; c < count; ++c)
+    all[c] = c;
+  return tetgen_volume_check(mesh, all);
+}
+
+std::vector<ComponentVolumeCheck> tetgen_volume_check(const Mesh& mesh, const std::vector<int>& components)
+{
+  int count = 0;
   const std::vector<int> face_id = face_component_ids(mesh, &count);
   const std::vector<ComponentTopology> topology = component_topology(mesh);
   std::vector<ComponentVolumeCheck> checks;
-  for (int c = 0; c < count; ++c)
-    if (topology[c].closed())
+  for (int c : components)
+    if (c >= 0 && c < count && topology[c].closed())
       checks.push_back(check_component(mesh, face_id, c));
   return checks;
 }

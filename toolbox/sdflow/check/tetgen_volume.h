@@ -25,4 +25,8 @@ struct ComponentVolumeCheck {
 //! is more than 10⁶ times its shortest edge.
 std::vector<ComponentVolumeCheck> tetgen_volume_check(const Mesh& mesh);
 
+//! The same for the closed components listed in `components` only (ids in face_component_ids()
+//! order; others and open ones are skipped), e.g. those that cross no other face.
+std::vector<ComponentVolumeCheck> tetgen_volume_check(const Mesh& mesh, const std::vector<int>& components);
+
 } // namespace sdflow

@@ -20,7 +20,7 @@ namespace {
 static_assert(std::endian::native == std::endian::little, "checkpoints are written on little-endian machines");
 
 constexpr char magic[8] = {'S', 'D', 'F', 'L', 'O', 'W', 'C', 'K'};
-constexpr std::uint32_t version = 6;
+constexpr std::uint32_t version = 7;
 
 std::uint64_t fnv1a(const char* data, std::size_t size)
 {
@@ -186,6 +186,7 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file)
     w.put_ints(s->ordering);
     w.put(s->fresh_fill);
   }
+  w.put(c.debris_volume);
   w.put(fnv1a(w.bytes().data(), w.bytes().size()));
   write_atomically(file, [&](std::ostream& out) { out.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size())); });
 }
@@ -263,6 +264,11 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
         throw IoError(fmt::format("{}: checkpoint's Cholesky ordering has {} entries for {} vertices", file.string(),
                                   s->ordering.size(), c.positions.rows()));
     }
+  if (file_version >= 7) {
+    c.debris_volume = r.get<double>();
+    if (!std::isfinite(c.debris_volume))
+      throw IoError(fmt::format("{}: checkpoint's debris volume is not finite", file.string()));
+  }
   return c;
 }
 

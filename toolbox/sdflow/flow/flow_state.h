@@ -24,6 +24,7 @@ struct FlowState {
   VertexVectors anchor_positions;      //!< the surface whose system was factorised
   double anchor_tau_beta = 0;          //!< and its τβ
   long tolerated_degraded = 0;         //!< RetriangulationContext::tolerated_degraded
+  double debris_volume = 0;            //!< FlowMetrics::debris_volume
   //! The half-step solver of extrapolated steps: its counters and anchor.
   SolverState half_solver;
   bool has_half_anchor = false;

@@ -133,16 +133,24 @@ constexpr int kLocalRemeshRings = 3;
 
 //! Give the components of `after`, a re-triangulation of `before`, back their volume (volume.h),
 //! through the vertices a local remeshing kept when it gives them (`vertex_map`, else empty);
-//! returns the note for events.log.
-std::string restore_volume(const Mesh& before, Mesh& after, const std::vector<int>& vertex_map = {})
+//! returns the note for events.log, with the volume of each component dropped whole, whose sum
+//! is added to `dropped_volume`.
+std::string restore_volume(const Mesh& before, Mesh& after, double& dropped_volume,
+                           const std::vector<int>& vertex_map = {})
 {
   const double old_volume = material_volume(after);
   const VolumeRestoration restored =
       vertex_map.empty() ? restore_volumes_from(before, after) : restore_volumes_kept(before, after, vertex_map);
   set_vertex_positions(after, restored.positions);
   const double new_volume = material_volume(after);
-  return new_volume != 0 ? fmt::format("; volume restored by {:.3g} (relative)", (new_volume - old_volume) / new_volume)
-                         : std::string{};
+  std::string note = new_volume != 0 ? fmt::format("; volume restored by {:.3g} (relative)",
+                                                   (new_volume - old_volume) / new_volume)
+                                     : std::string{};
+  for (double v : restored.dropped_volumes) {
+    note += fmt::format("; a component of volume {:.6g} dropped whole as debris", v);
+    dropped_volume += v;
+  }
+  return note;
 }
 
 //! The largest share of the surface's faces a local remeshing takes (the worn faces with their
@@ -235,7 +243,8 @@ std::optional<Mesh> remesh_degraded_region(const Mesh& mesh, Verdict& verdict, c
                            r.patch_faces, mesh.n_faces());
     return std::nullopt;
   }
-  const std::string volume_note = s.restore_volume ? restore_volume(mesh, r.mesh, r.vertex_map) : std::string{};
+  const std::string volume_note =
+      s.restore_volume ? restore_volume(mesh, r.mesh, report.dropped_volume, r.vertex_map) : std::string{};
   report.volume_seconds = stopwatch.restart();
   verdict.watched = false; // the watch now holds the remeshed surface's pairs
   // The volume restoration moved the vertices by a tiny normal offset: count the degraded elements
@@ -385,7 +394,8 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
                                   describe_change(topology_before, topology_after), crossings.size(), size,
                                   size / schedule.pipeline.edge_length);
     }
-    const std::string volume_note = schedule.restore_volume ? restore_volume(mesh, r.mesh) : std::string{};
+    const std::string volume_note =
+        schedule.restore_volume ? restore_volume(mesh, r.mesh, report.dropped_volume) : std::string{};
     report.volume_seconds += stopwatch.seconds();
     report.remeshed = schedule.pipeline.remesh_iterations > 0 && !r.remeshing_refused;
     report.surgery = r.rebuilt;

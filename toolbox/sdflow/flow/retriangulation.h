@@ -83,6 +83,9 @@ struct RetriangulationReport {
   //! self-intersections as `intersections`.
   RetriangulationResult::Seconds pipeline_seconds;
   double volume_seconds = 0; //!< of giving the components back their volume
+  //! Σ material volume of the components dropped whole as debris, which no component was
+  //! given back (VolumeRestoration::dropped_volumes; 0 without volume restoration).
+  double dropped_volume = 0;
   bool changed() const { return remeshed || surgery || split || merged; }
 };
 

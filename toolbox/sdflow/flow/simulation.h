@@ -26,17 +26,20 @@ namespace sdflow {
 
 //! The columns of metrics.csv, in order.
 inline constexpr const char* metrics_header =
-    "step,time,tau,vertices,faces,components,genus,area,volume,mean_curvature,curvature_deviation_pct,d1,d2,event";
+    "step,time,tau,vertices,faces,components,genus,area,volume,mean_curvature,curvature_deviation_pct,d1,d2,"
+    "debris_volume,event";
 
 //! One line of metrics.csv (with its newline): the step, time, τ and event, and the flow's metrics.
 std::string metrics_row(long step, double time, double tau, const FlowMetrics& metrics, const std::string& event);
 
 //! The columns of timings.csv (seconds of wall time per step): the stages of StepTimes, the
-//! run directory's files (`output`), `other`, the rest of the step's total, and `cpu`, the CPU
-//! seconds of the step itself (files excluded; all threads).
+//! run directory's files (`output`), `other`, the rest of the step's total, `cpu`, the CPU
+//! seconds of the step itself (files excluded; all threads), and `side_by_side`, the seconds two
+//! stages ran at once and both count (StepTimes::side_by_side): the stages and `other` add up to
+//! total + side_by_side, and `other` is never negative.
 inline constexpr const char* timings_header =
     "step,total,operators,assembly,factorisation,solve,acceptance,retriangulation_check,merge,remesh,"
-    "intersections,normals,reconstruction,holes,components,volume_restoration,output,other,cpu";
+    "intersections,normals,reconstruction,holes,components,volume_restoration,output,other,cpu,side_by_side";
 
 //! One line of timings.csv (with its newline); `output` is the time spent writing the run's files.
 std::string timings_row(long step, const StepTimes& times, double output);

@@ -92,6 +92,7 @@ SurfaceDiffusion::SurfaceDiffusion(const FlowState& state, RunParameters paramet
                 ? state.previous_w
                 : Eigen::VectorXd::Zero(mesh_.n_vertices());
   tolerated_degraded_ = state.tolerated_degraded;
+  debris_volume_ = state.debris_volume;
   // Refactorise the anchors' systems: the preconditioners are then the ones the uninterrupted flow
   // would be using, so the CG iterates (and every later decision) are identical.
   if (state.has_anchor) {
@@ -216,10 +217,11 @@ StepRecord SurfaceDiffusion::step()
   earlier_w_ = std::exchange(previous_w_, trial.w);
   last_w_ = trial.w;
 
+  double left_to_next_step = 0;
   if (retriangulate_) {
     const VertexVectors before = vertex_positions(mesh_);
     if (can_look_ahead()) {
-      look_and_try_ahead(before, events, record.times);
+      left_to_next_step = look_and_try_ahead(before, events, record.times);
     } else {
       const RetriangulationReport report = call_retriangulation(mesh_, false, record.times);
       note_refusal(report, events);
@@ -238,7 +240,13 @@ StepRecord SurfaceDiffusion::step()
   record.rejections = rejections;
   record.taken_ahead = taken_ahead;
   record.event = join_events(events);
-  record.times.total = watch.seconds();
+  // A trial taken ahead is part of its own step: what of it ran beside the look counts in both
+  // steps (side_by_side), what ran after it in the step it belongs to.
+  record.times.total = watch.seconds() - left_to_next_step;
+  if (taken_ahead) {
+    record.times.total += first.alone_seconds;
+    record.times.side_by_side += first.beside_look_seconds;
+  }
   record.times.cpu = process_cpu_seconds() - cpu_start;
   return record;
 }
@@ -253,6 +261,7 @@ FlowMetrics SurfaceDiffusion::metrics() const
           .genus = topology_.genus,
           .area = surface_area(mesh_),
           .volume = material_volume(mesh_),
+          .debris_volume = debris_volume_,
           .mean_curvature = h.mean,
           .curvature_deviation_pct = h.deviation_pct,
           .d1 = d.d1,
@@ -269,6 +278,7 @@ FlowState SurfaceDiffusion::state() const
   s.previous_w = previous_w_;
   s.earlier_w = earlier_w_;
   s.tolerated_degraded = tolerated_degraded_;
+  s.debris_volume = debris_volume_;
   // The next step's trial taken ahead is not part of it.
   const TrialBookkeeping b = ahead_ ? ahead_->before : bookkeeping();
   s.time_step = b.controller;
@@ -358,6 +368,7 @@ RetriangulationReport SurfaceDiffusion::call_retriangulation(Mesh& mesh, bool fo
     p.reconstruction += q.reconstruction;
     p.holes += q.holes;
     p.components += q.components;
+    times.side_by_side += q.side_by_side;
     return report;
   } catch (const SolverFailure&) {
     throw;
@@ -381,6 +392,7 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
                                              std::vector<std::string>& events, StepTimes& times)
 {
   const int components = topology_.count, genus = topology_.genus;
+  debris_volume_ += report.dropped_volume;
   // The canonical mesh, the operators' cache of its connectivity and, for the carried orderings,
   // the old vertex nearest each new one are made side by side from the same positions and corners.
   const bool carried = solver_.carries_ordering() || half_solver_.carries_ordering();
@@ -487,8 +499,8 @@ bool SurfaceDiffusion::can_look_ahead() const
 //! surface alone leaves unchanged, so the one taken ahead is the one step() would take: it is kept
 //! for it. When the hook re-triangulates, the trial is dropped, its bookkeeping rewound, and the
 //! new surface adopted as without looking ahead.
-void SurfaceDiffusion::look_and_try_ahead(const VertexVectors& before, std::vector<std::string>& events,
-                                          StepTimes& times)
+double SurfaceDiffusion::look_and_try_ahead(const VertexVectors& before, std::vector<std::string>& events,
+                                            StepTimes& times)
 {
   renew_operators(times); // the trial's operators: those of the surface as it stands
   TrialBookkeeping kept = bookkeeping();
@@ -498,20 +510,32 @@ void SurfaceDiffusion::look_and_try_ahead(const VertexVectors& before, std::vect
   FirstTrial first;
   std::atomic<bool> dropped = false; // set by the hook once it re-triangulates: the trial stops
   cancel_trials_ = &dropped;
+  double look_seconds = 0, trial_seconds = 0;
+  const Stopwatch both;
   tbb::parallel_invoke(
     [&] {
+      const Stopwatch look;
       try {
         looked = mesh_;
         report = call_retriangulation(looked, false, times, [&] { dropped = true; });
       } catch (...) {
         hook_failure = std::current_exception();
       }
+      look_seconds = look.seconds();
     },
-    [&] { first = first_trial(step_ + 1); });
+    [&] {
+      const Stopwatch trial;
+      first = first_trial(step_ + 1);
+      trial_seconds = trial.seconds();
+    });
+  const double wall = both.seconds();
   cancel_trials_ = nullptr;
   if (!hook_failure && !dropped && !report.changed() && report.degraded_left < 0) {
+    first.beside_look_seconds = std::clamp(look_seconds + trial_seconds - wall, 0.0, trial_seconds);
+    first.alone_seconds = std::clamp(wall - look_seconds, 0.0, trial_seconds - first.beside_look_seconds);
+    const double alone = first.alone_seconds;
     ahead_ = LookAhead{std::move(first), std::move(kept)};
-    return;
+    return alone;
   }
   rewind(kept);
   note_refusal(report, events);
@@ -528,6 +552,7 @@ void SurfaceDiffusion::look_and_try_ahead(const VertexVectors& before, std::vect
     adopt_retriangulation(report, before, events, times);
   else
     renew_operators(times);
+  return 0;
 }
 
 //! Trials of step `next_step` until the controller accepts one (returned: its τ); throws

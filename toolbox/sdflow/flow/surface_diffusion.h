@@ -52,7 +52,14 @@ struct StepTimes {
   double retriangulation_check = 0; //!< the hook's look for self-intersections and degraded elements
   RetriangulationResult::Seconds pipeline; //!< the re-triangulation pipeline's stages, when it ran
   double volume_restoration = 0; //!< components given back their volume after re-triangulating
-  double total = 0;          //!< the whole step
+  //! Seconds counted by two of the stages above at once, as they ran side by side on two threads:
+  //! the pipeline's (RetriangulationResult::Seconds::side_by_side) and, for a step whose first
+  //! trial was taken ahead, the time that trial ran beside the previous step's look at the surface.
+  //! The stages sum to at most total + side_by_side.
+  double side_by_side = 0;
+  //! The whole step. A step whose first trial was taken ahead counts the part of that trial that
+  //! ran after the previous step's look had ended; that step's total leaves it out.
+  double total = 0;
   double cpu = 0;            //!< CPU seconds of the whole step, all threads (process_cpu_seconds)
 };
 
@@ -81,6 +88,9 @@ struct FlowMetrics {
   int components = 0, genus = 0;
   double area = 0;
   double volume = 0; //!< material volume (material_volume.h): closed by flat caps over boundary loops
+  //! Material volume of the components dropped whole as debris so far (RetriangulationReport::
+  //! dropped_volume): volume + debris_volume is the material's, which a run conserves.
+  double debris_volume = 0;
   double mean_curvature = 0, curvature_deviation_pct = 0; //!< H̃ and δH (measures.h)
   double d1 = 0, d2 = 0;                                  //!< from the reference sphere
 };
@@ -161,6 +171,8 @@ private:
     std::vector<double> volumes;
     std::exception_ptr failure;
     std::vector<FlowNote> notes;
+    //! Taken ahead: its wall time while the look ran too, and after the look had ended.
+    double beside_look_seconds = 0, alone_seconds = 0;
   };
   //! The next step's first trial, taken while the hook looked at the surface, and the bookkeeping
   //! before it (what state() reports until the step takes it).
@@ -173,7 +185,9 @@ private:
   void rewind(const TrialBookkeeping& before);
   FirstTrial first_trial(long next_step);
   bool can_look_ahead() const;
-  void look_and_try_ahead(const VertexVectors& before, std::vector<std::string>& events, StepTimes& times);
+  //! Returns the wall seconds of the next step's trial that ran alone after the look ended (that
+  //! step's total counts them), 0 when the trial was dropped.
+  double look_and_try_ahead(const VertexVectors& before, std::vector<std::string>& events, StepTimes& times);
   void publish(FlowNote note);
   //! triangles_, the operators' cache and topology_ of mesh_.
   void renew_connectivity();
@@ -208,6 +222,7 @@ private:
   double time_ = 0;
   long tolerated_degraded_ = 0;   // see RetriangulationContext
   double start_length_ = 0;       // ℓ of the start phase's τ_s (time_step.h)
+  double debris_volume_ = 0;      // FlowMetrics::debris_volume
   bool topology_changed_ = false; // with stop_at_topology_change: finished after this step
   Eigen::VectorXd previous_w_, earlier_w_, last_w_; // w of the last two accepted steps, and the velocity
   bool has_anchor_ = false, has_half_anchor_ = false;

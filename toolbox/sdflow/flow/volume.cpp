@@ -170,7 +170,7 @@ VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after)
 
   struct Group {
     double old_volume = 0, new_volume = 0, new_area = 0;
-    bool has_old = false, open = false;
+    bool has_old = false, open = false, has_new = false;
   };
   std::vector<Group> group(old_count + new_count);
   for (int j = 0; j < old_count; ++j) {
@@ -183,6 +183,7 @@ VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after)
     g.new_volume += new_volume[k];
     g.new_area += new_area[k];
     g.open = g.open || new_open[static_cast<std::size_t>(k)];
+    g.has_new = true;
   }
   std::vector<double> target = new_volume;
   for (int k = 0; k < new_count; ++k) {
@@ -194,7 +195,11 @@ VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after)
     if (g.has_old && g.new_area > 0 && !turned_over)
       target[k] += (g.old_volume - g.new_volume) * new_area[k] / g.new_area;
   }
-  return restore_volumes(after, target);
+  VolumeRestoration restored = restore_volumes(after, target);
+  for (int j = 0; j < old_count; ++j)
+    if (!group[find(j)].has_new)
+      restored.dropped_volumes.push_back(old_volume[j]);
+  return restored;
 }
 
 VolumeRestoration restore_volumes_kept(const Mesh& before, const Mesh& after, const std::vector<int>& vertex_map)

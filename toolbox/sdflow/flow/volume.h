@@ -15,6 +15,9 @@ struct VolumeRestoration {
   VertexVectors positions;        //!< the corrected positions (#V by 3)
   std::vector<double> offsets;    //!< the normal offset of each component
   double max_relative_error = 0;  //!< largest |V - V_target| / |V_target| left, over the components
+  //! restore_volumes_from: the material volumes of the components of `before` that no component
+  //! of `after` took over (debris dropped whole): volume nobody is given back.
+  std::vector<double> dropped_volumes;
 };
 
 //! Offset each component's non-boundary vertices so that its material volume equals
@@ -42,9 +45,11 @@ VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& t
 //! `before` its vertices lie nearest to (10% of its vertices or more); components so linked form
 //! groups (one body that pinched off into two, two bodies that fused), and each group gets
 //! back Σ V_before − Σ V_after (material volumes), shared among its new components in proportion
-//! to their areas. A group with an open component whose material volume changed sign (a rebuild
-//! from points that returned the open surface turned over) is left alone. Throws SolverFailure
-//! as restore_volumes does.
+//! to their areas: debris dropped inside a group is given back to it. A group with an open
+//! component whose material volume changed sign (a rebuild from points that returned the open
+//! surface turned over) is left alone. Components of `before` with no component of `after`
+//! (debris dropped whole) are listed in `dropped_volumes`. Throws SolverFailure as
+//! restore_volumes does.
 VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after);
 
 //! The same for `after`, a remeshing of `before` that kept its components and the vertices

@@ -329,9 +329,24 @@ std::vector<std::vector<int>> points_by_piece(const Mesh& remeshed, const Remova
   return groups;
 }
 
+//! The signed volumes of the closed components `selection` dropped from `mesh`.
+std::vector<double> dropped_volumes(const Mesh& mesh, const ComponentSelection& selection)
+{
+  if (selection.dropped.empty())
+    return {};
+  const std::vector<double> volumes = component_volumes(mesh);
+  const std::vector<ComponentTopology> topology = component_topology(mesh);
+  std::vector<double> dropped;
+  for (int c : selection.dropped)
+    if (topology[c].closed())
+      dropped.push_back(volumes[c]);
+  return dropped;
+}
+
 //! Stage 4's outcome: the surface without its debris, validated, with its counts.
 struct CleanedUp {
   Mesh mesh;
+  std::vector<double> dropped_volumes; //!< of the closed components dropped
   int dropped = 0;    //!< components dropped as debris
   int components = 0; //!< left
   int open_holes = 0; //!< boundary loops left
@@ -348,6 +363,7 @@ CleanedUp clean_up(const Mesh& mesh, const ComponentOptions& debris, bool rebuil
                                   debris.min_faces));
   CleanedUp c;
   c.dropped = static_cast<int>(selection.dropped.size());
+  c.dropped_volumes = dropped_volumes(mesh, selection);
   c.mesh = rebuilt ? validated(selection.mesh) : validated_remeshing(selection.mesh);
   face_component_ids(c.mesh, &c.components);
   c.open_holes = static_cast<int>(boundary_loop_lengths(c.mesh).size());
@@ -414,6 +430,7 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
   std::vector<FacePair> pairs;
   std::optional<CleanedUp> unrebuilt;
   std::exception_ptr unrebuilt_failure;
+  const auto side_by_side = Clock::now();
   tbb::parallel_invoke(
     [&] {
       const auto begun = Clock::now();
@@ -431,6 +448,8 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
       }
       r.seconds.components = seconds_since(begun);
     });
+  r.seconds.side_by_side =
+      std::max(0.0, r.seconds.intersections + r.seconds.components - seconds_since(side_by_side));
   r.intersecting_pairs = static_cast<int>(pairs.size());
 
   if (!pairs.empty() || options.always_rebuild) {
@@ -462,6 +481,7 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
     // Debris first, so that no hole of a stray piece is filled.
     ComponentSelection pieces = keep_components(rebuilt.mesh, debris);
     r.dropped_components += static_cast<int>(pieces.dropped.size());
+    r.dropped_volumes = dropped_volumes(rebuilt.mesh, pieces);
     mesh = std::move(pieces.mesh);
 
     if (options.fill_holes) {
@@ -485,6 +505,7 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
     std::rethrow_exception(unrebuilt_failure);
   }
   r.dropped_components += unrebuilt->dropped;
+  r.dropped_volumes.insert(r.dropped_volumes.end(), unrebuilt->dropped_volumes.begin(), unrebuilt->dropped_volumes.end());
   r.components_after = unrebuilt->components;
   r.open_holes = unrebuilt->open_holes;
   r.mesh = std::move(unrebuilt->mesh);
@@ -517,8 +538,15 @@ std::string retriangulation_summary(const RetriangulationResult& r)
   if (r.uniform_fallback)
     s += "; uniform ℓ (the adapted one left crossing sheets)";
   s += fmt::format("; components {} → {}", r.components_before, r.components_after);
-  if (r.dropped_components > 0)
-    s += fmt::format(" ({} debris dropped)", r.dropped_components);
+  if (r.dropped_components > 0) {
+    s += fmt::format(" ({} debris dropped", r.dropped_components);
+    if (!r.dropped_volumes.empty()) {
+      s += ", closed ones of volume";
+      for (double v : r.dropped_volumes)
+        s += fmt::format(" {:.3g}", v);
+    }
+    s += ")";
+  }
   return s;
 }
 

@@ -92,6 +92,8 @@ struct RetriangulationResult {
   int components_before = 0;    //!< components of the input
   int components_after = 0;     //!< components of the result
   int dropped_components = 0;   //!< stage 6
+  //! Stage 6: the signed volume of each closed component dropped (open ones enclose none).
+  std::vector<double> dropped_volumes;
   //! The curvature-adapted edge lengths left sheets that cross, or nothing, after a rebuild: the
   //! result is the pipeline's with the uniform ℓ.
   bool uniform_fallback = false;
@@ -99,6 +101,9 @@ struct RetriangulationResult {
   int patch_faces = 0;
   struct Seconds {
     double merge = 0, remesh = 0, intersections = 0, normals = 0, reconstruction = 0, holes = 0, components = 0;
+    //! Of the stages above, the seconds two of them ran at once (stage 4's clean-up beside stage
+    //! 2's search), which both count: their sum exceeds the wall time by this much.
+    double side_by_side = 0;
   } seconds;
 };
 

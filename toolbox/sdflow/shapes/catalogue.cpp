@@ -1,6 +1,8 @@
 #include "sdflow/shapes/catalogue.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/shapes/packing.h"
+#include "sdflow/shapes/smooth_union.h"
 
 #include <fmt/format.h>
 
@@ -14,19 +16,6 @@
 
 namespace sdflow {
 namespace {
-
-//! A distance-like value and its gradient.
-struct Sample {
-  double value;
-  Eigen::Vector3d gradient;
-};
-
-Sample sphere_piece(const Eigen::Vector3d& p, const Eigen::Vector3d& centre, double radius)
-{
-  const Eigen::Vector3d d = p - centre;
-  const double n = d.norm();
-  return {n - radius, n > 0 ? Eigen::Vector3d(d / n) : Eigen::Vector3d::UnitZ()};
-}
 
 //! Cylinder of `radius` about the segment a–b, capped flat: max(distance to the axis − radius,
 //! distance beyond the caps). The caps sit inside the pieces the cylinder joins, so only the
@@ -42,18 +31,6 @@ Sample cylinder_piece(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const 
   const Sample side{r - radius, r > 0 ? Eigen::Vector3d(radial / r) : Eigen::Vector3d(axis.unitOrthogonal())};
   const Sample cap{std::abs(along) - half, along >= 0 ? axis : Eigen::Vector3d(-axis)};
   return side.value >= cap.value ? side : cap;
-}
-
-//! Union by (smooth) minimum; the gradient of min(a, b) − k h²/4 is (1 − h/2)∇a + (h/2)∇b
-//! with a the smaller value.
-Sample smooth_union(const Sample& a, const Sample& b, double blend)
-{
-  const Sample& low = a.value <= b.value ? a : b;
-  const Sample& high = a.value <= b.value ? b : a;
-  if (blend <= 0 || high.value - low.value >= blend)
-    return low;
-  const double h = (blend - (high.value - low.value)) / blend;
-  return {low.value - blend * h * h / 4, (1 - h / 2) * low.gradient + (h / 2) * high.gradient};
 }
 
 //! The solid pieces of a union: balls, capped cylinders and the half-space z ≤ plane_height.
@@ -316,6 +293,43 @@ const std::vector<Entry>& entries()
                  [](const auto& get) {
                    return spheres_on_plane_shape({get("radius"), get("plane-neck-radius"), get("sphere-neck-radius"),
                                             get("disk-radius"), get("blend")});
+                 }});
+    const LatticePacking lattice;
+    const RandomPacking random;
+    e.push_back({{"packing",
+                  "spheres joined where they overlap (a powder compact): an nx × ny × nz lattice, or with count > 0 "
+                  "a seeded random tree; from a CSV of x,y,z,r with `sdflow shape packing --spheres FILE`",
+                  {{"nx", static_cast<double>(lattice.nx), "lattice spheres along x"},
+                   {"ny", static_cast<double>(lattice.ny), "lattice spheres along y"},
+                   {"nz", static_cast<double>(lattice.nz), "lattice spheres along z"},
+                   {"count", 0, "random spheres instead of the lattice (0: the lattice)"},
+                   {"radius", lattice.radius, "sphere radius"},
+                   {"spacing", lattice.spacing, "distance between the centres of touching spheres (< 2 radius: a neck)"},
+                   {"min-distance", random.min_distance,
+                    "random: least distance from a new sphere's centre to all but the one it grew from"},
+                   {"seed", static_cast<double>(random.seed), "random: seed of the generator"},
+                   {"blend", PackingSurfaceOptions{}.blend, "smooth-union width (0 = sharp creases)"}}},
+                 [](const auto& get) {
+                   const auto whole = [&](const char* name, double low) {
+                     const double v = get(name);
+                     if (!(v >= low) || v != std::floor(v) || v > 1e9)
+                       throw InvalidParameter(fmt::format("packing: {} must be a whole number ≥ {}, got {}", name,
+                                                          low, v));
+                     return v;
+                   };
+                   const int count = static_cast<int>(whole("count", 0));
+                   const std::vector<PackedSphere> spheres =
+                       count > 0 ? random_packing({.count = count,
+                                                   .radius = get("radius"),
+                                                   .spacing = get("spacing"),
+                                                   .min_distance = get("min-distance"),
+                                                   .seed = static_cast<std::uint64_t>(whole("seed", 0))})
+                                 : lattice_packing({.nx = static_cast<int>(whole("nx", 1)),
+                                                    .ny = static_cast<int>(whole("ny", 1)),
+                                                    .nz = static_cast<int>(whole("nz", 1)),
+                                                    .radius = get("radius"),
+                                                    .spacing = get("spacing")});
+                   return packing_surface(spheres, {.blend = get("blend")});
                  }});
     return e;
   }();

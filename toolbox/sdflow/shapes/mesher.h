@@ -29,6 +29,11 @@ struct MesherOptions {
   double grid_cell = 0;
   //! Projection tolerance on |f|/|∇f| relative to the box diagonal.
   double tolerance = 1e-12;
+  //! Make sure of the result's topology and that it does not cross itself: the marching grid is
+  //! halved (at most 3 times) until halving it no longer changes the components, genus and
+  //! boundary loops; then the remeshed surface must keep that topology and have no intersecting
+  //! faces (spatial/intersect.h). Otherwise InvalidParameter, saying what and where.
+  bool check_topology = true;
 };
 
 //! Distribution of the per-triangle minimum angle, in degrees.
@@ -56,8 +61,10 @@ struct MesherResult {
 
 //! Mesh the surface. A closed surface gives closed components oriented outward (toward f > 0).
 //! A clipped surface keeps f = 0 where g ≤ 0, with its rim on f = g = 0; a surface that leaves
-//! its box is clipped by the box. Throws InvalidParameter for bad options or when f = 0 has no
-//! point in the box (an empty level set), SolverFailure if a projection fails.
+//! its box is clipped by the box. Throws InvalidParameter for bad options, when f = 0 has no
+//! point in the box (an empty level set), or (MesherOptions::check_topology) when the grid or ℓ
+//! cannot resolve the surface's topology or the result crosses itself; SolverFailure if a
+//! projection fails.
 MesherResult mesh_implicit_surface(const ImplicitSurface& surface, const MesherOptions& options);
 
 } // namespace sdflow
