@@ -17,15 +17,8 @@ sdflow=$(realpath "${1:-build/release/cli/sdflow}")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# The directory PATH of Debian package PACKAGE: installed, or extracted from its downloaded .deb.
-package_path() {
-  local package=$1 path=$2
-  if [[ ! -e "$path" ]]; then
-    (cd "$work" && apt-get download "$package" > /dev/null 2>&1 && dpkg-deb -x "$package"_*.deb "$package")
-    path="$work/$package$path"
-  fi
-  echo "$path"
-}
+# package_path PACKAGE PATH
+source scripts/lib/debian-package.sh # the working directory is the repository's root
 
 # Repairs every mesh given that stats refuses, one line each, then the totals for LABEL.
 repair_all() {

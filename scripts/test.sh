@@ -17,11 +17,11 @@ run_suite() { # build directory, then extra CMake arguments
 }
 
 if [[ "${1:-}" == "--sanitize" ]]; then
-  ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-    # Line tables only (-g1): enough for the sanitizers' stack traces, and much quicker to compile and
-    # link than full debug information, which CI's time budget does not afford.
-    run_suite build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
-      -DSDFLOW_SANITIZE=ON
+  export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+  # Line tables only (-g1): enough for the sanitizers' stack traces, and much quicker to compile and
+  # link than full debug information, which CI's time budget does not afford.
+  run_suite build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
+    -DSDFLOW_SANITIZE=ON
 else
   # The Python module and its pytest suite (ctest runs it) are part of the optimised build only: an
   # extension built with AddressSanitizer would need the sanitizer runtime preloaded into python3.

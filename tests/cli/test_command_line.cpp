@@ -3,6 +3,7 @@
 //! success and on failure (with the findings' codes); results go to stdout and logs to stderr;
 //! older option names still work; the help carries no CLI11 notation and no source-file pointers.
 #include "io/temp_dir.h"
+#include "support/json_query.h"
 #include "sdflow/io/io.h"
 #include "sdflow/io/point_cloud.h"
 #include "support/analytic_meshes.h"
@@ -21,28 +22,7 @@ namespace sdflow {
 namespace {
 
 namespace fs = std::filesystem;
-
-//! `expression` (Python, over the parsed object `d`) evaluated on `json` by python3's json module;
-//! nullopt when `json` is not exactly one JSON document.
-std::optional<std::string> json_query(const std::string& json, const std::string& expression)
-{
-  const test::TempDir dir;
-  test::write_file(dir / "document.json", json);
-  test::write_file(dir / "query.py", "import json, sys\nd = json.load(open(sys.argv[1]))\nprint(" + expression + ")\n");
-  const std::string command = std::string(SDFLOW_PYTHON3) + " " + (dir / "query.py").string() + " " + (dir / "document.json").string();
-  std::string output;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe)
-    return std::nullopt;
-  char buffer[4096];
-  while (fgets(buffer, sizeof buffer, pipe))
-    output += buffer;
-  if (pclose(pipe) != 0)
-    return std::nullopt;
-  if (!output.empty() && output.back() == '\n')
-    output.pop_back();
-  return output;
-}
+using test::json_query;
 
 //! Whether every line of stderr is a log line ("info: ...", "warning: ...") or an error message.
 bool only_log_lines(const std::string& err)

@@ -2,6 +2,7 @@
 //! when a library warns), no numerically meaningless step reported as success, bounded runs, one
 //! validation for every verb, and messages in the user's terms for what used to fail inside a stage.
 #include "io/temp_dir.h"
+#include "support/json_query.h"
 #include "sdflow/io/io.h"
 #include "support/analytic_meshes.h"
 #include "support/run_command.h"
@@ -18,31 +19,9 @@ namespace sdflow {
 namespace {
 
 namespace fs = std::filesystem;
+using test::json_query;
 using analytic::run_sdflow;
 using analytic::run_sdflow_streams;
-
-//! `expression` (Python, over the parsed object `d`) on `json` by python3's json module; nullopt
-//! when `json` is not exactly one JSON document.
-std::optional<std::string> json_query(const std::string& json, const std::string& expression)
-{
-  const test::TempDir dir;
-  test::write_file(dir / "document.json", json);
-  test::write_file(dir / "query.py", "import json, sys\nd = json.load(open(sys.argv[1]))\nprint(" + expression + ")\n");
-  const std::string command =
-      std::string(SDFLOW_PYTHON3) + " " + (dir / "query.py").string() + " " + (dir / "document.json").string();
-  std::string output;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe)
-    return std::nullopt;
-  char buffer[4096];
-  while (fgets(buffer, sizeof buffer, pipe))
-    output += buffer;
-  if (pclose(pipe) != 0)
-    return std::nullopt;
-  if (!output.empty() && output.back() == '\n')
-    output.pop_back();
-  return output;
-}
 
 void expect_mentions(const std::string& text, const std::string& part)
 {

@@ -78,5 +78,21 @@ TEST(Refinement, a_flow_fixes_it_once_from_its_initial_surface_and_the_paper_pre
   EXPECT_THROW(SurfaceDiffusion(sphere, p), InvalidParameter);
 }
 
+TEST(Refinement, measures_the_remeshers_target_only_when_the_run_remeshes)
+{
+  const Mesh sphere = analytic::icosphere(4, 2.0);
+  RunParameters p;
+  p.steps = 1;
+  p.retriangulation.pipeline.edge_length = 0.02; // five times finer than the mesh
+  p.retriangulation.enabled = true;
+  const double remeshed = SurfaceDiffusion(sphere, p).parameters().refinement;
+  EXPECT_NEAR(remeshed, 2.0 / (kReferenceEdgesPerRadius * 0.02), kRadiusTolerance * remeshed);
+  // Without re-triangulation the mesh keeps its own resolution: the unused target does not count.
+  p.retriangulation.enabled = false;
+  const double own = SurfaceDiffusion(sphere, p).parameters().refinement;
+  const double expected = 2.0 / (kReferenceEdgesPerRadius * mean_edge_length(sphere));
+  EXPECT_NEAR(own, expected, kRadiusTolerance * expected);
+}
+
 } // namespace
 } // namespace sdflow

@@ -2,6 +2,7 @@ target_sources(sdflow_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/analytic_meshes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/exact_intersections.cpp
   ${CMAKE_CURRENT_LIST_DIR}/exact_reference.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/json_query.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh_checks.cpp
   ${CMAKE_CURRENT_LIST_DIR}/point_samples.cpp)
 # The exact rational reference of the intersection tests uses GMP (libgmp-dev), and the brute-force

@@ -39,13 +39,14 @@ std::string join_events(const std::vector<std::string>& events)
 }
 
 //! The parameters with their refinement fixed (refinement.h): an automatic one from `surface` and
-//! the run's ℓ (given, or the surface's mean edge length).
+//! the run's ℓ (the re-triangulation's target when it is on and given, else the surface's mean edge
+//! length: without re-triangulation the mesh keeps its own resolution).
 RunParameters with_refinement(RunParameters p, const Mesh& surface)
 {
   if (p.refinement != 0) // given (validated with the rest)
     return p;
-  const double ell = p.retriangulation.pipeline.edge_length > 0 ? p.retriangulation.pipeline.edge_length
-                                                                  : mean_edge_length(surface);
+  const double target = p.retriangulation.pipeline.edge_length;
+  const double ell = p.retriangulation.enabled && target > 0 ? target : mean_edge_length(surface);
   // A surface without edges has no ℓ: it is refused later, with the reason.
   p.refinement = ell > 0 && std::isfinite(ell) ? automatic_refinement(surface, ell) : 1;
   return p;
