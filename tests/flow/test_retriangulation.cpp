@@ -79,7 +79,9 @@ Mesh crease_union()
   const ExpressionParameters shape{
       fmt::format("min(sqrt(x^2+y^2+z^2)-1, sqrt((x-{})^2+(y-{})^2+(z-{})^2)-1)", c.x(), c.y(), c.z()),
       Eigen::AlignedBox3d(Eigen::Vector3d(-1.2, -1.2, -1.2), c + Eigen::Vector3d(1.2, 1.2, 1.2))};
-  return mesh_implicit_surface(expression_surface(shape), {.edge_length = 0.12}).mesh;
+  // Unchecked, as a CAD export or another mesher would give it: the tunnel at the crease is what
+  // this fixture is about, and the mesher's topology check (rightly) refuses it.
+  return mesh_implicit_surface(expression_surface(shape), {.edge_length = 0.12, .check_topology = false}).mesh;
 }
 
 TEST(RetriangulatingRun, a_crease_union_of_two_spheres_keeps_its_topology_in_its_first_steps)

@@ -292,6 +292,16 @@ std::string describe_change(const TopologyCount& before, const TopologyCount& af
   return s;
 }
 
+//! Whether the change from `before` to `after` is only stage 6's clean-up: whole components below
+//! the minimum size dropped as debris (a choice the user makes with min_component_faces, whose
+//! volume the run accounts for), no other component split, fused, or gained or lost a handle or a
+//! boundary loop beyond what the dropped ones held.
+bool only_debris_dropped(const TopologyCount& before, const TopologyCount& after, const RetriangulationResult& r)
+{
+  return r.dropped_components > 0 && after.components + r.dropped_components == before.components &&
+         after.genus <= before.genus && after.boundary_loops <= before.boundary_loops;
+}
+
 //! The size that let a topology change through: the smallest local feature size (the thickness
 //! of a neck or the width of a gap, spatial/local_thickness.h) at the vertices of the crossing
 //! faces, measured on the surface before the re-triangulation.
@@ -374,7 +384,7 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     // else it is the pipeline's (a remeshing or a rebuild that tore a thin part), and refused.
     const TopologyCount topology_before = count_topology(mesh), topology_after = count_topology(r.mesh);
     std::string topology_note;
-    if (!(topology_before == topology_after)) {
+    if (!(topology_before == topology_after) && !only_debris_dropped(topology_before, topology_after, r)) {
       const std::vector<FacePair> crossings =
           verdict.intersecting && verdict.watched ? watch->pairs() : self_intersections(mesh);
       // refinement_rounds = 0 asks for the paper's pipeline, whose remeshing may make a pinch's
