@@ -15,8 +15,8 @@ from ._progress import make_progress
 class Event:
     """Something that happened in a step besides the step itself (metrics.csv's `event` column).
 
-    `kind` is one of "rejected", "remeshed", "surgery", "split", "merged", "fallback"; `detail` is the
-    re-triangulation's line of events.log for the last four.
+    `kind` is one of "rejected", "remeshed", "surgery", "split", "merged", "fallback", "refused";
+    `detail` is the re-triangulation's line of events.log for "remeshed" to "merged" and "refused".
     """
     kind: str
     step: int
@@ -44,12 +44,17 @@ class Merged(Event):
     """Components were joined."""
 
 
+class Refused(Event):
+    """A re-triangulation was refused, the surface kept: it would have changed the topology where
+    the surface did not cross itself."""
+
+
 class Fallback(Event):
     """A τ table's step failed even after its halvings: adaptive steps covered its τ of time."""
 
 
 _EVENT_TYPES = {"rejected": Rejected, "remeshed": Remeshed, "surgery": Surgery, "split": Split, "merged": Merged,
-                "fallback": Fallback}
+                "fallback": Fallback, "refused": Refused}
 
 
 @dataclass(frozen=True)
@@ -89,6 +94,8 @@ def _step(raw):
             kinds, detail = text[len("re-triangulated ("):].split("): ", 1)
             for kind in kinds.split("+"):
                 details[kind] = detail
+        elif text.startswith("re-triangulation refused: "):  # SurfaceDiffusion::note_refusal
+            details["refused"] = text[len("re-triangulation refused: "):]
     events = tuple(_EVENT_TYPES.get(kind, Event)(kind, step, time, details.get(kind, ""))
                    for kind in event.split("+") if kind)
     return Step(step, time, tau, rejections, cg, factorised, events, _notes(notes))

@@ -71,8 +71,8 @@ std::vector<ParameterEntry> build_schema()
   {
     auto& e = add(entry("preset", "--preset", ParameterType::choice,
                         "`paper`: the paper's scheme exactly (eq. 9 H, Voronoi areas, plain steps, its boundary rule, "
-                        "uniform re-triangulation ℓ, flat projection, no volume restoration, whole-surface "
-                        "re-triangulation); "
+                        "uniform re-triangulation ℓ, flat projection, no volume restoration, no start steps, "
+                        "whole-surface re-triangulation); "
                         "`default`: sdflow's. Applied before the other keys and flags, which override it"));
     e.choices = {"paper", "default"};
     e.order = Order::first;
@@ -371,6 +371,14 @@ std::vector<ParameterEntry> build_schema()
   bind<long>(adaptive("adaptive.max_rejections", "--max-rejections", ParameterType::integer, at_least(1),
                       "Adaptive τ: rejected trials in a row before the run is declared unstable"),
              &RunParameters::time_step, &TimeStepOptions::adaptive, &AdaptiveOptions::max_rejections);
+  bind<long>(adaptive("adaptive.start_steps", "--start-steps", ParameterType::integer, at_least(0),
+                      "Adaptive τ: a run's first steps that may be start steps, whose τ_s = start_damping·(ℓ/π)⁴ "
+                      "damps what the mesh does not resolve (noise, sharp edges, creases) when that, not the "
+                      "resolved scales, would set τ (0: none)"),
+             &RunParameters::time_step, &TimeStepOptions::adaptive, &AdaptiveOptions::start_steps);
+  bind<double>(adaptive("adaptive.start_damping", "--start-damping", ParameterType::real, above(0),
+                        "Adaptive τ: a start step's τ_s·(π/ℓ)⁴, the damping of the wavelength 2ℓ per start step"),
+               &RunParameters::time_step, &TimeStepOptions::adaptive, &AdaptiveOptions::start_damping);
   {
     auto& e = adaptive("adaptive.tolerance", "--tolerance", ParameterType::real, at_least(0),
                        "Adaptive τ: bound on the extrapolated step's local error estimate, relative to the local "

@@ -208,6 +208,7 @@ void apply_preset(const std::string& name, RunParameters& p)
     paper.scheme.extrapolate = false;
     paper.scheme.boundary = BoundaryCondition::paper;
     paper.time_step.adaptive.tolerance = 0;
+    paper.time_step.adaptive.start_steps = 0;
     paper.retriangulation.pipeline.edges_per_radius = 0;
     paper.retriangulation.pipeline.curved_projection = false;
     paper.retriangulation.restore_volume = false;
@@ -223,6 +224,7 @@ void apply_preset(const std::string& name, RunParameters& p)
   p.scheme.extrapolate = source->scheme.extrapolate;
   p.scheme.boundary = source->scheme.boundary;
   p.time_step.adaptive.tolerance = source->time_step.adaptive.tolerance;
+  p.time_step.adaptive.start_steps = source->time_step.adaptive.start_steps;
   p.retriangulation.pipeline.edges_per_radius = source->retriangulation.pipeline.edges_per_radius;
   p.retriangulation.pipeline.min_edge_fraction = source->retriangulation.pipeline.min_edge_fraction;
   p.retriangulation.pipeline.curved_projection = source->retriangulation.pipeline.curved_projection;

@@ -5,9 +5,11 @@
 #include "sdflow/flow/volume.h"
 #include "sdflow/geometry/material_volume.h"
 #include "sdflow/geometry/measures.h"
+#include "sdflow/geometry/topology.h"
 #include "sdflow/remesh/local_remesh.h"
 #include "sdflow/retri/local_surgery.h"
 #include "sdflow/spatial/intersect.h"
+#include "sdflow/spatial/local_thickness.h"
 #include "sdflow/stopwatch.h"
 
 #include <fmt/format.h>
@@ -17,6 +19,7 @@
 #include <array>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -263,6 +266,56 @@ std::optional<Mesh> remesh_degraded_region(const Mesh& mesh, Verdict& verdict, c
   return std::move(r.mesh);
 }
 
+//! The topology a re-triangulation may change only where the flow brought the change.
+struct TopologyCount {
+  int components = 0, genus = 0, boundary_loops = 0;
+  bool operator==(const TopologyCount&) const = default;
+};
+
+TopologyCount count_topology(const Mesh& mesh)
+{
+  TopologyCount t;
+  for (const ComponentTopology& c : component_topology(mesh)) {
+    ++t.components;
+    t.genus += c.genus;
+    t.boundary_loops += c.boundary_loops;
+  }
+  return t;
+}
+
+std::string describe_change(const TopologyCount& before, const TopologyCount& after)
+{
+  std::string s = fmt::format("components {} → {}, genus {} → {}", before.components, after.components, before.genus,
+                              after.genus);
+  if (before.boundary_loops != after.boundary_loops)
+    s += fmt::format(", boundary loops {} → {}", before.boundary_loops, after.boundary_loops);
+  return s;
+}
+
+//! Whether the change from `before` to `after` is only stage 6's clean-up: whole components below
+//! the minimum size dropped as debris (a choice the user makes with min_component_faces, whose
+//! volume the run accounts for), no other component split, fused, or gained or lost a handle or a
+//! boundary loop beyond what the dropped ones held.
+bool only_debris_dropped(const TopologyCount& before, const TopologyCount& after, const RetriangulationResult& r)
+{
+  return r.dropped_components > 0 && after.components + r.dropped_components == before.components &&
+         after.genus <= before.genus && after.boundary_loops <= before.boundary_loops;
+}
+
+//! The size that let a topology change through: the smallest local feature size (the thickness
+//! of a neck or the width of a gap, spatial/local_thickness.h) at the vertices of the crossing
+//! faces, measured on the surface before the re-triangulation.
+double crossing_size(const Mesh& mesh, const std::vector<FacePair>& crossings)
+{
+  const LocalThickness thickness = local_thickness(mesh, {.median_over_neighbours = false});
+  double size = std::numeric_limits<double>::infinity();
+  for (const FacePair& pair : crossings)
+    for (const int f : {pair.first, pair.second})
+      for (const auto v : mesh.fv_range(mesh.face_handle(f)))
+        size = std::min(size, thickness.feature_size(v.idx()));
+  return size;
+}
+
 } // namespace
 
 void validate_retriangulation_schedule(const RetriangulationSchedule& s)
@@ -326,16 +379,41 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     report.pipeline_seconds.remesh += local.remesh;
     report.pipeline_seconds.intersections += local.intersections;
     stopwatch.restart();
+    // A topology change is the flow's only where its sheets crossed (a neck pinched through, a gap
+    // closed): the threshold is a crossing of the surface before the re-triangulation. Anywhere
+    // else it is the pipeline's (a remeshing or a rebuild that tore a thin part), and refused.
+    const TopologyCount topology_before = count_topology(mesh), topology_after = count_topology(r.mesh);
+    std::string topology_note;
+    if (!(topology_before == topology_after) && !only_debris_dropped(topology_before, topology_after, r)) {
+      const std::vector<FacePair> crossings =
+          verdict.intersecting && verdict.watched ? watch->pairs() : self_intersections(mesh);
+      // refinement_rounds = 0 asks for the paper's pipeline, whose remeshing may make a pinch's
+      // crossing itself: its change is then taken as it comes.
+      if (crossings.empty() && schedule.pipeline.refinement_rounds > 0) {
+        report.refused = true;
+        report.degraded_left = degraded_elements(mesh, schedule).total();
+        report.detail = fmt::format("{}: {}{}; refused: it would change the topology ({}) where the surface does not "
+                                    "cross itself, so the surface keeps its triangles; {} degraded elements left",
+                                    verdict.reason, fallback, retriangulation_summary(r),
+                                    describe_change(topology_before, topology_after), report.degraded_left);
+        return report;
+      }
+      const double size = crossing_size(mesh, crossings);
+      topology_note = fmt::format("; topology changed ({}) where the flow's surface crossed itself ({} face pairs, "
+                                  "smallest neck or gap there {:.3g} = {:.3g} ℓ before the re-triangulation)",
+                                  describe_change(topology_before, topology_after), crossings.size(), size,
+                                  size / schedule.pipeline.edge_length);
+    }
     const std::string volume_note =
         schedule.restore_volume ? restore_volume(mesh, r.mesh, report.dropped_volume) : std::string{};
     report.volume_seconds += stopwatch.seconds();
-    report.remeshed = schedule.pipeline.remesh_iterations > 0;
+    report.remeshed = schedule.pipeline.remesh_iterations > 0 && !r.remeshing_refused;
     report.surgery = r.rebuilt;
     report.split = r.components_after > r.components_before - r.merged_components;
     report.merged = r.merged_components > 0;
     report.degraded_left = degraded_elements(r.mesh, schedule).total();
-    report.detail = fmt::format("{}: {}{}{}; {} degraded elements left", verdict.reason, fallback,
-                                retriangulation_summary(r), volume_note, report.degraded_left);
+    report.detail = fmt::format("{}: {}{}{}{}; {} degraded elements left", verdict.reason, fallback,
+                                retriangulation_summary(r), topology_note, volume_note, report.degraded_left);
     mesh = std::move(r.mesh);
     return report;
   };

@@ -73,7 +73,10 @@ struct RetriangulationReport {
   bool surgery = false;  //!< self-intersections removed and the surface rebuilt
   bool split = false;    //!< a component broke into several
   bool merged = false;   //!< components were joined
-  std::string detail;    //!< one line for events.log
+  //! The re-triangulation was refused and the surface kept as it was: it would have changed the
+  //! topology where the surface did not cross itself (no neck or gap of the flow had closed).
+  bool refused = false;
+  std::string detail;    //!< one line for events.log (also when `refused`)
   long degraded_left = -1; //!< degraded elements left by a re-triangulation (-1: none ran)
   double check_seconds = 0;  //!< wall time of the look at the surface (intersections, degraded elements)
   //! Of the pipeline's stages, when it ran; a local remeshing counts as `remesh`, and its check for

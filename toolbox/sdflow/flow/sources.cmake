@@ -8,6 +8,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/parameter_schema.cpp
   sdflow/flow/parameters.cpp
   sdflow/flow/refinement.cpp
+  sdflow/flow/resolution_check.cpp
   sdflow/flow/retriangulation.cpp
   sdflow/flow/run_lock.cpp
   sdflow/flow/scheme.cpp

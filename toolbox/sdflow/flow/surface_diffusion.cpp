@@ -169,6 +169,7 @@ StepRecord SurfaceDiffusion::step()
         note(next_step, time_, fmt::format("no acceptable step ({}): re-triangulating, then trying again", e.what()));
         const VertexVectors before = vertex_positions(mesh_);
         const RetriangulationReport report = call_retriangulation(mesh_, true, record.times);
+        note_refusal(report, events);
         if (report.changed()) {
           adopt_retriangulation(report, before, events, record.times);
           restart_controller();
@@ -189,12 +190,14 @@ StepRecord SurfaceDiffusion::step()
   }
   if (rejections > 0)
     events.insert(events.begin(), "rejected");
+  if (record.start)
+    events.insert(events.begin(), "start");
 
   VertexVectors accepted; // the last accepted surface, kept while the guard looks at the new one
   if (guard_)
     accepted = vertex_positions(mesh_);
   set_vertex_positions(mesh_, trial.positions);
-  if (p_.conserve_volume)
+  if (p_.conserve_volume || record.start)
     set_vertex_positions(
         mesh_, restore_volumes(mesh_, volumes, {triangles_, topology_.face_component, topology_.closed}).positions);
   if (guard_) {
@@ -222,6 +225,7 @@ StepRecord SurfaceDiffusion::step()
       left_to_next_step = look_and_try_ahead(before, events, record.times);
     } else {
       const RetriangulationReport report = call_retriangulation(mesh_, false, record.times);
+      note_refusal(report, events);
       if (report.changed())
         adopt_retriangulation(report, before, events, record.times);
       else
@@ -317,6 +321,10 @@ void SurfaceDiffusion::renew_topology()
 void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
 {
   own_hook_ = !hook;
+  // The start phase's ℓ: the run's re-triangulation length when it has one (fixed in run.toml, so
+  // a resumed run finds the same), else the mean edge length.
+  start_length_ = p_.retriangulation.pipeline.edge_length > 0 ? p_.retriangulation.pipeline.edge_length
+                                                              : mean_edge_length(mesh_);
   if (hook) {
     retriangulate_ = std::move(hook);
     return;
@@ -327,7 +335,7 @@ void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
     return;
   }
   if (!(schedule.pipeline.edge_length > 0))
-    schedule.pipeline.edge_length = mean_edge_length(mesh_);
+    schedule.pipeline.edge_length = start_length_;
   schedule.pipeline.keep_boundary = p_.scheme.boundary == BoundaryCondition::fixed;
   RetriangulationSchedule refined_schedule = schedule;
   refined_schedule.pipeline = refined(schedule.pipeline, p_.refinement);
@@ -372,6 +380,15 @@ RetriangulationReport SurfaceDiffusion::call_retriangulation(Mesh& mesh, bool fo
 
 //! Take the re-triangulated mesh: new connectivity and operators, fresh factorisations with the
 //! orderings carried from the surface `before` it (carried_ordering.h), its events.
+void SurfaceDiffusion::note_refusal(const RetriangulationReport& report, std::vector<std::string>& events)
+{
+  if (!report.refused)
+    return;
+  if (std::find(events.begin(), events.end(), "refused") == events.end())
+    events.emplace_back("refused");
+  note(step_, time_, fmt::format("re-triangulation refused: {}", report.detail));
+}
+
 void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report, const VertexVectors& before,
                                              std::vector<std::string>& events, StepTimes& times)
 {
@@ -522,6 +539,7 @@ double SurfaceDiffusion::look_and_try_ahead(const VertexVectors& before, std::ve
     return alone;
   }
   rewind(kept);
+  note_refusal(report, events);
   if (hook_failure || !report.changed()) {
     // The trial's factors may be newer than its rewound bookkeeping: the next solves factorise
     // afresh. (The flow's own hook changes the surface whenever it decides to, or fails.)
@@ -550,20 +568,31 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
   volumes = material_volumes(positions, triangles_, topology_.face_component, topology_.count, topology_.loops);
   times.acceptance += watch.seconds();
   const AdaptiveOptions adaptive = refined(p_.time_step.adaptive, p_.refinement);
+  // The start phase (time_step.h) decides on the surface's unresolved variation, every start step.
+  const bool may_start = p_.time_step.mode == TimeStepMode::adaptive && adaptive.initial_tau == 0 &&
+                         next_step <= adaptive.start_steps;
   const bool need_automatic_tau =
       controller_.adaptive() && controller_.state().next_tau == 0 && adaptive.initial_tau == 0;
-  const double automatic =
-      need_automatic_tau ? automatic_tau(op_.rhs.cwiseQuotient(op_.areas).cwiseAbs(), op_.held, edge_lengths, adaptive)
-                         : 0.0;
+  const Eigen::VectorXd explicit_speed =
+      need_automatic_tau || may_start ? Eigen::VectorXd(op_.rhs.cwiseQuotient(op_.areas).cwiseAbs())
+                                      : Eigen::VectorXd();
+  const double automatic = need_automatic_tau ? automatic_tau(explicit_speed, op_.held, edge_lengths, adaptive) : 0.0;
+  const std::vector<bool> resolved =
+      may_start ? resolved_vertices(explicit_speed, op_.held, edge_lengths) : std::vector<bool>{};
+  bool start = may_start && is_start_step(adaptive, next_step, resolved, op_.held);
+  double start_trial_tau = may_start ? start_tau(adaptive, start_length_) : 0.0;
+  int start_retries = 0;
   const double time_left = std::isfinite(p_.end_time) ? p_.end_time - time_ : std::numeric_limits<double>::infinity();
   const std::array<Eigen::VectorXd, 2> guesses = warm_starts(previous_w_, earlier_w_);
   for (;;) {
     if (cancel_trials_ && cancel_trials_->load())
       throw TrialsCancelled();
-    const double tau = controller_.propose(next_step, automatic, time_left);
-    trial = p_.scheme.extrapolate
-                ? extrapolated_step(mesh_, op_, tau, p_.scheme, solver_, half_solver_, &*cache_, guesses)
-                : solve_step(mesh_, op_, tau, p_.scheme.beta, solver_, guesses);
+    const double tau = start ? std::min(start_trial_tau, time_left) : controller_.propose(next_step, automatic, time_left);
+    // A start step is backward Euler: with the scheme's β = ½ a mode far shorter than its time
+    // scale would come out flipped, not damped (its factor (1 − τk⁴/2)/(1 + τk⁴/2) tends to −1).
+    trial = start                   ? solve_step(mesh_, op_, tau, kStartBeta, solver_, guesses)
+            : p_.scheme.extrapolate ? extrapolated_step(mesh_, op_, tau, p_.scheme, solver_, half_solver_, &*cache_, guesses)
+                                    : solve_step(mesh_, op_, tau, p_.scheme.beta, solver_, guesses);
     record.cg_iterations += trial.solve.iterations;
     factorisations_ += trial.factorisations;
     times.operators += trial.operators_seconds;
@@ -607,6 +636,28 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
     if (check.volume_exceeded && !controller_.adaptive())
       check.adaptive_tau = automatic_tau(op_.rhs.cwiseQuotient(op_.areas).cwiseAbs(), op_.held, edge_lengths, adaptive);
     times.acceptance += watch.seconds();
+    if (start) {
+      // The displacement bound holds where the surface is resolved; elsewhere backward Euler damps
+      // what the mesh cannot follow, and the volumes are restored after the step.
+      const double resolved_ratio = resolved_displacement_ratio(tau, trial.w, edge_lengths, resolved);
+      if (!check.non_finite && check.inverted_triangles == 0 && resolved_ratio <= adaptive.max_displacement) {
+        controller_.accept_start_step(tau);
+        record.start = true;
+        return tau;
+      }
+      ++rejections;
+      ++rejected_trials_;
+      note(next_step, time_,
+           fmt::format("rejected start step τ = {}: {}, normal displacement {:.3g} of the local edge length where "
+                       "the surface is resolved",
+                       tau, check.describe(), resolved_ratio));
+      start_trial_tau = tau * (resolved_ratio > adaptive.max_displacement
+                                   ? std::min(adaptive.shrink, adaptive.safety * adaptive.max_displacement / resolved_ratio)
+                                   : kStartShrink);
+      // Below the τ the rule itself would try, a start step gains nothing.
+      start = ++start_retries <= kStartRetries && start_trial_tau > automatic;
+      continue;
+    }
     if (controller_.judge(next_step, tau, check))
       return tau;
     ++rejections;

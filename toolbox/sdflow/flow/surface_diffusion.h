@@ -74,8 +74,10 @@ struct StepRecord {
   //! Its first trial ran beside the last step's look at the surface (RunParameters::look_ahead):
   //! its stage times then overlap that step's, and its `total` leaves them out.
   bool taken_ahead = false;
-  //! What happened besides the step, joined by '+': rejected, fallback, remeshed, surgery, split,
-  //! merged.
+  //! A start step (time_step.h): τ_s taken on stability alone, the volumes restored after it.
+  bool start = false;
+  //! What happened besides the step, joined by '+': start, rejected, fallback, remeshed, surgery,
+  //! split, merged, refused.
   std::string event;
   StepTimes times;
 };
@@ -196,6 +198,8 @@ private:
                       const SolverState& state);
   RetriangulationReport call_retriangulation(Mesh& mesh, bool force, StepTimes& times,
                                              std::function<void()> changing = {});
+  //! A refused re-triangulation (RetriangulationReport::refused) becomes an event and a warning.
+  void note_refusal(const RetriangulationReport& report, std::vector<std::string>& events);
   void adopt_retriangulation(const RetriangulationReport& report, const VertexVectors& before,
                              std::vector<std::string>& events, StepTimes& times);
   void renew_operators(StepTimes& times);
@@ -217,6 +221,7 @@ private:
   long step_ = 0;
   double time_ = 0;
   long tolerated_degraded_ = 0;   // see RetriangulationContext
+  double start_length_ = 0;       // ℓ of the start phase's τ_s (time_step.h)
   double debris_volume_ = 0;      // FlowMetrics::debris_volume
   bool topology_changed_ = false; // with stop_at_topology_change: finished after this step
   Eigen::VectorXd previous_w_, earlier_w_, last_w_; // w of the last two accepted steps, and the velocity

@@ -9,6 +9,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 namespace sdflow {
@@ -164,13 +165,14 @@ TimeStepController::TimeStepController(const TimeStepOptions& options, TimeStepS
     if (!(a.max_displacement > 0) || !(a.safety > 0 && a.safety <= 1) || !(a.growth >= 1) ||
         !(a.shrink > 0 && a.shrink < 1) || !(a.max_volume_change > 0) || !(a.min_tau > 0) ||
         !(a.max_tau >= a.min_tau) || a.max_rejections < 1 || !(a.initial_tau >= 0) ||
-        !(a.tolerance >= 0 && std::isfinite(a.tolerance)))
+        !(a.tolerance >= 0 && std::isfinite(a.tolerance)) || a.start_steps < 0 ||
+        !(a.start_damping > 0 && std::isfinite(a.start_damping)))
       throw InvalidParameter(fmt::format(
           "adaptive τ: need max_displacement > 0 ({}), 0 < safety ≤ 1 ({}), growth ≥ 1 ({}), 0 < shrink < 1 ({}), "
           "max_volume_change > 0 ({}), 0 < min_tau ≤ max_tau ({}, {}), max_rejections ≥ 1 ({}), initial_tau ≥ 0 ({}), "
-          "tolerance ≥ 0 ({})",
+          "tolerance ≥ 0 ({}), start_steps ≥ 0 ({}), start_damping > 0 ({})",
           a.max_displacement, a.safety, a.growth, a.shrink, a.max_volume_change, a.min_tau, a.max_tau,
-          a.max_rejections, a.initial_tau, a.tolerance));
+          a.max_rejections, a.initial_tau, a.tolerance, a.start_steps, a.start_damping));
     break;
   }
 }
@@ -315,6 +317,47 @@ StepCheck check_trial(const TrialMotion& trial, const AdaptiveOptions& bounds, b
     c.error_exceeded = bounds.tolerance > 0 && c.error_estimate > bounds.tolerance;
   }
   return c;
+}
+
+double start_tau(const AdaptiveOptions& options, double edge_length)
+{
+  return options.start_damping * std::pow(edge_length / std::numbers::pi, 4);
+}
+
+std::vector<bool> resolved_vertices(const Eigen::VectorXd& explicit_speed, const std::vector<bool>& held,
+                                    const Eigen::VectorXd& edge_lengths)
+{
+  std::vector<bool> resolved(static_cast<std::size_t>(explicit_speed.size()), false);
+  for (Eigen::Index v = 0; v < explicit_speed.size(); ++v)
+    resolved[v] = (held.empty() || !held[v]) && explicit_speed[v] * std::pow(edge_lengths[v], 3) <= kUnresolvedVariation;
+  return resolved;
+}
+
+double resolved_displacement_ratio(double tau, const Eigen::VectorXd& w, const Eigen::VectorXd& edge_lengths,
+                                   const std::vector<bool>& resolved)
+{
+  double ratio = 0;
+  for (Eigen::Index v = 0; v < w.size(); ++v)
+    if (resolved[v])
+      ratio = std::max(ratio, tau * std::abs(w[v]) / edge_lengths[v]);
+  return ratio;
+}
+
+bool is_start_step(const AdaptiveOptions& options, long step, const std::vector<bool>& resolved,
+                   const std::vector<bool>& held)
+{
+  if (step > options.start_steps)
+    return false;
+  for (std::size_t v = 0; v < resolved.size(); ++v)
+    if (!resolved[v] && (held.empty() || !held[v]))
+      return true;
+  return false;
+}
+
+void TimeStepController::accept_start_step(double tau)
+{
+  state_.rejections = 0;
+  state_.next_tau = tau;
 }
 
 double automatic_tau(const Eigen::VectorXd& explicit_speed, const std::vector<bool>& held,

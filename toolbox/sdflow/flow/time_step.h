@@ -16,6 +16,16 @@
 //!   be ≤ ε, and the next τ is also scaled by at most safety · √(ε / e) (the estimate is O(τ²)).
 //! - After `max_rejections` rejections in a row, or when τ would fall below `min_tau`, the run stops
 //!   with SolverFailure: the flow cannot be continued stably from this surface.
+//! Start phase (adaptive steps of a run's first `start_steps` steps): while the surface has a vertex
+//! whose curvature varies faster than its edges resolve, |ΔH|_v h_v³ > kUnresolvedVariation (noise,
+//! a sharp edge, a crease, a sliver), that vertex, not the scales the run resolves, would set τ. The
+//! step is then a backward-Euler step (β = kStartBeta = 1, scheme.h) whose displacement bound holds
+//! only at the resolved vertices: it tries τ_s = start_damping · (ℓ/π)⁴ for the run's edge length ℓ
+//! (which damps the wavelength 2ℓ, the shortest a mesh of edge ℓ carries, by 1 + start_damping),
+//! shrinks it as that bound asks (by kStartShrink when a triangle turns over), up to kStartRetries
+//! times and not below the automatic τ, and restores the volume of each closed component after it.
+//! The rule above takes over at the first step whose surface is resolved everywhere, or after
+//! start_steps steps (is_start_step), from the last start step's τ.
 //! With constant τ or a schedule, a step that turns a triangle over, produces a non-finite
 //! position or changes a closed component's volume by more than `max_volume_change` (the adaptive
 //! bound: such a step is no approximation of the flow, which keeps volumes) stops the run at once
@@ -82,6 +92,10 @@ struct AdaptiveOptions {
   //! ε, the bound on the local error estimate of extrapolated steps relative to the local edge
   //! length (0: off, the displacement bound alone sets τ).
   double tolerance = 0;
+  //! Start phase (the rule at the top): at most this many of a run's first steps (0: none).
+  int start_steps = 3;
+  //! Start phase: τ_s · (π/ℓ)⁴, the damping of the wavelength 2ℓ per start step (> 0).
+  double start_damping = 10;
 };
 
 struct TimeStepOptions {
@@ -143,6 +157,38 @@ StepCheck check_trial(const TrialMotion& trial, const AdaptiveOptions& bounds, b
 double automatic_tau(const Eigen::VectorXd& explicit_speed, const std::vector<bool>& held,
                      const Eigen::VectorXd& edge_lengths, const AdaptiveOptions& options);
 
+//! |ΔH|_v h_v³ above which the curvature at v varies faster than its edges resolve: on a smooth
+//! surface with n edges per radius of curvature r (h = r/n) it is about 1/n³; noise of amplitude a
+//! gives about 100 a/h, a crease of angle θ about θ.
+constexpr double kUnresolvedVariation = 1;
+
+//! β of a start step (scheme.h): backward Euler, which damps a mode by 1/(1 + τk⁴) where the
+//! scheme's β = ½ would flip the modes it does not resolve in time.
+constexpr double kStartBeta = 1;
+
+//! Trials a start step makes before it leaves the step to the adaptive rule.
+constexpr int kStartRetries = 6;
+
+//! The factor on a start step's τ when a triangle turned over.
+constexpr double kStartShrink = 0.25;
+
+//! τ_s = start_damping · (ℓ/π)⁴ of the start phase for the run's edge length ℓ (> 0).
+double start_tau(const AdaptiveOptions& options, double edge_length);
+
+//! Per vertex: not `held`, and |ΔH|_v h_v³ ≤ kUnresolvedVariation (explicit_speed = |ΔH|,
+//! edge_lengths = h): the curvature there varies no faster than the edges resolve.
+std::vector<bool> resolved_vertices(const Eigen::VectorXd& explicit_speed, const std::vector<bool>& held,
+                                    const Eigen::VectorXd& edge_lengths);
+
+//! max τ|w_v|/h_v over the `resolved` vertices (0 when there is none).
+double resolved_displacement_ratio(double tau, const Eigen::VectorXd& w, const Eigen::VectorXd& edge_lengths,
+                                   const std::vector<bool>& resolved);
+
+//! Whether step `step` (1-based) of an adaptive run is a start step: within start_steps, and some
+//! vertex not held is not `resolved` (resolved_vertices).
+bool is_start_step(const AdaptiveOptions& options, long step, const std::vector<bool>& resolved,
+                   const std::vector<bool>& held);
+
 //! The state of the time-step controller between steps (saved in checkpoints).
 struct TimeStepState {
   double next_tau = 0;   //!< adaptive steps: τ to try next (0 before the first step)
@@ -167,6 +213,11 @@ public:
   //! in adaptive mode the next proposal is smaller; throws SolverFailure when the run is unstable
   //! (any failure in constant or schedule mode, too many rejections or τ < min_tau in adaptive mode).
   bool judge(long step, double tau, const StepCheck& check);
+
+  //! A start step of `tau` was accepted (the start phase at the top): the next adaptive step tries
+  //! it again, and the rule above shrinks it as the bounds ask (the automatic τ, from the explicit
+  //! speed, would be set again by what the start steps left of the unresolved scales).
+  void accept_start_step(double tau);
 
   //! Schedule mode: cover the table's step for flow step `step`, which failed, with adaptive steps
   //! (the rule at the top of this file). Starts from the automatic τ.

@@ -11,6 +11,7 @@
 #include "sdflow/retri/remove_intersections.h"
 #include "sdflow/retri/surface_union.h"
 #include "sdflow/spatial/intersect.h"
+#include "sdflow/spatial/local_thickness.h"
 #include "sdflow/spatial/nearest_points.h"
 
 #include <fmt/format.h>
@@ -169,8 +170,9 @@ constexpr int kLocalScaleRings = 4;
 //! not a curvature to resolve (refining where they cross leaves the rebuild slivers of enclosed
 //! space), and coarsening a neck that pinched through would tear it before the surgery.
 //! `known_targets`, when given, are the radius targets of `clean`.
-SizingField adapted_sizing(const Mesh& clean, const std::vector<FacePair>& crossings,
-                           const RetriangulationOptions& options, double ell, const std::vector<double>* known_targets)
+std::vector<double> adapted_targets(const Mesh& clean, const std::vector<FacePair>& crossings,
+                                    const RetriangulationOptions& options, double ell,
+                                    const std::vector<double>* known_targets)
 {
   const double min_length = options.min_edge_fraction * ell;
   std::vector<double> target =
@@ -202,7 +204,79 @@ SizingField adapted_sizing(const Mesh& clean, const std::vector<FacePair>& cross
     }
     target[v.idx()] = std::clamp(count > 0 ? sum / count : ell, min_length, ell);
   }
-  return nearest_vertex_sizing(clean, std::move(target));
+  return target;
+}
+
+//! Around a crossing the remeshing made, the input's vertices within this many ℓ get finer targets.
+constexpr double kRefinementRadius = 2;
+
+//! The finest target a refinement asks for, as a fraction of ℓ: four halvings of the curvature floor.
+constexpr double kFinestRefinement = 1.0 / 64;
+
+//! The vertices of the faces of `remeshed` in `pairs`: where the remeshing made it cross itself.
+std::vector<Eigen::Vector3d> crossing_points(const Mesh& remeshed, const std::vector<FacePair>& pairs)
+{
+  std::vector<Eigen::Vector3d> points;
+  for (const FacePair& pair : pairs)
+    for (const int f : {pair.first, pair.second})
+      for (const auto v : remeshed.fv_range(remeshed.face_handle(f)))
+        points.push_back(to_eigen(remeshed.point(v)));
+  return points;
+}
+
+//! Stage 1 as it is kept: the remeshed surface (and its intersecting pairs, as stage 2 needs them),
+//! or the input itself when the remeshing was refused.
+struct StageOne {
+  Mesh mesh;
+  std::vector<FacePair> pairs;
+};
+
+//! Stage 1 refused where it makes crossings of its own (RetriangulationOptions::refinement_rounds):
+//! remesh `input` (garbage-collected; `crossings` its own intersecting pairs) with `targets` at its
+//! vertices (empty: the uniform ℓ of `remesh`); when the input does not cross itself and the result
+//! does, again with the targets around the crossings halved and below half the local thickness,
+//! until it does not or the rounds are spent; then the input is kept.
+StageOne remesh_without_own_crossings(const Mesh& input, const std::vector<FacePair>& crossings,
+                                      std::vector<double> targets, RemeshOptions remesh,
+                                      const RetriangulationOptions& options, double ell, RetriangulationResult& r)
+{
+  std::optional<LocalThickness> thickness;
+  for (int round = 0;; ++round) {
+    if (!targets.empty())
+      remesh.sizing = nearest_vertex_sizing(input, targets);
+    RemeshResult remeshed = isotropic_remesh(input, remesh);
+    StageOne s{std::move(remeshed.mesh), {}};
+    s.pairs = self_intersections(s.mesh);
+    r.remesh = remeshed.statistics;
+    // Only a surface that does not cross itself is guarded: where the flow's sheets crossed, the
+    // surgery's remeshing around them is the paper's (the local surgery and the tests of its
+    // outcome against this pipeline rely on it), and the hook checks the outcome.
+    if (options.refinement_rounds == 0 || s.pairs.empty() || !crossings.empty())
+      return s;
+    const std::vector<Eigen::Vector3d> own = crossing_points(s.mesh, s.pairs);
+    if (round == 0)
+      r.remeshing_crossings = static_cast<int>(s.pairs.size());
+    if (round == options.refinement_rounds) {
+      r.remeshing_refused = true;
+      r.remesh = {};
+      r.remesh.edge_length = ell;
+      return {input, crossings};
+    }
+    ++r.refinements;
+    if (!thickness)
+      thickness = local_thickness(input, {.max_distance = 4 * ell});
+    if (targets.empty())
+      targets.assign(input.n_vertices(), ell);
+    const VertexVectors sites = point_rows(own), positions = vertex_positions(input);
+    const std::vector<int> nearest = nearest_points(sites, positions);
+    for (const auto v : input.vertices()) {
+      const int i = v.idx();
+      if ((positions.row(i) - sites.row(nearest[static_cast<std::size_t>(i)])).norm() > kRefinementRadius * ell)
+        continue;
+      const double finer = std::min(0.5 * targets[static_cast<std::size_t>(i)], 0.5 * thickness->feature_size(i));
+      targets[static_cast<std::size_t>(i)] = std::max(finer, kFinestRefinement * ell);
+    }
+  }
 }
 
 //! How far from the intersecting faces, in units of ℓ, a piece stage 2 left must reach not to be
@@ -323,6 +397,7 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
   r.merged_components = merge_intersecting_components(mesh);
   r.seconds.merge = seconds_since(start);
 
+  std::optional<std::vector<FacePair>> remeshed_pairs; // stage 1's, when it found them
   if (options.remesh_iterations > 0) {
     start = Clock::now();
     RemeshOptions remesh;
@@ -333,17 +408,19 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
     collect_garbage(mesh);
     // Where sheets cross, their normals describe no smooth surface: project onto the flat triangles.
     // Stage 0 left the input as it was unless it joined components.
-    const bool looked_for = options.curved_projection || options.edges_per_radius > 0;
+    const bool looked_for = options.curved_projection || options.edges_per_radius > 0 || options.refinement_rounds > 0;
     const std::vector<FacePair> crossings = !looked_for ? std::vector<FacePair>{}
                                             : known.crossings && r.merged_components == 0 ? *known.crossings
                                                                                            : self_intersections(mesh);
     remesh.curved_projection = options.curved_projection && crossings.empty();
+    std::vector<double> targets;
     if (options.edges_per_radius > 0)
-      remesh.sizing = adapted_sizing(mesh, crossings, options, r.edge_length,
-                                     r.merged_components == 0 ? known.targets : nullptr);
-    RemeshResult remeshed = isotropic_remesh(mesh, remesh);
+      targets = adapted_targets(mesh, crossings, options, r.edge_length,
+                                r.merged_components == 0 ? known.targets : nullptr);
+    StageOne remeshed =
+        remesh_without_own_crossings(mesh, crossings, std::move(targets), remesh, options, r.edge_length, r);
     mesh = std::move(remeshed.mesh);
-    r.remesh = remeshed.statistics;
+    remeshed_pairs = std::move(remeshed.pairs);
     r.seconds.remesh = seconds_since(start);
   }
 
@@ -357,7 +434,7 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
   tbb::parallel_invoke(
     [&] {
       const auto begun = Clock::now();
-      pairs = self_intersections(mesh);
+      pairs = remeshed_pairs ? std::move(*remeshed_pairs) : self_intersections(mesh);
       r.seconds.intersections = seconds_since(begun);
     },
     [&] {
@@ -450,6 +527,14 @@ std::string retriangulation_summary(const RetriangulationResult& r)
                      r.rebuilt_apart ? " (each piece apart: together they bridged a cut)" : "", r.filled_holes);
   if (r.patch_faces > 0)
     s += fmt::format(" (locally: a patch of {} faces)", r.patch_faces);
+  if (r.remeshing_crossings > 0)
+    s += r.remeshing_refused
+             ? fmt::format("; the remeshing made {} face pairs of a surface that did not cross itself cross, even {} "
+                           "times finer there: refused, the surface kept its triangles",
+                           r.remeshing_crossings, r.refinements)
+             : fmt::format("; the remeshing made {} face pairs of a surface that did not cross itself cross: redone "
+                           "{} times finer there",
+                           r.remeshing_crossings, r.refinements);
   if (r.uniform_fallback)
     s += "; uniform ℓ (the adapted one left crossing sheets)";
   s += fmt::format("; components {} → {}", r.components_before, r.components_after);

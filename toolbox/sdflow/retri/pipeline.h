@@ -45,6 +45,13 @@ struct RetriangulationOptions {
   //! Stage 1 keeps the boundary loops' vertices where they are (BoundaryMode::keep), as a flow
   //! with a fixed rim needs (flow/boundary_condition.h); off, it remeshes them along the loops.
   bool keep_boundary = false;
+  //! Stage 1 must not make a surface that does not cross itself cross (a thin part collapsed, two
+  //! close sheets pulled through each other, a crease): stage 2 would cut it and the rebuild change
+  //! the topology where the flow did not. Stage 1 is then done again with the targets there halved and
+  //! kept below half the local thickness (spatial/local_thickness.h), up to this many times; if it
+  //! still crosses there, it is refused: the surface keeps its triangles (stage 1 skipped).
+  //! 0: the remeshing's own crossings are cut like the flow's (the paper's pipeline).
+  int refinement_rounds = 2;
   //! Run stages 3–5 even when nothing intersects (the paper's "after every step" application).
   bool always_rebuild = false;
   PointNormalsOptions normals;
@@ -68,7 +75,11 @@ struct RetriangulationResult {
   Mesh mesh; //!< valid, closed components oriented outward, garbage-collected
   double edge_length = 0;
   int merged_components = 0;    //!< stage 0: components joined into others
-  RemeshStatistics remesh;      //!< stage 1
+  RemeshStatistics remesh;      //!< stage 1 (the remeshing kept)
+  //! Stage 1: face pairs its first remeshing made cross away from the input's crossings (0: none).
+  int remeshing_crossings = 0;
+  int refinements = 0;            //!< stage 1: remeshings redone finer where they made crossings
+  bool remeshing_refused = false; //!< stage 1 kept making crossings: skipped, the input's triangles kept
   int intersecting_pairs = 0;   //!< stage 2
   int removed_faces = 0;        //!< stage 2
   bool rebuilt = false;         //!< stages 3–5 ran

@@ -6,4 +6,5 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/spatial/intersect.cpp
   sdflow/spatial/closest_point_grid.cpp
   sdflow/spatial/spatial_order.cpp
-  sdflow/spatial/nearest_points.cpp)
+  sdflow/spatial/nearest_points.cpp
+  sdflow/spatial/local_thickness.cpp)

@@ -1,0 +1,38 @@
+#pragma once
+//! \file resolution_check.h
+//! \brief Whether a run's re-triangulation can resolve its input: every part (a tail, a wire, a
+//! sheet) at least as thick, and every gap between bodies at least as wide, as the finest edge the
+//! pipeline's curvature-adapted sizing makes (min_edge_fraction · ℓ, retri/pipeline.h). A thinner
+//! part would be collapsed by the first remeshing rather than evolved by the flow.
+
+#include "sdflow/mesh.h"
+#include "sdflow/retri/pipeline.h"
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+
+namespace sdflow {
+
+//! The thinnest part of a surface that a re-triangulation cannot resolve.
+struct ThinPart {
+  Eigen::Vector3d where = Eigen::Vector3d::Zero(); //!< the vertex where it is thinnest
+  double size = 0;       //!< its thickness (or the gap's width), spatial/local_thickness.h
+  bool gap = false;      //!< a gap between two components, not a part's thickness
+  long vertices = 0;     //!< vertices where the surface is thinner than the finest edge
+  double finest_edge = 0; //!< min_edge_fraction · ℓ, the finest edge of the run's sizing
+  //! The largest ℓ (two significant digits, rounded down) whose finest edge is no longer than `size`.
+  double resolving_edge_length = 0;
+};
+
+//! The thinnest part of `mesh` thinner than `pipeline.min_edge_fraction · pipeline.edge_length`
+//! (ℓ > 0), if any. The vertices of intersecting faces and their neighbours are left out: two
+//! sheets that cross are the flow's first surgery, not a thin part. Throws InvalidParameter for
+//! ℓ ≤ 0, InvalidMesh for a surface without triangles.
+std::optional<ThinPart> thinnest_unresolved_part(const Mesh& mesh, const RetriangulationOptions& pipeline);
+
+//! One sentence for a user: where the part is, how thin, and the --edge-length that resolves it.
+std::string describe_thin_part(const ThinPart& part, double edge_length);
+
+} // namespace sdflow
