@@ -9,17 +9,21 @@ cd "$(dirname "$0")/.."
 if [[ "${1:-}" == "--sanitize" ]]; then scripts/install-deps.sh --fuzz; else scripts/install-deps.sh; fi
 jobs=$(nproc)
 
+skip=() # ctest arguments leaving tests out
 run_suite() { # build directory, then extra CMake arguments
   local dir=$1; shift
   mkdir -p "$dir"
   cmake -S . -B "$dir" -G Ninja -DSDFLOW_BUILD_TESTS=ON -DSDFLOW_BUILD_CLI=ON -DSDFLOW_BUILD_MESHLAB_PLUGIN=OFF "$@" \
     > "$dir/configure.log" || { cat "$dir/configure.log"; return 1; }
   cmake --build "$dir" -j "$jobs"
-  ctest --test-dir "$dir" --output-on-failure -j "$jobs"
+  ctest --test-dir "$dir" --output-on-failure -j "$jobs" "${skip[@]}"
 }
 
 if [[ "${1:-}" == "--sanitize" ]]; then
   export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+  # The long convergence studies run in the optimised suite only (tests/long-under-sanitizers.txt says
+  # which, and which shorter tests run their code under the sanitizers).
+  skip=(-E "$(grep -v '^#' tests/long-under-sanitizers.txt | paste -sd'|')")
   # Line tables only (-g1): enough for the sanitizers' stack traces, and much quicker to compile and
   # link than full debug information, which CI's time budget does not afford. Clang, with the fuzz
   # harnesses: the toolbox is compiled once, instrumented for both (the tests run with libFuzzer's

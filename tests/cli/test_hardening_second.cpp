@@ -106,8 +106,9 @@ TEST_F(HardeningSecond, every_verb_prints_one_json_object_whatever_the_libraries
     SCOPED_TRACE(call);
     const auto r = run_sdflow_streams(call + " --json");
     ASSERT_TRUE(json_query(r.out, "len(d)")) << "stdout is not one JSON document:\n" << r.out << "\nstderr:\n" << r.err;
-    if (r.exit_code != 0)
+    if (r.exit_code != 0) {
       EXPECT_EQ(json_query(r.out, "d['exit_code']"), std::to_string(r.exit_code)) << r.out;
+    }
     EXPECT_NE(r.exit_code, 1) << r.err;
   }
 }
@@ -176,7 +177,7 @@ TEST_F(HardeningSecond, a_far_away_vertex_is_refused_by_every_verb_that_meshes_w
     const auto stats = run_sdflow("stats " + path(file));
     EXPECT_EQ(stats.exit_code, 2) << stats.output;
     expect_mentions(stats.output, "a vertex far from the others");
-    for (const std::string call : {"run --steps 2 --out " + path(file + "_run") + " --input " + path(file),
+    for (const std::string& call : {"run --steps 2 --out " + path(file + "_run") + " --input " + path(file),
                                    "run --steps 2 --no-retriangulate --out " + path(file + "_guard") + " --input " +
                                        path(file),
                                    "retriangulate -o " + path("out.ply") + " " + path(file),

@@ -1,4 +1,5 @@
 target_sources(sdflow_tests PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/test_angle.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_normals.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_curvature.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_cotangent_curvature.cpp

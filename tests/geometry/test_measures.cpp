@@ -98,6 +98,17 @@ TEST(Measures, component_volumes_separate_bodies)
   EXPECT_NEAR(volumes[1], enclosed_volume(b), 1e-11);
 }
 
+TEST(Measures, mean_edge_length_at_a_vertex_is_the_whole_meshs_per_vertex_mean)
+{
+  const Mesh torus = analytic::torus(24, 12, 2.0, 0.7);
+  const Eigen::VectorXd all = vertex_mean_edge_lengths(torus);
+  for (const auto v : torus.vertices())
+    EXPECT_NEAR(mean_edge_length_at(torus, v), all[v.idx()], 1e-15 * all[v.idx()]);
+  Mesh lone = torus;
+  const auto isolated = lone.add_vertex(Mesh::Point(9, 9, 9));
+  EXPECT_EQ(mean_edge_length_at(lone, isolated), 0);
+}
+
 TEST(Measures, curvature_deviation_vanishes_on_a_constant_and_matches_hand_values)
 {
   const Eigen::VectorXd areas = Eigen::Vector3d(1, 2, 1);

@@ -14,7 +14,6 @@
 namespace sdflow {
 namespace {
 
-constexpr double infinity = std::numeric_limits<double>::infinity();
 
 using Order = ParameterEntry::Order;
 

@@ -339,8 +339,6 @@ Eigen::VectorXd FlowSolver::solve(const FlowSystem& system, const Eigen::VectorX
   return w;
 }
 
-void FlowSolver::forget_factorisation() { impl_->factorised = false; }
-
 void FlowSolver::carry_ordering(std::span<const int> nearest_old, const SparseMatrix& laplacian)
 {
   Impl& m = *impl_;

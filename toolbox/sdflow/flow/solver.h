@@ -104,9 +104,6 @@ public:
   Eigen::VectorXd solve(const FlowSystem& system, const Eigen::VectorXd& rhs,
                         std::span<const Eigen::VectorXd> guesses = {}, SolveReport* report = nullptr);
 
-  //! Drop the numeric factor so the next solve factorises (e.g. after connectivity changed).
-  void forget_factorisation();
-
   //! After a re-triangulation to a surface with Laplacian `laplacian`: the next analysis takes the
   //! ordering carried from the surface analysed so far (carried_ordering.h; `nearest_old[v]` is new
   //! vertex v's nearest old vertex) instead of ordering afresh, and the factor is dropped. Without

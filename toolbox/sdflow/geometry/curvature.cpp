@@ -1,6 +1,7 @@
 #include "sdflow/geometry/curvature.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/geometry/angle.h"
 #include "sdflow/geometry/cotangent_curvature.h"
 #include "sdflow/geometry/laplacian.h"
 
@@ -27,7 +28,7 @@ Eigen::VectorXd mean_curvature(const Mesh& mesh, const VertexVectors& normals, c
       const Eigen::Vector3d n = normals.row(idx[c]).transpose();
       const Eigen::Vector3d ei = p[(c + 1) % 3] - p[c];
       const Eigen::Vector3d ej = p[(c + 2) % 3] - p[c];
-      const double alpha = std::atan2(ei.cross(ej).norm(), ei.dot(ej));
+      const double alpha = angle_between(ei, ej);
       // The corner angle α splits half to each of its two edges' normal curvatures.
       const double kappa_i = 2.0 * n.dot(ei) / ei.squaredNorm();
       const double kappa_j = 2.0 * n.dot(ej) / ej.squaredNorm();

@@ -99,6 +99,17 @@ double mean_edge_length(const Mesh& mesh)
   return sum / static_cast<double>(std::max<std::size_t>(mesh.n_edges(), 1));
 }
 
+double mean_edge_length_at(const Mesh& mesh, Mesh::VertexHandle v)
+{
+  double sum = 0;
+  int count = 0;
+  for (const auto h : mesh.voh_range(v)) {
+    sum += mesh.calc_edge_length(h);
+    ++count;
+  }
+  return count > 0 ? sum / count : 0;
+}
+
 Eigen::VectorXd vertex_mean_edge_lengths(const Mesh& mesh)
 {
   Eigen::VectorXd sum = Eigen::VectorXd::Zero(mesh.n_vertices());

@@ -44,6 +44,10 @@ double mean_edge_length(const Mesh& mesh);
 //! time-step rule's displacement bound (time_step.h).
 Eigen::VectorXd vertex_mean_edge_lengths(const Mesh& mesh);
 
+//! Mean length of the edges at `v`, summed around it (0 at an isolated vertex): for the few
+//! vertices a stage sizes (a hole's loop, the surroundings of a crossing) without the whole mesh's.
+double mean_edge_length_at(const Mesh& mesh, Mesh::VertexHandle v);
+
 //! Area-weighted mean curvature H̃ and its L1 deviation H_dev (§2.2.4), weights A(U_i).
 struct CurvatureDeviation {
   double mean = 0;          //!< H̃ = Σ H_i A_i / Σ A_i

@@ -1,6 +1,7 @@
 #include "sdflow/geometry/principal_curvature.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/geometry/angle.h"
 #include "sdflow/geometry/detail/mixed_voronoi.h"
 #include "sdflow/geometry/normals.h"
 
@@ -17,8 +18,7 @@ namespace {
 //! The angle of the corner at `p` between the edges to `a` and `b`.
 double corner_angle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b)
 {
-  const Eigen::Vector3d u = a - p, w = b - p;
-  return std::atan2(u.cross(w).norm(), u.dot(w));
+  return angle_between(a - p, b - p);
 }
 
 //! κ = |H| + √max(H² − K, 0) with K = (2π − Σα)/A at interior vertices with area; boundary vertices
@@ -80,7 +80,7 @@ Eigen::VectorXd largest_principal_curvature(const Mesh& mesh)
       const Eigen::Vector3d edge = t.point[(c + 2) % 3] - t.point[(c + 1) % 3];
       laplacian_x.row(j) += half_cot * edge.transpose();
       laplacian_x.row(k) -= half_cot * edge.transpose();
-      angle_sums[t.index[c]] += std::atan2(a.cross(b).norm(), dots[c]);
+      angle_sums[t.index[c]] += angle_between(a, b);
     }
     detail::add_mixed_voronoi_areas(t.point, t.index, dots, twice_area, areas);
   }

@@ -1,5 +1,7 @@
 #include "sdflow/geometry/quality.h"
 
+#include "sdflow/geometry/angle.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -15,7 +17,7 @@ std::array<double, 3> corner_angles(const Mesh& mesh, Mesh::FaceHandle f)
   std::array<double, 3> angles{};
   for (int c = 0; c < 3; ++c) {
     const Eigen::Vector3d a = p[(c + 1) % 3] - p[c], b = p[(c + 2) % 3] - p[c];
-    angles[c] = std::atan2(a.cross(b).norm(), a.dot(b));
+    angles[c] = angle_between(a, b);
   }
   return angles;
 }
@@ -33,7 +35,7 @@ double smallest_angle_deg(const Mesh& mesh, Mesh::FaceHandle f)
       corner = c;
     }
   const Eigen::Vector3d a = p[(corner + 1) % 3] - p[corner], b = p[(corner + 2) % 3] - p[corner];
-  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / std::numbers::pi;
+  return angle_between(a, b) * 180 / std::numbers::pi;
 }
 
 MeshQuality mesh_quality(const Mesh& mesh)

@@ -763,11 +763,6 @@ TriangleSoup triangle_soup(const PolygonSoup& soup, std::string_view source)
   return out;
 }
 
-RepairResult repair_mesh_file(const std::filesystem::path& file, const RepairOptions& options)
-{
-  return repair_soup(read_polygon_soup(file), file.string(), options);
-}
-
 BuiltMesh read_mesh_or_repair(const std::filesystem::path& file)
 {
   const PolygonSoup soup = read_polygon_soup(file);

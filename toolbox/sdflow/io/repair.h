@@ -104,9 +104,6 @@ bool is_repairable(std::string_view code);
 //! repair fixes, when some remain.
 RepairResult repair_soup(const PolygonSoup& soup, std::string_view source, const RepairOptions& options = {});
 
-//! Read a mesh file and repair it (read_polygon_soup() + repair_soup()).
-RepairResult repair_mesh_file(const std::filesystem::path& file, const RepairOptions& options = {});
-
 //! Read a mesh as read_mesh() does; when validation refuses it only for findings repair_soup()
 //! fixes, repair it instead: one warning is logged, and each repair is a warning finding (code
 //! and message). For tools that work on any surface the file describes (component selection,

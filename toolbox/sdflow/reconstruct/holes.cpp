@@ -1,6 +1,8 @@
 #include "sdflow/reconstruct/holes.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/geometry/angle.h"
+#include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/log.h"
 
@@ -65,11 +67,6 @@ struct Weight {
 };
 
 double fold(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return 1 - a.dot(b); }
-
-double normal_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b)
-{
-  return std::atan2(a.cross(b).norm(), a.dot(b));
-}
 
 //! Minimum-weight triangulation of the loop polygon by dynamic programming over its sub-polygons
 //! v_i .. v_k (Liepa 2003, after Barequet & Sharir 1995): O(n³) time, O(n²) memory. Returns the
@@ -154,7 +151,7 @@ std::vector<std::array<int, 3>> minimum_weight_triangulation(const Mesh& mesh, c
 
 double corner_angle(const Eigen::Vector3d& at, const Eigen::Vector3d& a, const Eigen::Vector3d& b)
 {
-  return normal_angle(a - at, b - at);
+  return angle_between(a - at, b - at);
 }
 
 //! The patch being refined and faired: its faces, and the target edge length σ at its vertices.
@@ -355,15 +352,8 @@ FilledHoles fill_holes(const Mesh& input, const HoleFillingOptions& options)
   // Target edge length at each loop vertex: the mean of its edges before any patch exists.
   std::vector<double> sigma(mesh.n_vertices(), 0);
   for (const auto& loop : loops)
-    for (auto v : loop.vertices) {
-      double sum = 0;
-      int count = 0;
-      for (auto h : mesh.voh_range(v)) {
-        sum += mesh.calc_edge_length(h);
-        ++count;
-      }
-      sigma[v.idx()] = sum / count;
-    }
+    for (auto v : loop.vertices)
+      sigma[v.idx()] = mean_edge_length_at(mesh, v);
 
   std::vector<char> in_patch;
   for (const auto& loop : loops) {

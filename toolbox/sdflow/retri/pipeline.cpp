@@ -193,17 +193,9 @@ std::vector<double> adapted_targets(const Mesh& clean, const std::vector<FacePai
           grown[w.idx()] = true;
     near.swap(grown);
   }
-  for (const auto v : clean.vertices()) {
-    if (!near[v.idx()])
-      continue;
-    double sum = 0;
-    int count = 0;
-    for (const auto e : clean.ve_range(v)) {
-      sum += clean.calc_edge_length(e);
-      ++count;
-    }
-    target[v.idx()] = std::clamp(count > 0 ? sum / count : ell, min_length, ell);
-  }
+  for (const auto v : clean.vertices())
+    if (near[v.idx()])
+      target[v.idx()] = std::clamp(clean.valence(v) > 0 ? mean_edge_length_at(clean, v) : ell, min_length, ell);
   return target;
 }
 
