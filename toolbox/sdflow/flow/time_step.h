@@ -27,11 +27,11 @@
 //! The rule above takes over at the first step whose surface is resolved everywhere, or after
 //! start_steps steps (is_start_step), from the last start step's τ.
 //! With constant τ or a schedule, a step that turns a triangle over, produces a non-finite
-//! position or changes a closed component's volume by more than `max_volume_change` (the adaptive
-//! bound: such a step is no approximation of the flow, which keeps volumes) stops the run at once
-//! (SolverFailure; TimeStepTooLarge for the volume, which says by how much τ is too large), unless
-//! `schedule_retries` > 0: then a schedule's
-//! step is tried again with τ halved, up to that many times in a row, and the next step returns to
+//! position or changes a component's material volume (closed, or open with its boundary) by more
+//! than `max_volume_change` (the adaptive bound: such a step is no approximation of the flow, which
+//! keeps volumes) stops the run at once (SolverFailure; TimeStepTooLarge for the volume, which says
+//! by how much τ is too large), unless `schedule_retries` > 0: then a schedule's step is tried again
+//! with τ halved, up to that many times in a row, and the next step returns to
 //! the table's τ (the step count follows the table; the time falls behind it by what was halved).
 //! A table step that still fails (after a re-triangulation, surface_diffusion.h) for a reason other
 //! than the volume bound is covered by
