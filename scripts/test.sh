@@ -26,8 +26,8 @@ if [[ "${1:-}" == "--sanitize" ]]; then
   skip=(-E "$(grep -v '^#' tests/long-under-sanitizers.txt | paste -sd'|')")
   # Line tables only (-g1): enough for the sanitizers' stack traces, and much quicker to compile and
   # link than full debug information, which CI's time budget does not afford. Clang, with the fuzz
-  # harnesses: the toolbox is compiled once, instrumented for both (the tests run with libFuzzer's
-  # coverage counters in, which cost them little).
+  # harnesses: the toolbox is compiled once, instrumented for both (its libFuzzer edge counters cost the
+  # tests little).
   run_suite build/sanitize -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DSDFLOW_SANITIZE=ON -DSDFLOW_BUILD_FUZZERS=ON
 else
