@@ -83,7 +83,9 @@ print(s["vertices"], s["boundary_loops"])' "$work/stats.json")
   echo "robustness.sh: [$index] $name ($vertices vertices, T = $end_time)" >&2
   start=$(date +%s%N)
   status=0
-  nice timeout -s INT "$budget" "$sdflow" -q run --input "$prepared" -o "$run" --end-time "$end_time" \
+  # SIGINT at the budget (the run stops at its next step with a checkpoint), SIGKILL 30 s later if
+  # a single step holds it longer.
+  nice timeout -k 30 -s INT "$budget" "$sdflow" -q run --input "$prepared" -o "$run" --end-time "$end_time" \
     > "$work/run.out" 2>&1 || status=$?
   wall=$(( ($(date +%s%N) - start) / 1000000 ))
   message=$(grep -v '^\s*$' "$work/run.out" | tail -1 | cut -c1-160 || true)
@@ -132,7 +134,8 @@ if first_change and edge:
     bound = (float(edge) / 4) ** 4
     early = "yes" if float(first_change) < bound else "no"
 outcome = "reached T" if reached else ("refused before step 1" if refused else
-          ("wall budget" if status == 124 else f"exit {status}"))
+          ("wall budget" if status == 124 else
+           "killed: one step outlasted the budget by 30 s" if status == 137 else f"exit {status}"))
 print("\t".join([name, source, vertices, repaired, str(status), outcome, steps, f"{t_end:.3g}", f"{end_time:.3g}",
                  f"{float(wall) / 1000:.1f}", edge, drift, early, " · ".join(events) or "none",
                  message.replace("\t", " ").replace("|", "/") if not reached else ""]))
