@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Re-runs the validation of the 3-D flow against exact references and writes the tables of
-# docs/validation.md (between its "<!-- tables -->" markers) from what it measured:
+# docs/validation.md (each section between its "<!-- tables: NAME -->" markers, when all its runs
+# finished; --only NAME re-measures one section and leaves the others) from what it measured:
 #   - the torus R = 3, r = 1.5 (R/r = 2; the paper's R = 6, r = 3 is the same shape, its times 16× these):
 #     when its hole seals, at three resolutions, with the defaults and with --preset paper;
 #   - the paper's dumbbell (samples/dumbbell.toml's shape): when its neck pinches off, likewise;
@@ -30,7 +31,7 @@ while (($#)); do
     --only) only=$2; shift 2 ;;
     --sdflow) sdflow=$2; shift 2 ;;
     --with) with=$2; shift 2 ;;
-    -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "validation.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -51,7 +52,7 @@ work=$(realpath "$work")
 torus_vertices=(5000 15000 30000)
 dumbbell_vertices=(5000 10000 20000 40000)
 capsule_ratios=(5 6 7 7.5 8 9 10 12)
-capsule_edges=(0.2 0.15 0.11)
+capsule_edges=(0.2 0.15 0.11 0.08)
 paper_capsule_edge=0.13
 
 # --- the runs -----------------------------------------------------------------------------------
@@ -197,7 +198,8 @@ properties() { # FILTER: prints NAME VALUE lines
   rm -f "$xml"
 }
 
-tables=$(mktemp)
+# Each section's table goes to its own file, then between its markers in the doc.
+tables_dir=$(mktemp -d)
 {
   if want modes && [[ -x $tests_binary ]]; then
     echo "#### Sphere modes (3-D flow, defaults, extrapolated steps, ±ε averaged, ε = 0.01)"
@@ -222,6 +224,8 @@ tables=$(mktemp)
       sort -t'|' -k2,2gr
     echo
   fi
+} > "$tables_dir/modes"
+{
   if want torus; then
     ref=$(reference torus --major 3 --minor 1.5 --stop-at-first-event | cut -d' ' -f2)
     echo "#### Torus R = 3, r = 1.5: time at which the hole seals"
@@ -235,6 +239,8 @@ tables=$(mktemp)
     echo "volume drift $(volume_drift torus_15000_full) without \`--conserve-volume\`, $(tail -n 1 "$(metrics torus_15000_full)" 2>/dev/null | cut -d, -f1) steps, $(seconds torus_15000_full)."
     echo
   fi
+} > "$tables_dir/torus"
+{
   if want dumbbell; then
     ref=$(reference dumbbell --stop-at-first-event | cut -d' ' -f2)
     echo "#### The paper's dumbbell (R = 6, neck width 1, centres 18 apart): time at which the neck pinches off"
@@ -243,13 +249,15 @@ tables=$(mktemp)
     echo
     event_table dumbbell components "$ref" "${dumbbell_vertices[@]}"
   fi
+} > "$tables_dir/dumbbell"
+{
   if want capsules; then
     echo "#### Capsules of radius 1 (D = 2), length L: bodies at the end (t = 50) and time of the first break-up"
     echo
     header="| L/D | 1-D reference |"
     rule="|---|---|"
     for h in "${capsule_edges[@]}"; do header+=" default, edge $h |"; rule+="---|"; done
-    header+=" default, extrapolated t | --preset paper, edge $paper_capsule_edge | wall time (default, finest) |"; rule+="---|---|---|"
+    header+=" order, finest two | default, extrapolated t | --preset paper, edge $paper_capsule_edge | wall time (default, finest) |"; rule+="---|---|---|---|"
     echo "$header"
     echo "$rule"
     for ratio in "${capsule_ratios[@]}"; do
@@ -261,24 +269,43 @@ tables=$(mktemp)
         row+=" $(final_components "capsule_${ratio}_${h}_default"), t = $t |"
         points+=("$h" "$t")
       done
-      row+=" $(extrapolate "${points[@]}") |"
+      row+=" $(observed_order "${points[@]: -4:1}" "${points[@]: -3:1}" "${points[@]: -2:1}" "${points[@]: -1}" "$ref_t") |"
+      row+=" $(extrapolate "${points[@]: -6}") |"
       row+=" $(final_components "capsule_${ratio}_${paper_capsule_edge}_paper"), t = $(event_time "capsule_${ratio}_${paper_capsule_edge}_paper" components) |"
       row+=" $(seconds "capsule_${ratio}_${capsule_edges[-1]}_default") |"
       echo "$row"
     done
     echo
   fi
-} > "$tables"
+} > "$tables_dir/capsules"
 
+# A section measured by this call replaces the text between its markers, "<!-- tables: NAME -->" and
+# "<!-- end of tables: NAME -->"; the other sections and the prose around them stay as they are.
 doc=docs/validation.md
-if [[ -z $only && -z $with && -f $doc ]] && grep -q '<!-- tables -->' "$doc"; then
-  awk -v tables="$tables" '
-    /<!-- tables -->/ { print; while ((getline line < tables) > 0) print line; skip = 1; next }
-    /<!-- end of tables -->/ { skip = 0 }
-    !skip { print }' "$doc" > "$doc.tmp" && mv "$doc.tmp" "$doc"
-  echo "validation.sh: tables written to $doc"
-fi
-cat "$tables"
-rm -f "$tables"
+# A section is written only when every one of its runs finished: a table in the doc comes from one
+# complete measurement, never from a mix of new runs and dashes.
+unfinished() { # PREFIX: how many of the plan's runs named PREFIX* have not finished
+  local entry count=0
+  for entry in "${plan[@]}"; do
+    [[ ${entry%%|*} == "$1"* && ! -f $work/${entry%%|*}/done ]] && count=$((count + 1))
+  done
+  echo "$count"
+}
+declare -A run_prefix=([modes]=none [torus]=torus_ [dumbbell]=dumbbell_ [capsules]=capsule_)
+for section in modes torus dumbbell capsules; do
+  [[ -s $tables_dir/$section ]] || continue
+  missing=$(unfinished "${run_prefix[$section]}")
+  if ((missing > 0)); then
+    echo "validation.sh: the $section tables are not written to $doc: $missing of its runs did not finish"
+  elif [[ -z $with && -f $doc ]] && grep -q "<!-- tables: $section -->" "$doc"; then
+    awk -v tables="$tables_dir/$section" -v begin="<!-- tables: $section -->" -v end="<!-- end of tables: $section -->" '
+      $0 == begin { print; while ((getline line < tables) > 0) print line; skip = 1; next }
+      $0 == end { skip = 0 }
+      !skip { print }' "$doc" > "$doc.tmp" && mv "$doc.tmp" "$doc"
+    echo "validation.sh: the $section tables written to $doc"
+  fi
+  cat "$tables_dir/$section"
+done
+rm -rf "$tables_dir"
 }
 main "$@"
