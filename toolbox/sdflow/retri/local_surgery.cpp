@@ -15,6 +15,7 @@
 #include "sdflow/retri/remove_intersections.h"
 #include "sdflow/retri/surgery_patch.h"
 #include "sdflow/retri/zip_loops.h"
+#include "sdflow/spatial/nearest_points.h"
 
 #include <fmt/format.h>
 
@@ -286,8 +287,12 @@ bool new_faces_intersect(const PolygonSoup& soup, std::size_t first_new)
 //! through the axis, a sheet's part inside another), to be dropped, not rebuilt: at a pinch its
 //! points are an inside-out tube thinner than ℓ, which the reconstruction stitches to the two
 //! ends and the hole filling then fills across. A patch component without a cut vertex (a small
-//! component all inside the patch) is rebuilt as before.
-std::vector<char> crossed_over_vertices(const Mesh& patch, const RemovalResult& removal)
+//! component all inside the patch) is rebuilt as before. With a finite `reach`, a piece cut off
+//! from the cut is surface between crossings only when none of its vertices is farther than `reach`
+//! from every vertex of a removed face: a patch that is not local (the whole surface inside a band,
+//! fixed_rim.h) holds whole bodies that a pinch cut off from its cut.
+std::vector<char> crossed_over_vertices(const Mesh& patch, const RemovalResult& removal,
+                                        double reach = std::numeric_limits<double>::infinity())
 {
   int patch_count = 0, piece_count = 0;
   const std::vector<int> patch_component = face_component_ids(patch, &patch_count);
@@ -305,6 +310,18 @@ std::vector<char> crossed_over_vertices(const Mesh& patch, const RemovalResult& 
     for (const auto v : removal.mesh.fv_range(f))
       if (patch.is_boundary(patch.vertex_handle(removal.vertex_origin[static_cast<std::size_t>(v.idx())])))
         piece_reaches_cut[p] = 1;
+  }
+  if (std::isfinite(reach) && !removal.removed_faces.empty()) {
+    std::vector<Eigen::Vector3d> crossing;
+    for (const int f : removal.removed_faces)
+      for (const auto v : patch.fv_range(patch.face_handle(f)))
+        crossing.push_back(to_eigen(patch.point(v)));
+    const VertexVectors sites = point_rows(crossing), points = vertex_positions(removal.mesh);
+    const std::vector<int> nearest = nearest_points(sites, points);
+    for (const auto f : removal.mesh.faces())
+      for (const auto v : removal.mesh.fv_range(f))
+        if ((points.row(v.idx()) - sites.row(nearest[static_cast<std::size_t>(v.idx())])).norm() > reach)
+          piece_reaches_cut[static_cast<std::size_t>(piece[static_cast<std::size_t>(f.idx())])] = 1;
   }
   // A vertex where a crossed-over piece meets a kept one (a pinched vertex) stays.
   std::vector<char> crossed(removal.mesh.n_vertices(), 1);
@@ -348,8 +365,11 @@ Reconstruction reconstruct_by_piece(const OrientedPoints& oriented, const Retria
 }
 
 //! One attempt on one patch: rebuild it and put it back, or throw (AttemptFailed or any stage's error).
+//! `remesh_first`: stage 1 on the patch before the rebuild (the seam is remeshed after it either way,
+//! with options.remesh_iterations > 0).
 RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& selection, const RetriangulationOptions& options,
-                                    double ell, int input_boundary_loops, double hole_bound)
+                                    double ell, int input_boundary_loops, double hole_bound, bool remesh_first = true,
+                                    double between_crossings_reach = std::numeric_limits<double>::infinity())
 {
   RetriangulationResult r;
   r.edge_length = ell;
@@ -361,7 +381,7 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
   const Cut cut = cut_out(mesh, selection);
   const SizingField sizing = patch_sizing(cut.patch, ell, options.min_edge_fraction);
   Mesh patch = cut.patch;
-  if (options.remesh_iterations > 0) {
+  if (options.remesh_iterations > 0 && remesh_first) {
     RemeshResult remeshed = remesh_keeping_cut(cut.patch, sizing, ell, options.remesh_iterations);
     patch = std::move(remeshed.mesh);
     r.remesh = remeshed.statistics;
@@ -378,7 +398,7 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
   // Stage 3: the patch's points but those crossed over, then the context's, normals signed by the
   // surface's own orientation.
   start = Clock::now();
-  const std::vector<char> crossed = crossed_over_vertices(patch, removal);
+  const std::vector<char> crossed = crossed_over_vertices(patch, removal, between_crossings_reach);
   const auto crossed_count = static_cast<int>(std::count(crossed.begin(), crossed.end(), 1));
   const auto own = static_cast<Eigen::Index>(removal.mesh.n_vertices()) - crossed_count;
   const auto total = own + static_cast<Eigen::Index>(cut.context.size());
@@ -582,6 +602,17 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
 }
 
 } // namespace
+
+RetriangulationResult rebuild_inside_cut(const Mesh& mesh, const SurgeryPatch& patch, const RetriangulationOptions& options,
+                                         const CutRebuild& rebuild)
+{
+  try {
+    return rebuild_patch(mesh, patch, options, rebuild.edge_length, rebuild.boundary_loops, rebuild.hole_bound,
+                         rebuild.remesh_first, rebuild.between_crossings_reach);
+  } catch (const AttemptFailed& e) {
+    throw InvalidMesh(e.what());
+  }
+}
 
 void validate_local_surgery_options(const LocalSurgeryOptions& o)
 {

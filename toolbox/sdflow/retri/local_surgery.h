@@ -18,8 +18,10 @@
 
 #include "sdflow/mesh.h"
 #include "sdflow/retri/pipeline.h"
+#include "sdflow/retri/surgery_patch.h"
 #include "sdflow/spatial/intersect.h"
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -45,6 +47,28 @@ struct LocalSurgery {
   int attempts = 0;    //!< rebuilds made
   double patch_radius = 0; //!< the radius of the last patch tried (0: none was)
 };
+
+//! What rebuild_inside_cut needs besides the pipeline's options.
+struct CutRebuild {
+  double edge_length = 0;  //!< ℓ (> 0)
+  int boundary_loops = 0;  //!< the result must have as many boundary loops (the input's)
+  double hole_bound = 0;   //!< inner holes of the rebuild shorter than this are filled (stage 5)
+  bool remesh_first = true; //!< stage 1 on the patch before its rebuild (off: it was remeshed already)
+  //! A piece that the removal of the crossings cut off from the cut is dropped as surface between
+  //! crossings (a pinched neck's inside-out wall) only when no vertex of it is farther than this
+  //! from a removed face; infinite: always, as in a patch around the crossings. A patch that is not
+  //! local gives a finite reach, or it would drop the bodies a pinch cut off.
+  double between_crossings_reach = std::numeric_limits<double>::infinity();
+};
+
+//! The rebuild of one surgery attempt on a given patch (`patch.in_patch`, a manifold whose cut is a
+//! set of simple loops, as surgery_patch makes it): the patch's faces are remeshed (unless
+//! `remesh_first` is off), stripped of their crossings, rebuilt from their points with normals
+//! signed by the surface's own orientation, zipped to the cut and remeshed with the cut fixed;
+//! every other face is kept bit for bit. Throws InvalidMesh (or a stage's error) when the rebuild
+//! cannot be put back (its reason in the message).
+RetriangulationResult rebuild_inside_cut(const Mesh& mesh, const SurgeryPatch& patch, const RetriangulationOptions& options,
+                                         const CutRebuild& rebuild);
 
 //! Throws InvalidParameter for options out of range.
 void validate_local_surgery_options(const LocalSurgeryOptions& options);

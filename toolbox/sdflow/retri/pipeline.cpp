@@ -8,6 +8,8 @@
 #include "sdflow/log.h"
 #include "sdflow/reconstruct/reconstruct_apart.h"
 #include "sdflow/retri/components.h"
+#include "sdflow/retri/fixed_rim.h"
+#include "sdflow/retri/open_orientation.h"
 #include "sdflow/retri/remove_intersections.h"
 #include "sdflow/retri/surface_union.h"
 #include "sdflow/spatial/intersect.h"
@@ -444,7 +446,22 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
       std::max(0.0, r.seconds.intersections + r.seconds.components - seconds_since(side_by_side));
   r.intersecting_pairs = static_cast<int>(pairs.size());
 
-  if (!pairs.empty() || options.always_rebuild) {
+  if ((!pairs.empty() || options.always_rebuild) && options.keep_boundary && !boundary_loops(mesh).empty()) {
+    // A fixed rim: the band along it is kept, the rest rebuilt inside it (fixed_rim.h).
+    start = Clock::now();
+    RetriangulationResult inside = rebuild_keeping_rim(mesh, pairs, options, r.edge_length, hole_bound);
+    r.removed_faces = inside.removed_faces;
+    r.removed_points = inside.removed_points;
+    r.unused_points = inside.unused_points;
+    r.filled_holes = inside.filled_holes;
+    r.dropped_components += inside.dropped_components;
+    r.remesh.splits += inside.remesh.splits;
+    r.remesh.collapses += inside.remesh.collapses;
+    r.remesh.flips += inside.remesh.flips;
+    r.rebuilt = r.rim_kept = true;
+    mesh = std::move(inside.mesh);
+    r.seconds.reconstruction = seconds_since(start);
+  } else if (!pairs.empty() || options.always_rebuild) {
     start = Clock::now();
     RemovalResult removal = remove_self_intersections(mesh, std::move(pairs));
     r.removed_faces = static_cast<int>(removal.removed_faces.size());
@@ -501,6 +518,8 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
   r.components_after = unrebuilt->components;
   r.open_holes = unrebuilt->open_holes;
   r.mesh = std::move(unrebuilt->mesh);
+  if (r.rebuilt)
+    r.turned_open_components = orient_open_components_like(input, r.mesh);
 
   logger().debug("re-triangulated: {}", retriangulation_summary(r));
   return r;
@@ -516,7 +535,10 @@ std::string retriangulation_summary(const RetriangulationResult& r)
   if (r.rebuilt)
     s += fmt::format("; {} intersecting pairs, {} faces removed, {} points dropped, rebuilt{}, {} holes filled",
                      r.intersecting_pairs, r.removed_faces, r.removed_points,
-                     r.rebuilt_apart ? " (each piece apart: together they bridged a cut)" : "", r.filled_holes);
+                     r.rim_kept        ? " inside the band kept along the fixed boundary"
+                     : r.rebuilt_apart ? " (each piece apart: together they bridged a cut)"
+                                       : "",
+                     r.filled_holes);
   if (r.patch_faces > 0)
     s += fmt::format(" (locally: a patch of {} faces)", r.patch_faces);
   if (r.remeshing_crossings > 0)
@@ -527,6 +549,8 @@ std::string retriangulation_summary(const RetriangulationResult& r)
              : fmt::format("; the remeshing made {} face pairs of a surface that did not cross itself cross: redone "
                            "{} times finer there",
                            r.remeshing_crossings, r.refinements);
+  if (r.turned_open_components > 0)
+    s += fmt::format("; {} open components the rebuild returned turned over turned back", r.turned_open_components);
   if (r.uniform_fallback)
     s += "; uniform ℓ (the adapted one left crossing sheets)";
   s += fmt::format("; components {} → {}", r.components_before, r.components_after);

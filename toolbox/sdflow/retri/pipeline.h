@@ -10,6 +10,8 @@
 //!    when that joins two pieces stage 2 left apart (a bridge across the cut at a pinch), each piece
 //!    is rebuilt on its own (reconstruct/reconstruct_apart.h);
 //! 5. holes shorter than a bound are filled (reconstruct/holes.h);
+//!    with a fixed boundary (keep_boundary), stages 2–5 keep a band of faces along it and rebuild
+//!    the surface inside the band (fixed_rim.h);
 //! 6. debris is dropped: components with fewer triangles than a bound, and closed components that
 //!    enclose almost no volume (a collapsed double sheet), both before and after stage 5 (components.h).
 //! Stages 3–5 run only when stage 2 found something to remove (or when asked to always run):
@@ -42,8 +44,10 @@ struct RetriangulationOptions {
   //! triangles (remesh.h, RemeshOptions::curved_projection), so a remeshing does not thin a neck;
   //! onto the flat ones when the surface intersects itself (no smooth surface to lift onto there).
   bool curved_projection = true;
-  //! Stage 1 keeps the boundary loops' vertices where they are (BoundaryMode::keep), as a flow
-  //! with a fixed rim needs (flow/boundary_condition.h); off, it remeshes them along the loops.
+  //! The boundary loops stay as they are, vertex for vertex, as a flow with a fixed rim needs
+  //! (flow/boundary_condition.h): stage 1 keeps their vertices (BoundaryMode::keep), and stages 2–5
+  //! keep a band of faces along them and rebuild only the surface inside it (fixed_rim.h). Off,
+  //! stage 1 remeshes them along the loops and the rebuild re-triangulates them.
   bool keep_boundary = false;
   //! Stage 1 must not make a surface that does not cross itself cross (a thin part collapsed, two
   //! close sheets pulled through each other, a crease): stage 2 would cut it and the rebuild change
@@ -83,11 +87,15 @@ struct RetriangulationResult {
   int intersecting_pairs = 0;   //!< stage 2
   int removed_faces = 0;        //!< stage 2
   bool rebuilt = false;         //!< stages 3–5 ran
+  bool rim_kept = false;        //!< stages 2–5 kept a band along a fixed boundary and rebuilt inside it (fixed_rim.h)
   //! Stage 4 rebuilt each piece stage 2 left apart: rebuilt together, two were joined across a cut.
   bool rebuilt_apart = false;
   int removed_points = 0;       //!< stage 3: inconsistently oriented (local surgery: or crossed over)
   int unused_points = 0;        //!< stage 4: points no triangle uses
   int filled_holes = 0;         //!< stage 5
+  //! Open components the rebuild returned turned over against the input, turned back
+  //! (open_orientation.h); closed ones are oriented by validation.
+  int turned_open_components = 0;
   int open_holes = 0;           //!< stage 5: boundary loops left open (true boundaries included)
   int components_before = 0;    //!< components of the input
   int components_after = 0;     //!< components of the result

@@ -2,7 +2,9 @@
 target_sources(sdflow_toolbox PRIVATE
   sdflow/retri/components.cpp
   sdflow/retri/input_checks.cpp
+  sdflow/retri/fixed_rim.cpp
   sdflow/retri/local_surgery.cpp
+  sdflow/retri/open_orientation.cpp
   sdflow/retri/remove_intersections.cpp
   sdflow/retri/resolve_intersections.cpp
   sdflow/retri/surface_union.cpp

@@ -3,6 +3,7 @@
 #include "sdflow/spatial/detail/point_kd_tree.h"
 
 #include <cstdint>
+#include <utility>
 #include <numbers>
 #include <vector>
 
@@ -186,8 +187,13 @@ bool separate_split_fans(const Mesh& mesh, std::vector<char>& in_patch)
 SurgeryPatch surgery_patch(const Mesh& mesh, const std::vector<FacePair>& crossings, double radius,
                            int min_kept_faces)
 {
+  return completed_patch(mesh, faces_near_crossings(mesh, crossings, radius), min_kept_faces);
+}
+
+SurgeryPatch completed_patch(const Mesh& mesh, std::vector<char> in_patch, int min_kept_faces)
+{
   SurgeryPatch patch;
-  patch.in_patch = faces_near_crossings(mesh, crossings, radius);
+  patch.in_patch = std::move(in_patch);
   bool changed = true;
   while (changed) {
     changed = separate_split_fans(mesh, patch.in_patch);

@@ -28,6 +28,10 @@ struct SurgeryPatch {
 SurgeryPatch surgery_patch(const Mesh& mesh, const std::vector<FacePair>& crossings, double radius,
                            int min_kept_faces);
 
+//! The patch `in_patch` (by face index) grown as surgery_patch grows its first faces: until the
+//! kept surface is a manifold with a cut of simple loops, without sharp teeth or small islands.
+SurgeryPatch completed_patch(const Mesh& mesh, std::vector<char> in_patch, int min_kept_faces);
+
 //! Moves into the patch (`in_patch`, by face index) every face of a vertex around which the faces
 //! kept form more than one fan, until there is none; returns whether any face moved.
 bool separate_split_fans(const Mesh& mesh, std::vector<char>& in_patch);
