@@ -429,6 +429,30 @@ TEST(Validate, cavity_inside_a_body_is_oriented_out_of_the_material)
   }
 }
 
+TEST(Validate, a_bubble_under_a_surface_with_a_rim_is_a_cavity_of_its_material)
+{
+  // A dome (the upper half of a sphere of radius 2, open at z ≈ 0, facing out) bounds, with the cap
+  // over its rim, the material whose volume it counts (geometry/material_volume.h): a ball inside
+  // it is a bubble in that material and must face into itself; one beside it is a body.
+  Mesh dome = analytic::icosphere(3, 2.0);
+  for (const auto f : dome.faces()) {
+    double z = 0;
+    for (const auto v : dome.fv_range(f))
+      z += dome.point(v)[2];
+    if (z < 0)
+      dome.delete_face(f, true);
+  }
+  dome.garbage_collection();
+  const Mesh bubble = analytic::icosphere(2, 0.5, Eigen::Vector3d(0.2, 0, 0.9));
+  const Mesh beside = analytic::icosphere(2, 0.5, Eigen::Vector3d(4, 0, 0.9));
+  const BuiltMesh built =
+      build_mesh(soup_of(analytic::disjoint_union(analytic::disjoint_union(dome, bubble), beside)), "dome");
+  const std::vector<double> volumes = component_volumes(built.mesh);
+  ASSERT_EQ(volumes.size(), 3u);
+  EXPECT_NEAR(volumes[1], -enclosed_volume(bubble), exact_tolerance);
+  EXPECT_NEAR(volumes[2], enclosed_volume(beside), exact_tolerance);
+}
+
 TEST(Validate, disk_has_boundary_and_keeps_its_orientation)
 {
   const Mesh disk = analytic::disk(4);

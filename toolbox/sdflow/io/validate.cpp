@@ -16,6 +16,7 @@
 #include <cstring>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <numeric>
 #include <span>
@@ -479,9 +480,12 @@ std::vector<double> signed_volumes(const std::vector<Eigen::Vector3d>& points, c
   return volume;
 }
 
-//! How many other closed components enclose each closed component (0 for open ones): a point of
-//! the component is inside another when that one's winding number there (its triangles' solid
-//! angles, Van Oosterom & Strackee 1983, over 4π) is ±1 rather than 0. The point asked is the
+//! How many other components enclose each closed component (0 for open ones): a point of the
+//! component is inside another when that one's winding number there (its triangles' solid
+//! angles, Van Oosterom & Strackee 1983, over 4π) is ±1 rather than 0. An open component is
+//! closed for this by a cone over its boundary edges from their vertices' centroid, which bounds
+//! the material its material volume counts (geometry/material_volume.h closes each loop by such a
+//! fan): a bubble sealed off under the spheres of a surface with a rim is a cavity of that material. The point asked is the
 //! component's lexicographically largest vertex, so the answer does not depend on the order of
 //! vertices or faces. Where that point lies on the other surface (on one of its triangles, where
 //! the solid angle jumps by 4π, as where repaired components touch), its extreme vertices in the
@@ -515,21 +519,49 @@ std::vector<int> nesting_depths(const std::vector<Eigen::Vector3d>& points, cons
     }
     triangles_of[c].push_back(static_cast<int>(t));
   }
-  // |4π × winding number| of component d at p, or NaN when p is on one of d's triangles: in its
-  // plane (to rounding) and not clearly outside it, where the solid angle jumps by 4π.
+  // The cone closing each open component: its boundary edges (used by one of its triangles), each
+  // run against that triangle, and the apex.
+  std::vector<std::vector<std::array<int, 2>>> cone_edges(components.count);
+  std::vector<Eigen::Vector3d> apex(components.count, Eigen::Vector3d::Zero());
+  for (int d = 0; d < components.count; ++d) {
+    if (!components.open[d])
+      continue;
+    std::map<std::pair<int, int>, std::pair<int, std::array<int, 2>>> uses; // undirected edge → count, direction
+    for (const int t : triangles_of[d])
+      for (int k = 0; k < 3; ++k) {
+        const int a = triangles[t].v[k], b = triangles[t].v[(k + 1) % 3];
+        auto& use = uses[{std::min(a, b), std::max(a, b)}];
+        ++use.first;
+        use.second = {b, a};
+      }
+    for (const auto& [edge, use] : uses)
+      if (use.first == 1) {
+        cone_edges[d].push_back(use.second);
+        apex[d] += points[use.second[0]];
+      }
+    if (!cone_edges[d].empty())
+      apex[d] /= static_cast<double>(cone_edges[d].size());
+  }
+  // |4π × winding number| of component d (closed by its cone) at p, or NaN when p is on one of its
+  // triangles: in its plane (to rounding) and not clearly outside it, where the solid angle jumps by 4π.
   const auto winding_angle = [&](const Eigen::Vector3d& p, int d) {
     constexpr double coplanar = 1e-10;
     double angle = 0;
-    for (const int t : triangles_of[d]) {
-      const Eigen::Vector3d a = points[triangles[t].v[0]] - p, b = points[triangles[t].v[1]] - p,
-                            e = points[triangles[t].v[2]] - p;
+    const auto add = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& e) {
       const double la = a.norm(), lb = b.norm(), le = e.norm();
       const double scale = la * lb * le, det = a.dot(b.cross(e));
       const double cosine_part = scale + a.dot(b) * le + a.dot(e) * lb + b.dot(e) * la;
       if (std::abs(det) <= coplanar * scale && cosine_part <= coplanar * scale)
-        return std::numeric_limits<double>::quiet_NaN();
+        return false;
       angle += 2 * std::atan2(det, cosine_part);
-    }
+      return true;
+    };
+    for (const int t : triangles_of[d])
+      if (!add(points[triangles[t].v[0]] - p, points[triangles[t].v[1]] - p, points[triangles[t].v[2]] - p))
+        return std::numeric_limits<double>::quiet_NaN();
+    for (const auto& [a, b] : cone_edges[d])
+      if (!add(points[a] - p, points[b] - p, apex[d] - p))
+        return std::numeric_limits<double>::quiet_NaN();
     return std::abs(angle);
   };
   constexpr double pi = std::numbers::pi;
@@ -537,7 +569,7 @@ std::vector<int> nesting_depths(const std::vector<Eigen::Vector3d>& points, cons
     if (components.open[c])
       continue;
     for (int d = 0; d < components.count; ++d) {
-      if (d == c || components.open[d])
+      if (d == c)
         continue;
       for (int k = 0; k < probes; ++k) {
         const Eigen::Vector3d& p = points[probe[c][k]];
