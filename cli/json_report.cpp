@@ -1,7 +1,10 @@
 #include "json_report.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <iostream>
+#include <utility>
 
 namespace sdflow::cli {
 namespace {
@@ -47,6 +50,31 @@ toml::array findings_json(const std::vector<Finding>& findings)
   for (const Finding& f : findings)
     out.push_back(toml::table{{"severity", severity_name(f.severity)}, {"code", f.code}, {"message", f.message}});
   return out;
+}
+
+toml::table event_json(const StepEvent& event)
+{
+  toml::table e{{"kind", std::string(event_name(event.kind))}, {"step", static_cast<int64_t>(event.step)},
+                {"time", event.time}};
+  if (event.kind == StepEventKind::rejected)
+    e.insert("rejections", event.rejections);
+  if (const auto& m = event.retriangulation) {
+    e.insert("crossing_pairs", static_cast<int64_t>(m->crossing_pairs));
+    e.insert("crossing_size", m->crossing_size); // NaN (left out) unless the topology changed at a crossing
+    for (const auto& [name, t] : {std::pair{"before", m->before}, std::pair{"after", m->after}}) {
+      e.insert(fmt::format("components_{}", name), t.components);
+      e.insert(fmt::format("genus_{}", name), t.genus);
+      e.insert(fmt::format("boundary_loops_{}", name), t.boundary_loops);
+    }
+    e.insert("faces_before", static_cast<int64_t>(m->faces_before));
+    e.insert("faces_after", static_cast<int64_t>(m->faces_after));
+    e.insert("faces_rebuilt", static_cast<int64_t>(m->faces_rebuilt));
+    e.insert("volume_restored", m->volume_restored);
+    e.insert("debris_volume", m->debris_volume);
+  }
+  if (!event.detail.empty())
+    e.insert("detail", event.detail);
+  return e;
 }
 
 void print_json(toml::table root)

@@ -298,6 +298,10 @@ void run(const RunArguments& a)
                      {"rejected_trials", static_cast<int64_t>(result.rejected_trials)},
                      {"factorisations", static_cast<int64_t>(result.factorisations)},
                      {"interrupted", result.interrupted}};
+    toml::array events;
+    for (const StepEvent& e : result.events)
+      events.push_back(event_json(e));
+    root.insert("events", std::move(events));
     if (result.interrupted)
       root.insert("signal", signal_name);
     print_json(std::move(root));

@@ -15,13 +15,36 @@ from ._progress import make_progress
 class Event:
     """Something that happened in a step besides the step itself (metrics.csv's `event` column).
 
-    `kind` is one of "rejected", "remeshed", "surgery", "split", "merged", "fallback", "refused";
-    `detail` is the re-triangulation's line of events.log for "remeshed" to "merged" and "refused".
+    `kind` is one of "start", "rejected", "fallback", "remeshed", "surgery", "split", "merged",
+    "refused"; `detail` is the re-triangulation's line of events.log for "remeshed" to "merged" and
+    "refused" (why it was refused), the reason for "fallback". A re-triangulation's events carry
+    what it measured: the face pairs that crossed before it (`crossing_pairs`), the smallest neck or
+    gap at them where the topology changed (`crossing_size`, else None), the components, genus and
+    boundary loops before and after, the faces before, after and rebuilt, the relative volume
+    change the restoration made and the volume dropped as debris. Other events leave them None.
     """
     kind: str
     step: int
     time: float
     detail: str = ""
+    rejections: int = 0
+    crossing_pairs: int | None = None
+    crossing_size: float | None = None
+    components_before: int | None = None
+    components_after: int | None = None
+    genus_before: int | None = None
+    genus_after: int | None = None
+    boundary_loops_before: int | None = None
+    boundary_loops_after: int | None = None
+    faces_before: int | None = None
+    faces_after: int | None = None
+    faces_rebuilt: int | None = None
+    volume_restored: float | None = None
+    debris_volume: float | None = None
+
+
+class Start(Event):
+    """A start step: τ taken on stability alone while the mesh does not resolve the curvature."""
 
 
 class Rejected(Event):
@@ -53,7 +76,7 @@ class Fallback(Event):
     """A τ table's step failed even after its halvings: adaptive steps covered its τ of time."""
 
 
-_EVENT_TYPES = {"rejected": Rejected, "remeshed": Remeshed, "surgery": Surgery, "split": Split, "merged": Merged,
+_EVENT_TYPES = {"start": Start, "rejected": Rejected, "remeshed": Remeshed, "surgery": Surgery, "split": Split, "merged": Merged,
                 "fallback": Fallback, "refused": Refused}
 
 
@@ -86,18 +109,8 @@ def _notes(raw):
 
 
 def _step(raw):
-    step, time, tau, rejections, cg, factorised, event, notes = raw
-    details = {}
-    for _, _, text, _ in notes:
-        # "re-triangulated (surgery+split): detail" (SurfaceDiffusion::adopt_retriangulation)
-        if text.startswith("re-triangulated (") and "): " in text:
-            kinds, detail = text[len("re-triangulated ("):].split("): ", 1)
-            for kind in kinds.split("+"):
-                details[kind] = detail
-        elif text.startswith("re-triangulation refused: "):  # SurfaceDiffusion::note_refusal
-            details["refused"] = text[len("re-triangulation refused: "):]
-    events = tuple(_EVENT_TYPES.get(kind, Event)(kind, step, time, details.get(kind, ""))
-                   for kind in event.split("+") if kind)
+    step, time, tau, rejections, cg, factorised, events, notes = raw
+    events = tuple(_EVENT_TYPES.get(e["kind"], Event)(**e) for e in events)
     return Step(step, time, tau, rejections, cg, factorised, events, _notes(notes))
 
 

@@ -19,6 +19,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <optional>
 
@@ -54,10 +55,43 @@ py::list note_lines(const std::vector<FlowNote>& notes)
   return lines;
 }
 
-//! (step, time, tau, rejections, cg_iterations, factorised, event, notes): sdflow.Step's fields.
+//! A step's event as the dict sdflow.Event is made from: kind, step, time, detail, rejections and,
+//! for a re-triangulation's, its measures (RetriangulationMeasures; crossing_size None unless the
+//! topology changed at a crossing).
+py::dict event_dict(const StepEvent& e)
+{
+  py::dict d;
+  d["kind"] = std::string(event_name(e.kind));
+  d["step"] = e.step;
+  d["time"] = e.time;
+  d["detail"] = e.detail;
+  d["rejections"] = e.rejections;
+  if (const auto& m = e.retriangulation) {
+    d["crossing_pairs"] = m->crossing_pairs;
+    d["crossing_size"] = std::isfinite(m->crossing_size) ? py::object(py::float_(m->crossing_size)) : py::none();
+    d["components_before"] = m->before.components;
+    d["components_after"] = m->after.components;
+    d["genus_before"] = m->before.genus;
+    d["genus_after"] = m->after.genus;
+    d["boundary_loops_before"] = m->before.boundary_loops;
+    d["boundary_loops_after"] = m->after.boundary_loops;
+    d["faces_before"] = m->faces_before;
+    d["faces_after"] = m->faces_after;
+    d["faces_rebuilt"] = m->faces_rebuilt;
+    d["volume_restored"] = m->volume_restored;
+    d["debris_volume"] = m->debris_volume;
+  }
+  return d;
+}
+
+//! (step, time, tau, rejections, cg_iterations, factorised, events, notes): sdflow.Step's fields,
+//! the events as event_dict makes them.
 py::tuple step_tuple(const StepRecord& r, const std::vector<FlowNote>& notes)
 {
-  return py::make_tuple(r.step, r.time, r.tau, r.rejections, r.cg_iterations, r.factorised, r.event,
+  py::list events;
+  for (const StepEvent& e : r.events)
+    events.append(event_dict(e));
+  return py::make_tuple(r.step, r.time, r.tau, r.rejections, r.cg_iterations, r.factorised, events,
                         note_lines(notes));
 }
 
@@ -89,7 +123,7 @@ public:
       notes = flow_->take_notes();
     }
     last_tau_ = record.tau;
-    last_event_ = record.event;
+    last_event_ = event_names(record.events);
     return step_tuple(record, notes);
   }
 
@@ -350,7 +384,8 @@ void bind_flow(py::module_& m)
         for (long i = 0; i < steps && !flow.finished(); ++i)
           last = flow.step();
         const auto end = Clock::now();
-        const std::string row = metrics_row(flow.steps(), flow.time(), last.tau, flow.metrics(), last.event);
+        const std::string row =
+            metrics_row(flow.steps(), flow.time(), last.tau, flow.metrics(), event_names(last.events));
         return std::make_tuple(std::chrono::duration<double>(end - start).count(),
                                std::chrono::duration<double>(end - constructed).count(), row);
       },

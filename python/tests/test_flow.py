@@ -92,6 +92,13 @@ def test_flow_through_a_pinch_off(meshes):
     assert any(isinstance(e, sdflow.Surgery) for e in last.events)
     split = next(e for e in flow.events if isinstance(e, sdflow.Split))
     assert split.step == last.step and split.detail and "split" in last.event
+    # What the re-triangulation measured comes with the event, not parsed from its log line.
+    assert (split.components_before, split.components_after, split.genus_before, split.genus_after) == (1, 2, 0, 0)
+    assert split.crossing_pairs > 0 and split.crossing_size is not None and split.crossing_size >= 0
+    assert 0 < split.faces_rebuilt <= split.faces_before and split.faces_after == len(flow.F)
+    surgery = next(e for e in last.events if isinstance(e, sdflow.Surgery))
+    assert surgery.faces_rebuilt == split.faces_rebuilt and surgery.detail == split.detail
+    assert all(e.crossing_pairs is None for e in flow.events if isinstance(e, sdflow.Rejected))
     assert 0.1 < last.time < 0.3
     assert flow.metrics["components"] == 2
     s = sdflow.stats(flow.V, flow.F, tetgen=False)

@@ -6,6 +6,7 @@
 #include "sdflow/flow/simulation.h"
 #include "sdflow/io/io.h"
 #include "support/analytic_meshes.h"
+#include "support/json_query.h"
 #include "support/run_command.h"
 
 #include <gtest/gtest.h>
@@ -83,6 +84,38 @@ TEST(RunCommand, unstable_explicit_run_exits_3_and_bad_input_exits_2)
   EXPECT_EQ(no_out.exit_code, 2) << no_out.output;
   const auto no_stop = analytic::run_sdflow("run --input " + (dir / "e.ply").string() + " --out " + (dir / "y").string());
   EXPECT_EQ(no_stop.exit_code, 2) << no_stop.output;
+}
+
+// The events of --json are the flow's typed events: kinds, steps and the re-triangulation's numbers,
+// consistent with metrics.csv's rows.
+TEST(RunCommand, json_lists_the_pinch_off_with_its_numbers)
+{
+  test::TempDir dir;
+  const auto shape = analytic::run_sdflow("shape dumbbell --radius 3 --separation 9 --edge-length 0.5 -o " +
+                                          (dir / "d.ply").string());
+  ASSERT_EQ(shape.exit_code, 0) << shape.output;
+  const auto r = analytic::run_sdflow_streams("run --input " + (dir / "d.ply").string() + " --out " +
+                                              (dir / "run").string() +
+                                              " --end-time 1 --stop-at-topology-change --quiet --json");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const std::string split = "[e for e in d['events'] if e['kind'] == 'split'][0]";
+  EXPECT_EQ(test::json_query(r.out, "'+'.join(e['kind'] for e in d['events'])"), "surgery+split") << r.out;
+  EXPECT_EQ(test::json_query(r.out, "str(" + split + "['step'] == d['steps'])"), "True") << r.out;
+  EXPECT_EQ(test::json_query(r.out, "'{components_before} {components_after} {genus_before} {genus_after}'.format(**" +
+                                        split + ")"),
+            "1 2 0 0")
+      << r.out;
+  EXPECT_EQ(test::json_query(r.out, "str(" + split + "['crossing_pairs'] > 0 and 0 <= " + split +
+                                        "['crossing_size'] < 0.5 and " + split + "['faces_rebuilt'] > 0)"),
+            "True")
+      << r.out;
+  // The last row of metrics.csv is that step's, with both bodies.
+  std::ifstream metrics(dir / "run/metrics.csv");
+  std::string line, last;
+  while (std::getline(metrics, line))
+    last = line;
+  EXPECT_NE(last.find(",2,0,"), std::string::npos) << last;
+  EXPECT_EQ(last.substr(last.rfind(',') + 1), "remeshed+surgery+split") << last;
 }
 
 TEST(RunCommand, scheme_flags_reach_run_toml_and_unknown_values_exit_2)

@@ -58,13 +58,40 @@ TEST(SurfaceDiffusion, a_dumbbell_pinches_off_in_memory_exactly_as_its_recorded_
   SurfaceDiffusion flow(start, p);
   std::vector<std::string> rows{metrics_row(0, 0, 0, flow.metrics(), {})};
   std::vector<std::string> events;
+  StepRecord last_step;
+  long faces_before_last = 0;
   while (!flow.finished()) {
-    const StepRecord step = flow.step();
-    rows.push_back(metrics_row(flow.steps(), flow.time(), step.tau, flow.metrics(), step.event));
-    events.push_back(step.event);
+    faces_before_last = static_cast<long>(flow.mesh().n_faces());
+    last_step = flow.step();
+    rows.push_back(
+        metrics_row(flow.steps(), flow.time(), last_step.tau, flow.metrics(), event_names(last_step.events)));
+    events.push_back(event_names(last_step.events));
   }
-  EXPECT_NE(std::find(events.begin(), events.end(), "remeshed+surgery+split"), events.end())
-      << "the last step's re-triangulation should cut the neck";
+  EXPECT_EQ(events.back(), "remeshed+surgery+split") << "the last step's re-triangulation should cut the neck";
+  // The events carry what the re-triangulation measured: one body into two where the flow's neck
+  // crossed itself, thinner there than the run's ℓ; the faces it had, made and rebuilt.
+  ASSERT_FALSE(last_step.events.empty());
+  const StepEvent& split = last_step.events.back();
+  ASSERT_EQ(split.kind, StepEventKind::split);
+  EXPECT_EQ(split.step, flow.steps());
+  EXPECT_EQ(split.time, flow.time());
+  ASSERT_TRUE(split.retriangulation.has_value());
+  const RetriangulationMeasures& m = *split.retriangulation;
+  EXPECT_EQ(m.before, (TopologyCount{.components = 1}));
+  EXPECT_EQ(m.after, (TopologyCount{.components = 2}));
+  EXPECT_GT(m.crossing_pairs, 0);
+  EXPECT_TRUE(std::isfinite(m.crossing_size));
+  EXPECT_GE(m.crossing_size, 0.0);
+  EXPECT_LT(m.crossing_size, flow.parameters().retriangulation.pipeline.edge_length);
+  EXPECT_EQ(m.faces_before, faces_before_last);
+  EXPECT_EQ(m.faces_after, static_cast<long>(flow.mesh().n_faces()));
+  EXPECT_GT(m.faces_rebuilt, 0);
+  EXPECT_LE(m.faces_rebuilt, m.faces_before);
+  EXPECT_GT(std::abs(m.volume_restored), 0.0) << "the rebuilt neck's volume is given back";
+  EXPECT_LT(std::abs(m.volume_restored), 1e-2);
+  EXPECT_NE(split.detail.find("topology changed (components 1 → 2"), std::string::npos) << split.detail;
+  for (const StepEvent& e : last_step.events) // one re-triangulation, the same measures on each event
+    EXPECT_EQ(e.retriangulation->faces_rebuilt, m.faces_rebuilt) << event_name(e.kind);
   const auto parts = component_topology(flow.mesh());
   ASSERT_EQ(parts.size(), 2u);
   for (const auto& c : parts)
@@ -140,7 +167,8 @@ TEST(SurfaceDiffusion, start_steps_damp_noise_keep_the_volume_and_free_the_pace)
     largest_tau = std::max(largest_tau, step.tau);
     if (step.start) {
       ++start_steps;
-      EXPECT_EQ(step.event.rfind("start", 0), 0u) << step.event;
+      ASSERT_FALSE(step.events.empty());
+      EXPECT_EQ(step.events.front().kind, StepEventKind::start) << event_names(step.events);
       // Each start step gives every closed component its volume back.
       EXPECT_NEAR(enclosed_volume(flow.mesh()), volume, 1e-9 * volume) << "step " << flow.steps();
       roughness_after_start = edge_scale_roughness(flow.mesh());
@@ -254,7 +282,7 @@ TEST(SurfaceDiffusion, a_table_step_that_fails_is_covered_by_adaptive_steps_and_
     ASSERT_NO_THROW(steps.push_back(flow.step())) << "at step " << flow.steps() + 1;
 
   const auto fell_back = std::find_if(steps.begin(), steps.end(),
-                                      [](const StepRecord& s) { return s.event.find("fallback") != std::string::npos; });
+                                      [](const StepRecord& s) { return has_event(s.events, StepEventKind::fallback); });
   ASSERT_NE(fell_back, steps.end()) << "τ = 0.3 did not fail: the test no longer exercises the fallback";
   const auto resumed = std::find_if(fell_back, steps.end(), [](const StepRecord& s) { return s.tau == 0.0005; });
   ASSERT_NE(resumed, steps.end()) << "the table never resumed";

@@ -59,6 +59,7 @@ struct Verdict {
   bool local = false;        //!< only degraded elements call for it, and the schedule allows a local remeshing
   bool intersecting = false; //!< the surface intersects itself (the watch holds the pairs)
   bool watched = false;      //!< the watch counted this surface's pairs (none when not intersecting)
+  long pairs = 0;            //!< intersecting face pairs, when `intersecting`
   DegradedElements degraded; //!< found when nothing intersects
 };
 
@@ -109,6 +110,7 @@ Verdict look_at_surface(const Mesh& mesh, const RetriangulationSchedule& s, long
   if (counted.pairs > 0) {
     v.reason = fmt::format("{} intersecting face pairs", counted.pairs);
     v.intersecting = true;
+    v.pairs = static_cast<long>(counted.pairs);
     return v;
   }
   v.degraded = counted.degraded_or_throw();
@@ -133,9 +135,9 @@ constexpr int kLocalRemeshRings = 3;
 
 //! Give the components of `after`, a re-triangulation of `before`, back their volume (volume.h),
 //! through the vertices a local remeshing kept when it gives them (`vertex_map`, else empty);
-//! returns the note for events.log, with the volume of each component dropped whole, whose sum
-//! is added to `dropped_volume`.
-std::string restore_volume(const Mesh& before, Mesh& after, double& dropped_volume,
+//! returns the note for events.log, with the volume of each component dropped whole. The relative
+//! change it made and the dropped volume go to `measures`.
+std::string restore_volume(const Mesh& before, Mesh& after, RetriangulationMeasures& measures,
                            const std::vector<int>& vertex_map = {})
 {
   const double old_volume = material_volume(after);
@@ -143,12 +145,14 @@ std::string restore_volume(const Mesh& before, Mesh& after, double& dropped_volu
       vertex_map.empty() ? restore_volumes_from(before, after) : restore_volumes_kept(before, after, vertex_map);
   set_vertex_positions(after, restored.positions);
   const double new_volume = material_volume(after);
-  std::string note = new_volume != 0 ? fmt::format("; volume restored by {:.3g} (relative)",
-                                                   (new_volume - old_volume) / new_volume)
-                                     : std::string{};
+  std::string note;
+  if (new_volume != 0) {
+    measures.volume_restored = (new_volume - old_volume) / new_volume;
+    note = fmt::format("; volume restored by {:.3g} (relative)", measures.volume_restored);
+  }
   for (double v : restored.dropped_volumes) {
     note += fmt::format("; a component of volume {:.6g} dropped whole as debris", v);
-    dropped_volume += v;
+    measures.debris_volume += v;
   }
   return note;
 }
@@ -244,7 +248,7 @@ std::optional<Mesh> remesh_degraded_region(const Mesh& mesh, Verdict& verdict, c
     return std::nullopt;
   }
   const std::string volume_note =
-      s.restore_volume ? restore_volume(mesh, r.mesh, report.dropped_volume, r.vertex_map) : std::string{};
+      s.restore_volume ? restore_volume(mesh, r.mesh, report.measures, r.vertex_map) : std::string{};
   report.volume_seconds = stopwatch.restart();
   verdict.watched = false; // the watch now holds the remeshed surface's pairs
   // The volume restoration moved the vertices by a tiny normal offset: count the degraded elements
@@ -258,29 +262,17 @@ std::optional<Mesh> remesh_degraded_region(const Mesh& mesh, Verdict& verdict, c
   }
   report.remeshed = report.local = true;
   report.degraded_left = counted.degraded_or_throw().total();
+  report.measures.before = count_topology(mesh);
+  report.measures.after = count_topology(r.mesh);
+  report.measures.faces_before = static_cast<long>(mesh.n_faces());
+  report.measures.faces_after = static_cast<long>(r.mesh.n_faces());
+  report.measures.faces_rebuilt = r.patch_faces;
   report.detail = fmt::format("{}: local remeshing of {} faces in {} patches into {} in {} rounds ({} splits, {} "
                               "collapses, {} flips){}; {} degraded elements left",
                               verdict.reason, r.patch_faces, r.patches, r.new_faces, rounds.rounds,
                               r.statistics.splits, r.statistics.collapses, r.statistics.flips, volume_note,
                               report.degraded_left);
   return std::move(r.mesh);
-}
-
-//! The topology a re-triangulation may change only where the flow brought the change.
-struct TopologyCount {
-  int components = 0, genus = 0, boundary_loops = 0;
-  bool operator==(const TopologyCount&) const = default;
-};
-
-TopologyCount count_topology(const Mesh& mesh)
-{
-  TopologyCount t;
-  for (const ComponentTopology& c : component_topology(mesh)) {
-    ++t.components;
-    t.genus += c.genus;
-    t.boundary_loops += c.boundary_loops;
-  }
-  return t;
 }
 
 std::string describe_change(const TopologyCount& before, const TopologyCount& after)
@@ -383,6 +375,14 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     // closed): the threshold is a crossing of the surface before the re-triangulation. Anywhere
     // else it is the pipeline's (a remeshing or a rebuild that tore a thin part), and refused.
     const TopologyCount topology_before = count_topology(mesh), topology_after = count_topology(r.mesh);
+    RetriangulationMeasures& measured = report.measures;
+    measured.crossing_pairs = verdict.pairs;
+    measured.before = topology_before;
+    measured.after = topology_after;
+    measured.faces_before = static_cast<long>(mesh.n_faces());
+    measured.faces_after = static_cast<long>(r.mesh.n_faces());
+    // A local surgery rebuilt its patch; the whole pipeline, every face it remeshed or rebuilt.
+    measured.faces_rebuilt = r.patch_faces > 0 ? r.patch_faces : measured.faces_before;
     std::string topology_note;
     if (!(topology_before == topology_after) && !only_debris_dropped(topology_before, topology_after, r)) {
       const std::vector<FacePair> crossings =
@@ -399,13 +399,15 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
         return report;
       }
       const double size = crossing_size(mesh, crossings);
+      measured.crossing_pairs = static_cast<long>(crossings.size());
+      measured.crossing_size = size;
       topology_note = fmt::format("; topology changed ({}) where the flow's surface crossed itself ({} face pairs, "
                                   "smallest neck or gap there {:.3g} = {:.3g} ℓ before the re-triangulation)",
                                   describe_change(topology_before, topology_after), crossings.size(), size,
                                   size / schedule.pipeline.edge_length);
     }
     const std::string volume_note =
-        schedule.restore_volume ? restore_volume(mesh, r.mesh, report.dropped_volume) : std::string{};
+        schedule.restore_volume ? restore_volume(mesh, r.mesh, report.measures) : std::string{};
     report.volume_seconds += stopwatch.seconds();
     report.remeshed = schedule.pipeline.remesh_iterations > 0 && !r.remeshing_refused;
     report.surgery = r.rebuilt;

@@ -4,10 +4,12 @@
 //! RetriangulationSchedule (below) says so. The paper chose the moments by hand or ran the
 //! pipeline after every step; the schedule's triggers make the choice automatic.
 
+#include "sdflow/geometry/topology.h"
 #include "sdflow/mesh.h"
 #include "sdflow/retri/pipeline.h"
 
 #include <functional>
+#include <limits>
 #include <string>
 
 namespace sdflow {
@@ -66,6 +68,26 @@ struct RetriangulationContext {
   std::function<void()> changing;
 };
 
+//! What a re-triangulation measured: what called for it and what came of it (the numbers of its
+//! events, step_event.h).
+struct RetriangulationMeasures {
+  //! Face pairs in which the surface crossed itself before it: the flow's sheets meeting (0 when
+  //! degraded elements or a step that could not be taken called for it).
+  long crossing_pairs = 0;
+  //! The smallest neck or gap at those crossings before it (spatial/local_thickness.h), measured
+  //! when the topology changed there: the size that let the change through. NaN otherwise.
+  double crossing_size = std::numeric_limits<double>::quiet_NaN();
+  TopologyCount before, after; //!< the surface's topology before and after
+  long faces_before = 0, faces_after = 0;
+  //! Faces cut out and made anew: a local remeshing's or surgery's patches, else every face.
+  long faces_rebuilt = 0;
+  //! Relative change of the material volume that the volume restoration made (0: none ran).
+  double volume_restored = 0;
+  //! Σ material volume of the components dropped whole as debris, which no component was given
+  //! back (VolumeRestoration::dropped_volumes; 0 without volume restoration).
+  double debris_volume = 0;
+};
+
 //! What a re-triangulation hook did to the mesh (each flag becomes an event of the step's row).
 struct RetriangulationReport {
   bool remeshed = false; //!< triangulation improved (same topology)
@@ -83,9 +105,7 @@ struct RetriangulationReport {
   //! self-intersections as `intersections`.
   RetriangulationResult::Seconds pipeline_seconds;
   double volume_seconds = 0; //!< of giving the components back their volume
-  //! Σ material volume of the components dropped whole as debris, which no component was
-  //! given back (VolumeRestoration::dropped_volumes; 0 without volume restoration).
-  double dropped_volume = 0;
+  RetriangulationMeasures measures; //!< when it ran (also when `refused`)
   bool changed() const { return remeshed || surgery || split || merged; }
 };
 

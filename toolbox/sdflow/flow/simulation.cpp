@@ -162,7 +162,7 @@ public:
   {
     Stopwatch watch;
     take_notes(flow);
-    metrics_ += metrics_row(flow.steps(), flow.time(), step.tau, flow.metrics(), step.event);
+    metrics_ += metrics_row(flow.steps(), flow.time(), step.tau, flow.metrics(), event_names(step.events));
     const RunParameters& p = flow.parameters();
     const bool last = flow.finished();
     if (last || (p.snapshot_every > 0 && flow.steps() % p.snapshot_every == 0))
@@ -277,6 +277,12 @@ private:
 };
 
 //! Step `flow` to its end (or until `options.stop_requested`), recording every step.
+//! The events a run reports besides its rows (SimulationResult::events).
+bool is_notable(StepEventKind kind)
+{
+  return kind != StepEventKind::start && kind != StepEventKind::rejected && kind != StepEventKind::remeshed;
+}
+
 SimulationResult run(SurfaceDiffusion& flow, RunRecorder& recorder, const SimulationOptions& options)
 {
   SimulationResult result;
@@ -289,6 +295,9 @@ SimulationResult run(SurfaceDiffusion& flow, RunRecorder& recorder, const Simula
       }
       const StepRecord step = flow.step();
       recorder.record(flow, step);
+      for (const StepEvent& e : step.events)
+        if (is_notable(e.kind))
+          result.events.push_back(e);
       if (options.progress)
         options.progress(step);
     }

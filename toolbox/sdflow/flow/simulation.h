@@ -21,6 +21,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace sdflow {
 
@@ -61,6 +62,9 @@ struct SimulationResult {
   long factorisations = 0;  //!< over this call
   bool interrupted = false; //!< stopped early on `stop_requested`, with a checkpoint of `steps`
   bool restarted = false;   //!< resumed a run that had no checkpoint yet: it started again at step 0
+  //! The events of this call besides routine ones (start steps, rejected trials, remeshings):
+  //! surgeries, splits, merges, refused re-triangulations and table fallbacks, in order.
+  std::vector<StepEvent> events;
 };
 
 //! Run the flow from `initial` into `options.parameters.output_dir`, which must not already hold a

@@ -14,6 +14,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/scheme.cpp
   sdflow/flow/simulation.cpp
   sdflow/flow/single_precision_factor.cpp
+  sdflow/flow/step_event.cpp
   sdflow/flow/solver.cpp
   sdflow/flow/supernodal_cholesky.cpp
   sdflow/flow/suitesparse_output.cpp

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <iterator>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -29,14 +30,6 @@ Mesh canonical(const Mesh& mesh) { return make_mesh(vertex_positions(mesh), face
 
 //! Thrown between the trials of a step taken ahead once the look re-triangulates.
 struct TrialsCancelled {};
-
-std::string join_events(const std::vector<std::string>& events)
-{
-  std::string s;
-  for (const auto& e : events)
-    s += (s.empty() ? "" : "+") + e;
-  return s;
-}
 
 //! The parameters with their refinement fixed (refinement.h): an automatic one from `surface` and
 //! the run's ℓ (the re-triangulation's target when it is on and given, else the surface's mean edge
@@ -135,7 +128,7 @@ StepRecord SurfaceDiffusion::step()
   for (FlowNote& n : first.notes)
     publish(std::move(n));
   const TimeStepState controller_before = first.controller_before;
-  std::vector<std::string> events;
+  std::vector<StepEvent> events;
   const bool table = p_.time_step.mode == TimeStepMode::schedule;
 
   int rejections = first.rejections;
@@ -181,17 +174,16 @@ StepRecord SurfaceDiffusion::step()
       fell_back = true;
       restart_controller();
       controller_.fall_back_to_adaptive(next_step);
-      events.emplace_back("fallback");
-      note(next_step, time_,
-           fmt::format("the table's step {} cannot be taken ({}): adaptive steps cover its τ = {}",
-                       controller_.table_step(next_step), e.what(), controller_.state().fallback_left),
-           true);
+      std::string reason = fmt::format("the table's step {} cannot be taken ({}): adaptive steps cover its τ = {}",
+                                       controller_.table_step(next_step), e.what(), controller_.state().fallback_left);
+      note(next_step, time_, reason, true);
+      events.push_back({.kind = StepEventKind::fallback, .detail = std::move(reason)});
     }
   }
   if (rejections > 0)
-    events.insert(events.begin(), "rejected");
+    events.insert(events.begin(), {.kind = StepEventKind::rejected, .rejections = rejections});
   if (record.start)
-    events.insert(events.begin(), "start");
+    events.insert(events.begin(), {.kind = StepEventKind::start});
 
   VertexVectors accepted; // the last accepted surface, kept while the guard looks at the new one
   if (guard_)
@@ -240,7 +232,11 @@ StepRecord SurfaceDiffusion::step()
   record.tau = tau;
   record.rejections = rejections;
   record.taken_ahead = taken_ahead;
-  record.event = join_events(events);
+  for (StepEvent& e : events) {
+    e.step = step_;
+    e.time = time_;
+  }
+  record.events = std::move(events);
   // A trial taken ahead is part of its own step: what of it ran beside the look counts in both
   // steps (side_by_side), what ran after it in the step it belongs to.
   record.times.total = watch.seconds() - left_to_next_step;
@@ -380,20 +376,20 @@ RetriangulationReport SurfaceDiffusion::call_retriangulation(Mesh& mesh, bool fo
 
 //! Take the re-triangulated mesh: new connectivity and operators, fresh factorisations with the
 //! orderings carried from the surface `before` it (carried_ordering.h), its events.
-void SurfaceDiffusion::note_refusal(const RetriangulationReport& report, std::vector<std::string>& events)
+void SurfaceDiffusion::note_refusal(const RetriangulationReport& report, std::vector<StepEvent>& events)
 {
   if (!report.refused)
     return;
-  if (std::find(events.begin(), events.end(), "refused") == events.end())
-    events.emplace_back("refused");
+  if (!has_event(events, StepEventKind::refused))
+    events.push_back({.kind = StepEventKind::refused, .retriangulation = report.measures, .detail = report.detail});
   note(step_, time_, fmt::format("re-triangulation refused: {}", report.detail));
 }
 
 void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report, const VertexVectors& before,
-                                             std::vector<std::string>& events, StepTimes& times)
+                                             std::vector<StepEvent>& events, StepTimes& times)
 {
   const int components = topology_.count, genus = topology_.genus;
-  debris_volume_ += report.dropped_volume;
+  debris_volume_ += report.measures.debris_volume;
   // The canonical mesh, the operators' cache of its connectivity and, for the carried orderings,
   // the old vertex nearest each new one are made side by side from the same positions and corners.
   const bool carried = solver_.carries_ordering() || half_solver_.carries_ordering();
@@ -418,14 +414,14 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
   previous_w_.resize(0);
   earlier_w_.resize(0);
   last_w_ = Eigen::VectorXd::Zero(mesh_.n_vertices());
-  std::vector<std::string> these;
-  for (const auto& [flag, name] : {std::pair{report.remeshed, "remeshed"}, std::pair{report.surgery, "surgery"},
-                                   std::pair{report.split, "split"}, std::pair{report.merged, "merged"}})
-    if (flag && std::find(events.begin(), events.end(), name) == events.end()) {
-      events.emplace_back(name);
-      these.emplace_back(name);
-    }
-  note(step_, time_, fmt::format("re-triangulated ({}): {}", join_events(these), report.detail));
+  std::vector<StepEvent> these;
+  for (const auto& [flag, kind] :
+       {std::pair{report.remeshed, StepEventKind::remeshed}, std::pair{report.surgery, StepEventKind::surgery},
+        std::pair{report.split, StepEventKind::split}, std::pair{report.merged, StepEventKind::merged}})
+    if (flag && !has_event(events, kind))
+      these.push_back({.kind = kind, .retriangulation = report.measures, .detail = report.detail});
+  note(step_, time_, fmt::format("re-triangulated ({}): {}", event_names(these), report.detail));
+  events.insert(events.end(), std::make_move_iterator(these.begin()), std::make_move_iterator(these.end()));
 }
 
 //! Step `next_step`'s first trials, until the controller accepts one or gives up (then `failure`
@@ -500,7 +496,7 @@ bool SurfaceDiffusion::can_look_ahead() const
 //! surface alone leaves unchanged, so the one taken ahead is the one step() would take: it is kept
 //! for it. When the hook re-triangulates, the trial is dropped, its bookkeeping rewound, and the
 //! new surface adopted as without looking ahead.
-double SurfaceDiffusion::look_and_try_ahead(const VertexVectors& before, std::vector<std::string>& events,
+double SurfaceDiffusion::look_and_try_ahead(const VertexVectors& before, std::vector<StepEvent>& events,
                                             StepTimes& times)
 {
   renew_operators(times); // the trial's operators: those of the surface as it stands

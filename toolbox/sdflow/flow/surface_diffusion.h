@@ -19,6 +19,7 @@
 #include "sdflow/flow/parameters.h"
 #include "sdflow/flow/retriangulation.h"
 #include "sdflow/flow/scheme.h"
+#include "sdflow/flow/step_event.h"
 #include "sdflow/geometry/cotangent_cache.h"
 #include "sdflow/geometry/material_volume.h"
 #include "sdflow/mesh.h"
@@ -76,9 +77,9 @@ struct StepRecord {
   bool taken_ahead = false;
   //! A start step (time_step.h): τ_s taken on stability alone, the volumes restored after it.
   bool start = false;
-  //! What happened besides the step, joined by '+': start, rejected, fallback, remeshed, surgery,
-  //! split, merged, refused.
-  std::string event;
+  //! What happened besides the step, in order (step_event.h); event_names() joins them as
+  //! metrics.csv writes them.
+  std::vector<StepEvent> events;
   StepTimes times;
 };
 
@@ -187,7 +188,7 @@ private:
   bool can_look_ahead() const;
   //! Returns the wall seconds of the next step's trial that ran alone after the look ended (that
   //! step's total counts them), 0 when the trial was dropped.
-  double look_and_try_ahead(const VertexVectors& before, std::vector<std::string>& events, StepTimes& times);
+  double look_and_try_ahead(const VertexVectors& before, std::vector<StepEvent>& events, StepTimes& times);
   void publish(FlowNote note);
   //! triangles_, the operators' cache and topology_ of mesh_.
   void renew_connectivity();
@@ -199,9 +200,9 @@ private:
   RetriangulationReport call_retriangulation(Mesh& mesh, bool force, StepTimes& times,
                                              std::function<void()> changing = {});
   //! A refused re-triangulation (RetriangulationReport::refused) becomes an event and a warning.
-  void note_refusal(const RetriangulationReport& report, std::vector<std::string>& events);
+  void note_refusal(const RetriangulationReport& report, std::vector<StepEvent>& events);
   void adopt_retriangulation(const RetriangulationReport& report, const VertexVectors& before,
-                             std::vector<std::string>& events, StepTimes& times);
+                             std::vector<StepEvent>& events, StepTimes& times);
   void renew_operators(StepTimes& times);
   double trial_step(long next_step, StepResult& trial, StepRecord& record, int& rejections,
                     std::vector<double>& volumes);

@@ -64,6 +64,17 @@ std::vector<ComponentTopology> component_topology(const Mesh& mesh)
   return components;
 }
 
+TopologyCount count_topology(const Mesh& mesh)
+{
+  TopologyCount t;
+  for (const ComponentTopology& c : component_topology(mesh)) {
+    ++t.components;
+    t.genus += c.genus;
+    t.boundary_loops += c.boundary_loops;
+  }
+  return t;
+}
+
 std::vector<std::vector<Mesh::HalfedgeHandle>> boundary_loops(const Mesh& mesh)
 {
   std::vector<std::vector<Mesh::HalfedgeHandle>> loops;

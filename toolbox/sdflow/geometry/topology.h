@@ -19,11 +19,22 @@ struct ComponentTopology {
   bool closed() const { return boundary_loops == 0; }
 };
 
+//! A surface's topology in total: what two triangulations of one surface share.
+struct TopologyCount {
+  int components = 0;
+  int genus = 0; //!< summed over the components
+  int boundary_loops = 0;
+  bool operator==(const TopologyCount&) const = default;
+};
+
 //! Component id of every face (0-based, numbered in order of each component's first face).
 std::vector<int> face_component_ids(const Mesh& mesh, int* component_count = nullptr);
 
 //! Topology of each component, in the order of face_component_ids.
 std::vector<ComponentTopology> component_topology(const Mesh& mesh);
+
+//! The components, total genus and boundary loops of `mesh` (component_topology summed).
+TopologyCount count_topology(const Mesh& mesh);
 
 //! The boundary loops of `mesh`, each as its boundary halfedges h, next(h), … in order, the loops
 //! in the order of their first halfedge's index.

@@ -38,25 +38,9 @@ constexpr double kDefaultGridFraction = 1.0 / 64;
 constexpr int kMaxGridHalvings = 3;
 constexpr double kFinestGridPerEdge = 0.25;
 
-//! What two triangulations of one surface must share: components, total genus and boundary loops.
-struct TopologyCount {
-  int components = 0, genus = 0, boundary_loops = 0;
-  bool operator==(const TopologyCount&) const = default;
-  std::string text() const
-  {
-    return fmt::format("{} component(s), genus {}, {} boundary loop(s)", components, genus, boundary_loops);
-  }
-};
-
-TopologyCount topology_count(const Mesh& mesh)
+std::string describe(const TopologyCount& t)
 {
-  TopologyCount t;
-  for (const ComponentTopology& c : component_topology(mesh)) {
-    ++t.components;
-    t.genus += c.genus;
-    t.boundary_loops += c.boundary_loops;
-  }
-  return t;
+  return fmt::format("{} component(s), genus {}, {} boundary loop(s)", t.components, t.genus, t.boundary_loops);
 }
 
 //! A point of each of the first intersecting pairs, for a message.
@@ -198,11 +182,11 @@ MesherResult mesh_implicit_surface(const ImplicitSurface& input, const MesherOpt
   // A grid too coarse for a neck or gap joins or cuts the sheets there, at any orientation of
   // the shape: the topology is trusted once halving the grid no longer changes it.
   if (options.check_topology) {
-    TopologyCount coarse = topology_count(mesh);
+    TopologyCount coarse = count_topology(mesh);
     for (int halving = 0;; ++halving) {
       // The topology is the marching grid's: the projection, the costly part, moves no edge.
       ImplicitSurface finer_surface = surface;
-      const TopologyCount fine = topology_count(marched_triangulation(finer_surface, result.grid_cell / 2));
+      const TopologyCount fine = count_topology(marched_triangulation(finer_surface, result.grid_cell / 2));
       if (fine == coarse)
         break;
       if (halving == kMaxGridHalvings || result.grid_cell / 4 < kFinestGridPerEdge * ell)
@@ -210,9 +194,9 @@ MesherResult mesh_implicit_surface(const ImplicitSurface& input, const MesherOpt
             "mesher: the topology of '{}' keeps changing as the marching grid is refined ({} at spacing {:.3g}, {} "
             "at {:.3g}): a neck or gap thinner than the grid resolves; give the shape's smallest feature "
             "(--feature-size) or a finer --grid-cell",
-            surface.name, coarse.text(), result.grid_cell, fine.text(), result.grid_cell / 2));
+            surface.name, describe(coarse), result.grid_cell, describe(fine), result.grid_cell / 2));
       logger().info("mesher: '{}' on a grid of spacing {:.3g} has {}, on one of {:.3g} {}: refining the grid",
-                    surface.name, result.grid_cell, coarse.text(), result.grid_cell / 2, fine.text());
+                    surface.name, result.grid_cell, describe(coarse), result.grid_cell / 2, describe(fine));
       surface = std::move(finer_surface);
       result.grid_cell /= 2;
       mesh = initial_triangulation(surface, result.grid_cell, projection);
@@ -221,7 +205,7 @@ MesherResult mesh_implicit_surface(const ImplicitSurface& input, const MesherOpt
   }
   result.initial_vertices = mesh.n_vertices();
   result.initial_faces = mesh.n_faces();
-  const TopologyCount marched = topology_count(mesh);
+  const TopologyCount marched = count_topology(mesh);
   logger().debug("mesher: '{}' marching grid {:.4g}: {} vertices, {} faces", surface.name, result.grid_cell,
                  mesh.n_vertices(), mesh.n_faces());
 
@@ -278,11 +262,11 @@ MesherResult mesh_implicit_surface(const ImplicitSurface& input, const MesherOpt
   result.min_angles = triangle_min_angle_distribution(mesh);
   if (options.check_topology) {
     collect_garbage(mesh);
-    const TopologyCount remeshed = topology_count(mesh);
+    const TopologyCount remeshed = count_topology(mesh);
     if (remeshed != marched)
       throw InvalidParameter(fmt::format("mesher: remeshing '{}' to ℓ = {:.4g} changed its topology ({} → {}): a "
                                          "neck, gap or crease narrower than ℓ; give a smaller edge length or a blend",
-                                         surface.name, ell, marched.text(), remeshed.text()));
+                                         surface.name, ell, describe(marched), describe(remeshed)));
     const std::vector<FacePair> pairs = self_intersections(mesh);
     if (!pairs.empty())
       throw InvalidParameter(fmt::format("mesher: the triangulation of '{}' at ℓ = {:.4g} crosses itself ({} face "
