@@ -265,6 +265,23 @@ TEST(Remesh, curvature_sizing_shortens_edges_where_the_surface_bends)
   EXPECT_GT(worst_fold_cosine(result.mesh), kMaxFoldCosine);
 }
 
+TEST(Remesh, stops_at_its_vertex_bound_with_a_valid_mesh_and_says_so)
+{
+  // An icosphere of 162 vertices remeshed to ℓ = 0.05 would take about 5800; bounded at 1000, the
+  // remesher stops splitting there and leaves a valid closed sphere of that many vertices.
+  const Mesh sphere = analytic::icosphere(2);
+  const RemeshResult bounded = isotropic_remesh(sphere, {.edge_length = 0.05, .iterations = 3, .max_vertices = 1000});
+  EXPECT_TRUE(bounded.statistics.stopped);
+  EXPECT_EQ(bounded.mesh.n_vertices(), 1000u);
+  const auto parts = component_topology(bounded.mesh);
+  ASSERT_EQ(parts.size(), 1u);
+  EXPECT_TRUE(parts.front().closed());
+  EXPECT_EQ(parts.front().genus, 0);
+  const RemeshResult free = isotropic_remesh(sphere, {.edge_length = 0.05, .iterations = 3});
+  EXPECT_FALSE(free.statistics.stopped);
+  EXPECT_GT(free.mesh.n_vertices(), 4000u);
+}
+
 TEST(Remesh, refuses_bad_options)
 {
   const Mesh sphere = analytic::icosphere(2);

@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -315,6 +316,68 @@ TEST(Pipeline, a_thin_neck_gets_edges_by_its_radius_of_curvature)
   EXPECT_LT(adapted.mesh.n_vertices(), 2 * uniform.mesh.n_vertices()) << "refinement must stay local";
   EXPECT_FALSE(adapted.uniform_fallback);
   EXPECT_EQ(checks::self_intersecting_pairs(adapted.mesh), 0);
+}
+
+//! A closed plate `length` × `width` × `thickness` as a CAD export triangulates it: each face a
+//! grid of `nx` × `ny` cells cut into two triangles, the rim a strip of long thin triangles between
+//! the two grids' edges. Its edges are sharp (90°) and it is thinner than its mean edge.
+Mesh cad_plate(double length, double width, double thickness, int nx, int ny)
+{
+  const int layer = (nx + 1) * (ny + 1);
+  const auto id = [&](int ix, int iy, int top) { return ix * (ny + 1) + iy + (top ? 0 : layer); };
+  VertexVectors x(2 * layer, 3);
+  for (int top : {1, 0})
+    for (int ix = 0; ix <= nx; ++ix)
+      for (int iy = 0; iy <= ny; ++iy)
+        x.row(id(ix, iy, top)) << length * ix / nx, width * iy / ny, top ? 0.5 * thickness : -0.5 * thickness;
+  std::vector<Eigen::Vector3i> t;
+  for (int top : {1, 0})
+    for (int ix = 0; ix < nx; ++ix)
+      for (int iy = 0; iy < ny; ++iy) {
+        const int a = id(ix, iy, top), b = id(ix + 1, iy, top), c = id(ix + 1, iy + 1, top), d = id(ix, iy + 1, top);
+        if (top)
+          t.insert(t.end(), {{a, b, c}, {a, c, d}});
+        else
+          t.insert(t.end(), {{a, c, b}, {a, d, c}});
+      }
+  std::vector<std::array<int, 2>> rim; // the grid's boundary, counter-clockwise seen from the top
+  for (int ix = 0; ix < nx; ++ix)
+    rim.push_back({ix, 0});
+  for (int iy = 0; iy < ny; ++iy)
+    rim.push_back({nx, iy});
+  for (int ix = nx; ix > 0; --ix)
+    rim.push_back({ix, ny});
+  for (int iy = ny; iy > 0; --iy)
+    rim.push_back({0, iy});
+  for (std::size_t k = 0; k < rim.size(); ++k) {
+    const auto& p = rim[k];
+    const auto& q = rim[(k + 1) % rim.size()];
+    const int a = id(p[0], p[1], 1), b = id(q[0], q[1], 1), c = id(q[0], q[1], 0), d = id(p[0], p[1], 0);
+    t.insert(t.end(), {{a, d, c}, {a, c, b}});
+  }
+  FaceIndices faces(static_cast<Eigen::Index>(t.size()), 3);
+  for (std::size_t k = 0; k < t.size(); ++k)
+    faces.row(static_cast<Eigen::Index>(k)) = t[k].transpose();
+  return make_mesh(x, faces);
+}
+
+TEST(Pipeline, refining_where_the_remeshing_crossed_a_sharp_edged_plate_stays_bounded)
+{
+  // CGAL's rotor_small.off, a thin part with sharp edges, made stage 1 cross itself at its edges;
+  // the rounds redone finer there grew 2.0k vertices to 4.2k, then to 58k and more within one
+  // remeshing (past 3 GB). This plate (168 vertices, 0.03 thick, mean edge 0.077) grows the same
+  // way on a small scale: its rounds made 104, 1997 and 4896 vertices, and more crossings than
+  // the first, before stage 1 was refused.
+  const Mesh plate = cad_plate(1, 0.3, 0.03, 20, 3);
+  const RetriangulationResult first = retriangulate(plate, {.refinement_rounds = 0});
+  ASSERT_GT(first.intersecting_pairs, 0) << "the fixture no longer makes its remeshing cross itself";
+  const RetriangulationResult r = retriangulate(plate, {});
+  EXPECT_GT(r.remeshing_crossings, 0);
+  EXPECT_LE(r.remeshed_vertices, 4 * static_cast<long>(plate.n_vertices())) << "vertices of the largest remeshing";
+  // Whatever stage 1 did, the plate keeps its topology and does not cross itself.
+  EXPECT_EQ(closed_genera(r.mesh), closed_genera(plate));
+  EXPECT_EQ(checks::self_intersecting_pairs(r.mesh), 0);
+  EXPECT_EQ(r.components_after, 1);
 }
 } // namespace
 } // namespace sdflow

@@ -127,13 +127,18 @@ public:
   {
     for (int iteration = 0; iteration < options_.iterations; ++iteration) {
       split_long_edges();
+      if (statistics_.stopped) {
+        renumber();
+        break;
+      }
       collapse_short_edges();
       flip_edges();
       relax_and_project();
       renumber();
       logger().debug("remesh iteration {}: {} vertices, {} faces", iteration + 1, mesh_.n_vertices(), mesh_.n_faces());
     }
-    if (options_.boundary == BoundaryMode::keep && options_.settle_kept_boundary && options_.iterations > 0) {
+    if (options_.boundary == BoundaryMode::keep && options_.settle_kept_boundary && options_.iterations > 0 &&
+        !statistics_.stopped) {
       settle_beside_kept_boundary();
       collapse_short_edges(true);
       settle_beside_kept_boundary();
@@ -258,6 +263,10 @@ private:
         const Eigen::Vector3d pa = point(mesh_, a), pb = point(mesh_, b);
         if ((pb - pa).norm() <= kSplitRatio * edge_target(a, b))
           continue; // an earlier split in this pass already shortened it
+        if (options_.max_vertices > 0 && mesh_.n_vertices() >= options_.max_vertices) {
+          statistics_.stopped = true;
+          return;
+        }
         const Eigen::Vector3d mid = midpoint(pa, pb);
         const Eigen::Vector3d p = same_bits(mid, projected[k].query)
                                       ? projected[k].result

@@ -65,6 +65,10 @@ struct RemeshOptions {
   //! radius_targets); empty: uniform ℓ. It is called from several threads at once (both of those
   //! may be). An edge's target is the mean of the targets at its two ends.
   SizingField sizing;
+  //! Stop splitting once the mesh has this many vertices (0: no bound), and remesh no further
+  //! (RemeshStatistics::stopped says so): for a caller that discards a remeshing grown beyond
+  //! what its targets ask for rather than waiting for it.
+  std::size_t max_vertices = 0;
 };
 
 //! What the remesher did, summed over all iterations.
@@ -74,6 +78,8 @@ struct RemeshStatistics {
   long flips = 0;
   long relaxation_reverts = 0; //!< vertex moves undone because they would have inverted a triangle
   double edge_length = 0; //!< the ℓ used (uniform part)
+  //! The mesh reached RemeshOptions::max_vertices: it is valid, but not remeshed to its targets.
+  bool stopped = false;
 };
 
 struct RemeshResult {

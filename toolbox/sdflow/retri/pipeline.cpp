@@ -20,6 +20,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -204,8 +205,39 @@ std::vector<double> adapted_targets(const Mesh& clean, const std::vector<FacePai
 //! Around a crossing the remeshing made, the input's vertices within this many ℓ get finer targets.
 constexpr double kRefinementRadius = 2;
 
-//! The finest target a refinement asks for, as a fraction of ℓ: four halvings of the curvature floor.
-constexpr double kFinestRefinement = 1.0 / 64;
+//! The finest target a refinement asks for, as a fraction of the sizing's finest edge
+//! (min_edge_fraction · ℓ): half of it, two edges across the thinnest part a run admits. The run
+//! checks before step 1 that every part and every gap between bodies is at least that finest edge
+//! wide (flow/resolution_check.h); a smaller local thickness is a concave crease's outward gap or a
+//! sharp edge's wedge, which tends to 0 there and which no edge length resolves (the floor was ℓ/64,
+//! a fraction of ℓ alone, 64 times the vertices where it applied).
+constexpr double kFinestRefinement = 0.5;
+
+//! A refinement round is not run when its targets ask for more than this many times the vertices
+//! of stage 1's first remeshing (estimated_vertices), and is stopped when it makes more
+//! (RemeshOptions::max_vertices): stage 1 is skipped. The refinements it is for are local (the
+//! band along a crease), a few tens of percent more vertices.
+constexpr double kMaxRefinementGrowth = 4;
+
+//! The vertices a remeshing of `mesh` to `targets` (one per vertex) makes, about: each vertex of
+//! a regular triangulation with edges t owns an area of (√3/2) t²; each face's area is shared by
+//! its three vertices at their targets.
+double estimated_vertices(const Mesh& mesh, const std::vector<double>& targets)
+{
+  double count = 0;
+  for (const auto f : mesh.faces()) {
+    std::array<Eigen::Vector3d, 3> p;
+    double per_area = 0;
+    int k = 0;
+    for (const auto v : mesh.fv_range(f)) {
+      p[k++] = to_eigen(mesh.point(v));
+      const double t = targets[static_cast<std::size_t>(v.idx())];
+      per_area += 1.0 / (3.0 * (std::sqrt(3.0) / 2.0) * t * t);
+    }
+    count += 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm() * per_area;
+  }
+  return count;
+}
 
 //! The vertices of the faces of `remeshed` in `pairs`: where the remeshing made it cross itself.
 std::vector<Eigen::Vector3d> crossing_points(const Mesh& remeshed, const std::vector<FacePair>& pairs)
@@ -225,51 +257,91 @@ struct StageOne {
   std::vector<FacePair> pairs;
 };
 
+//! `targets` (one per vertex of `input`, garbage-collected) made finer around `own`, the crossing
+//! points of the last remeshing: halved within kRefinementRadius ℓ of them and kept below half the
+//! local thickness, never below the floor kFinestRefinement · min_edge_fraction · ℓ.
+void refine_targets(const Mesh& input, const std::vector<Eigen::Vector3d>& own, const LocalThickness& thickness,
+                    double ell, double floor, std::vector<double>& targets)
+{
+  const VertexVectors sites = point_rows(own), positions = vertex_positions(input);
+  const std::vector<int> nearest = nearest_points(sites, positions);
+  for (const auto v : input.vertices()) {
+    const auto i = static_cast<std::size_t>(v.idx());
+    if ((positions.row(v.idx()) - sites.row(nearest[i])).norm() > kRefinementRadius * ell)
+      continue;
+    targets[i] = std::max(std::min(0.5 * targets[i], 0.5 * thickness.feature_size(v.idx())), floor);
+  }
+}
+
 //! Stage 1 refused where it makes crossings of its own (RetriangulationOptions::refinement_rounds):
 //! remesh `input` (garbage-collected; `crossings` its own intersecting pairs) with `targets` at its
 //! vertices (empty: the uniform ℓ of `remesh`); when the input does not cross itself and the result
-//! does, again with the targets around the crossings halved and below half the local thickness,
-//! until it does not or the rounds are spent; then the input is kept.
+//! does, again with the targets around the crossings made finer (refine_targets), until it does not;
+//! the input is kept when the rounds are spent, a round leaves as many crossings as the one before
+//! or more, or it would grow the first remeshing, or grows it, more than kMaxRefinementGrowth times.
 StageOne remesh_without_own_crossings(const Mesh& input, const std::vector<FacePair>& crossings,
                                       std::vector<double> targets, RemeshOptions remesh,
                                       const RetriangulationOptions& options, double ell, RetriangulationResult& r)
 {
+  const auto refuse = [&] {
+    r.remeshing_refused = true;
+    r.remesh = {};
+    r.remesh.edge_length = ell;
+    return StageOne{input, crossings};
+  };
   std::optional<LocalThickness> thickness;
+  std::size_t first_vertices = 0, last_pairs = 0;
   for (int round = 0;; ++round) {
-    if (!targets.empty())
+    if (!targets.empty()) {
+      logger().debug("stage 1, round {}: targets down to {:.3g} ℓ, about {:.0f} vertices", round,
+                     *std::min_element(targets.begin(), targets.end()) / ell, estimated_vertices(input, targets));
       remesh.sizing = nearest_vertex_sizing(input, targets);
+    }
     RemeshResult remeshed = isotropic_remesh(input, remesh);
+    r.remeshed_vertices = std::max(r.remeshed_vertices, static_cast<long>(remeshed.mesh.n_vertices()));
+    if (remeshed.statistics.stopped) {
+      logger().debug("stage 1, round {}: stopped at {} vertices, {} times the first remeshing's", round,
+                     remeshed.mesh.n_vertices(), kMaxRefinementGrowth);
+      return refuse();
+    }
     StageOne s{std::move(remeshed.mesh), {}};
     s.pairs = self_intersections(s.mesh);
     r.remesh = remeshed.statistics;
+    if (round == 0)
+      first_vertices = s.mesh.n_vertices();
+    logger().debug("stage 1, round {}: {} vertices, {} crossing face pairs", round, s.mesh.n_vertices(),
+                   s.pairs.size());
     // Only a surface that does not cross itself is guarded: where the flow's sheets crossed, the
     // surgery's remeshing around them is the paper's (the local surgery and the tests of its
     // outcome against this pipeline rely on it), and the hook checks the outcome.
     if (options.refinement_rounds == 0 || s.pairs.empty() || !crossings.empty())
       return s;
-    const std::vector<Eigen::Vector3d> own = crossing_points(s.mesh, s.pairs);
     if (round == 0)
       r.remeshing_crossings = static_cast<int>(s.pairs.size());
-    if (round == options.refinement_rounds) {
-      r.remeshing_refused = true;
-      r.remesh = {};
-      r.remesh.edge_length = ell;
-      return {input, crossings};
-    }
-    ++r.refinements;
+    // A round that did not reduce the crossings will not be helped by the next one: on
+    // rotor_small.off the first made 663 crossing pairs where there were 79 to remove.
+    if (round == options.refinement_rounds || (round > 0 && s.pairs.size() >= last_pairs))
+      return refuse();
+    last_pairs = s.pairs.size();
     if (!thickness)
       thickness = local_thickness(input, {.max_distance = 4 * ell});
     if (targets.empty())
       targets.assign(input.n_vertices(), ell);
-    const VertexVectors sites = point_rows(own), positions = vertex_positions(input);
-    const std::vector<int> nearest = nearest_points(sites, positions);
-    for (const auto v : input.vertices()) {
-      const int i = v.idx();
-      if ((positions.row(i) - sites.row(nearest[static_cast<std::size_t>(i)])).norm() > kRefinementRadius * ell)
-        continue;
-      const double finer = std::min(0.5 * targets[static_cast<std::size_t>(i)], 0.5 * thickness->feature_size(i));
-      targets[static_cast<std::size_t>(i)] = std::max(finer, kFinestRefinement * ell);
+    refine_targets(input, crossing_points(s.mesh, s.pairs), *thickness, ell,
+                   kFinestRefinement * options.min_edge_fraction * ell, targets);
+    if (const double estimate = estimated_vertices(input, targets);
+        estimate > kMaxRefinementGrowth * static_cast<double>(first_vertices)) {
+      logger().debug("stage 1: the next round would remesh into about {:.0f} vertices, more than {} times the "
+                     "first remeshing's {}: not run",
+                     estimate, kMaxRefinementGrowth, first_vertices);
+      return refuse();
     }
+    // The estimate holds for a remesher that meets its targets (within 30% on the rounds measured);
+    // on a thin part with sharp edges it did not: rotor_small.off's second refinement round, at
+    // targets down to ℓ/16 and estimated at 9.1k vertices, made 58k in its second iteration and
+    // ran out of memory in its third.
+    remesh.max_vertices = static_cast<std::size_t>(kMaxRefinementGrowth * static_cast<double>(first_vertices));
+    ++r.refinements;
   }
 }
 
@@ -543,8 +615,8 @@ std::string retriangulation_summary(const RetriangulationResult& r)
     s += fmt::format(" (locally: a patch of {} faces)", r.patch_faces);
   if (r.remeshing_crossings > 0)
     s += r.remeshing_refused
-             ? fmt::format("; the remeshing made {} face pairs of a surface that did not cross itself cross, even {} "
-                           "times finer there: refused, the surface kept its triangles",
+             ? fmt::format("; the remeshing made {} face pairs of a surface that did not cross itself cross, and {} "
+                           "rounds finer there did not help: refused, the surface kept its triangles",
                            r.remeshing_crossings, r.refinements)
              : fmt::format("; the remeshing made {} face pairs of a surface that did not cross itself cross: redone "
                            "{} times finer there",

@@ -52,8 +52,10 @@ struct RetriangulationOptions {
   //! Stage 1 must not make a surface that does not cross itself cross (a thin part collapsed, two
   //! close sheets pulled through each other, a crease): stage 2 would cut it and the rebuild change
   //! the topology where the flow did not. Stage 1 is then done again with the targets there halved and
-  //! kept below half the local thickness (spatial/local_thickness.h), up to this many times; if it
-  //! still crosses there, it is refused: the surface keeps its triangles (stage 1 skipped).
+  //! kept below half the local thickness (spatial/local_thickness.h), never below half the finest edge
+  //! min_edge_fraction · ℓ, up to this many times; if it still crosses there, or a round does not
+  //! reduce the crossings, or a round would make more than 4 times the vertices of the first
+  //! remeshing, it is refused: the surface keeps its triangles (stage 1 skipped).
   //! 0: the remeshing's own crossings are cut like the flow's (the paper's pipeline).
   int refinement_rounds = 2;
   //! Run stages 3–5 even when nothing intersects (the paper's "after every step" application).
@@ -84,6 +86,7 @@ struct RetriangulationResult {
   int remeshing_crossings = 0;
   int refinements = 0;            //!< stage 1: remeshings redone finer where they made crossings
   bool remeshing_refused = false; //!< stage 1 kept making crossings: skipped, the input's triangles kept
+  long remeshed_vertices = 0;     //!< stage 1: vertices of the largest remeshing it made, its rounds included
   int intersecting_pairs = 0;   //!< stage 2
   int removed_faces = 0;        //!< stage 2
   bool rebuilt = false;         //!< stages 3–5 ran
