@@ -137,6 +137,9 @@ void add_retriangulate_verb(CLI::App& app)
       ->check(CLI::NonNegativeNumber);
   verb->add_flag("--always-rebuild", o.always_rebuild,
                  "Rebuild from the points even when nothing intersects (stages 3-5 always)");
+  verb->add_flag("--keep-boundary", o.keep_boundary,
+                 "Keep the boundary loops vertex for vertex, as a run with a fixed boundary does: stage 1 keeps "
+                 "them and the rebuild keeps a band of faces along them");
   verb->add_option("--neighbours", o.normals.neighbours, "k, the nearest neighbours of the jet normals (6 to 1000)")
       ->capture_default_str()
       ->check(CLI::Range(6, 1000));
