@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
 
@@ -148,6 +150,31 @@ TEST_F(RetriCommands, retriangulate_splits_a_neck_crossed_at_its_pinch_and_says_
   const auto text = analytic::run_sdflow("retriangulate " + crossed + " -o " + path("two.off") + " --edge-length 0.5");
   ASSERT_EQ(text.exit_code, 0) << text.output;
   EXPECT_NE(text.output.find("each piece apart"), std::string::npos) << text.output;
+}
+
+TEST_F(RetriCommands, retriangulate_keep_boundary_returns_the_rim_vertex_for_vertex)
+{
+  // A mound rebuilt from its points: with --keep-boundary its rim's vertices come back exactly,
+  // without it the rebuild re-triangulates them.
+  const Mesh mound = test::mapped(analytic::disk(20, 2.0), [](const Eigen::Vector3d& p) {
+    return Eigen::Vector3d(p.x(), p.y(), 0.5 * (1 - p.squaredNorm() / 4));
+  });
+  write_mesh(mound, path("mound.ply"));
+  const auto rim = [](const Mesh& mesh) {
+    std::vector<std::array<double, 3>> points;
+    for (const auto v : mesh.vertices())
+      if (mesh.is_boundary(v))
+        points.push_back({mesh.point(v)[0], mesh.point(v)[1], mesh.point(v)[2]});
+    std::sort(points.begin(), points.end());
+    return points;
+  };
+  for (const bool keep : {true, false}) {
+    const std::string out = path(keep ? "kept.ply" : "free.ply");
+    const auto r = analytic::run_sdflow("retriangulate " + path("mound.ply") + " -o " + out +
+                                        " --edge-length 0.12 --always-rebuild" + (keep ? " --keep-boundary" : ""));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(rim(read_mesh(out).mesh) == rim(mound), keep);
+  }
 }
 
 TEST_F(RetriCommands, retriangulate_refuses_bad_input_and_options_without_writing)
