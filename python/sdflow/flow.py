@@ -76,8 +76,8 @@ class Fallback(Event):
     """A τ table's step failed even after its halvings: adaptive steps covered its τ of time."""
 
 
-_EVENT_TYPES = {"start": Start, "rejected": Rejected, "remeshed": Remeshed, "surgery": Surgery, "split": Split, "merged": Merged,
-                "fallback": Fallback, "refused": Refused}
+_EVENT_TYPES = {"start": Start, "rejected": Rejected, "remeshed": Remeshed, "surgery": Surgery, "split": Split,
+                "merged": Merged, "fallback": Fallback, "refused": Refused}
 
 
 @dataclass(frozen=True)

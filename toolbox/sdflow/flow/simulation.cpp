@@ -276,13 +276,13 @@ private:
   TimingSummary summary_;
 };
 
-//! Step `flow` to its end (or until `options.stop_requested`), recording every step.
 //! The events a run reports besides its rows (SimulationResult::events).
 bool is_notable(StepEventKind kind)
 {
   return kind != StepEventKind::start && kind != StepEventKind::rejected && kind != StepEventKind::remeshed;
 }
 
+//! Step `flow` to its end (or until `options.stop_requested`), recording every step.
 SimulationResult run(SurfaceDiffusion& flow, RunRecorder& recorder, const SimulationOptions& options)
 {
   SimulationResult result;

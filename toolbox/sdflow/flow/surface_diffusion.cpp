@@ -16,8 +16,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <iterator>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <utility>
 
