@@ -318,49 +318,6 @@ TEST(Pipeline, a_thin_neck_gets_edges_by_its_radius_of_curvature)
   EXPECT_EQ(checks::self_intersecting_pairs(adapted.mesh), 0);
 }
 
-//! A closed plate `length` × `width` × `thickness` as a CAD export triangulates it: each face a
-//! grid of `nx` × `ny` cells cut into two triangles, the rim a strip of long thin triangles between
-//! the two grids' edges. Its edges are sharp (90°) and it is thinner than its mean edge.
-Mesh cad_plate(double length, double width, double thickness, int nx, int ny)
-{
-  const int layer = (nx + 1) * (ny + 1);
-  const auto id = [&](int ix, int iy, int top) { return ix * (ny + 1) + iy + (top ? 0 : layer); };
-  VertexVectors x(2 * layer, 3);
-  for (int top : {1, 0})
-    for (int ix = 0; ix <= nx; ++ix)
-      for (int iy = 0; iy <= ny; ++iy)
-        x.row(id(ix, iy, top)) << length * ix / nx, width * iy / ny, top ? 0.5 * thickness : -0.5 * thickness;
-  std::vector<Eigen::Vector3i> t;
-  for (int top : {1, 0})
-    for (int ix = 0; ix < nx; ++ix)
-      for (int iy = 0; iy < ny; ++iy) {
-        const int a = id(ix, iy, top), b = id(ix + 1, iy, top), c = id(ix + 1, iy + 1, top), d = id(ix, iy + 1, top);
-        if (top)
-          t.insert(t.end(), {{a, b, c}, {a, c, d}});
-        else
-          t.insert(t.end(), {{a, c, b}, {a, d, c}});
-      }
-  std::vector<std::array<int, 2>> rim; // the grid's boundary, counter-clockwise seen from the top
-  for (int ix = 0; ix < nx; ++ix)
-    rim.push_back({ix, 0});
-  for (int iy = 0; iy < ny; ++iy)
-    rim.push_back({nx, iy});
-  for (int ix = nx; ix > 0; --ix)
-    rim.push_back({ix, ny});
-  for (int iy = ny; iy > 0; --iy)
-    rim.push_back({0, iy});
-  for (std::size_t k = 0; k < rim.size(); ++k) {
-    const auto& p = rim[k];
-    const auto& q = rim[(k + 1) % rim.size()];
-    const int a = id(p[0], p[1], 1), b = id(q[0], q[1], 1), c = id(q[0], q[1], 0), d = id(p[0], p[1], 0);
-    t.insert(t.end(), {{a, d, c}, {a, c, b}});
-  }
-  FaceIndices faces(static_cast<Eigen::Index>(t.size()), 3);
-  for (std::size_t k = 0; k < t.size(); ++k)
-    faces.row(static_cast<Eigen::Index>(k)) = t[k].transpose();
-  return make_mesh(x, faces);
-}
-
 TEST(Pipeline, refining_where_the_remeshing_crossed_a_sharp_edged_plate_stays_bounded)
 {
   // CGAL's rotor_small.off, a thin part with sharp edges, made stage 1 cross itself at its edges;
@@ -368,7 +325,7 @@ TEST(Pipeline, refining_where_the_remeshing_crossed_a_sharp_edged_plate_stays_bo
   // remeshing (past 3 GB). This plate (168 vertices, 0.03 thick, mean edge 0.077) grows the same
   // way on a small scale: its rounds made 104, 1997 and 4896 vertices, and more crossings than
   // the first, before stage 1 was refused.
-  const Mesh plate = cad_plate(1, 0.3, 0.03, 20, 3);
+  const Mesh plate = test::cad_plate(1, 0.3, 0.03, 20, 3);
   const RetriangulationResult first = retriangulate(plate, {.refinement_rounds = 0});
   ASSERT_GT(first.intersecting_pairs, 0) << "the fixture no longer makes its remeshing cross itself";
   const RetriangulationResult r = retriangulate(plate, {});
@@ -378,6 +335,54 @@ TEST(Pipeline, refining_where_the_remeshing_crossed_a_sharp_edged_plate_stays_bo
   EXPECT_EQ(closed_genera(r.mesh), closed_genera(plate));
   EXPECT_EQ(checks::self_intersecting_pairs(r.mesh), 0);
   EXPECT_EQ(r.components_after, 1);
+}
+
+//! A block 20 × 20 × 20 with a square tunnel 2`half_hole` wide along x, as a CAD export triangulates
+//! it: `nx` segments along the tunnel, every face a few long triangles. Genus 1; its walls are
+//! 10 − `half_hole` thick.
+Mesh cad_frame(double half_hole, int nx)
+{
+  const std::array<std::array<double, 2>, 4> square{{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}};
+  PolygonSoup soup;
+  for (int k = 0; k <= nx; ++k)
+    for (const double scale : {10.0, half_hole})
+      for (const auto& corner : square)
+        soup.points.emplace_back(-10 + 20.0 * k / nx, scale * corner[0], scale * corner[1]);
+  const auto outer = [](int k, int j) { return 8LL * k + j % 4; };
+  const auto inner = [](int k, int j) { return 8LL * k + 4 + j % 4; };
+  const auto quad = [&](long long a, long long b, long long c, long long d) {
+    soup.polygons.push_back({a, b, c});
+    soup.polygons.push_back({a, c, d});
+  };
+  for (int j = 0; j < 4; ++j) {
+    for (int k = 0; k < nx; ++k) {
+      quad(outer(k, j), outer(k, j + 1), outer(k + 1, j + 1), outer(k + 1, j));
+      quad(inner(k, j), inner(k + 1, j), inner(k + 1, j + 1), inner(k, j + 1));
+    }
+    quad(outer(0, j), inner(0, j), inner(0, j + 1), outer(0, j + 1));
+    quad(outer(nx, j), outer(nx, j + 1), inner(nx, j + 1), inner(nx, j));
+  }
+  return build_mesh(soup, "frame").mesh;
+}
+
+TEST(Pipeline, refining_a_small_surface_may_take_more_than_four_times_its_first_remeshing)
+{
+  // CGAL's mpi_triang.off (90 vertices, genus 1, walls thinner than ℓ) made its first remeshing
+  // cross itself and asked about 380 vertices of the round finer there, more than 4 times the 65 of
+  // the first: stage 1 was refused at every look. This frame is such a surface.
+  const Mesh frame = cad_frame(7, 4);
+  // Stage 1's first round: its flat faces ask for ℓ everywhere, as a uniform remeshing does.
+  const Mesh first = isotropic_remesh(frame, {.edge_length = 7, .iterations = 3, .curved_projection = true}).mesh;
+  ASSERT_FALSE(self_intersections(first).empty()) << "the fixture no longer makes its remeshing cross itself";
+  const RetriangulationResult r = retriangulate(frame, {.edge_length = 7});
+  EXPECT_GT(r.remeshing_crossings, 0);
+  EXPECT_FALSE(r.remeshing_refused);
+  EXPECT_GT(r.refinements, 0);
+  EXPECT_GT(r.remeshed_vertices, 4 * static_cast<long>(first.n_vertices()))
+      << "the fixture no longer needs a round above 4×";
+  EXPECT_LE(r.remeshed_vertices, 2000) << "a small surface is still bounded";
+  EXPECT_EQ(closed_genera(r.mesh), std::vector<int>{1});
+  EXPECT_EQ(checks::self_intersecting_pairs(r.mesh), 0);
 }
 } // namespace
 } // namespace sdflow

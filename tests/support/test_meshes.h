@@ -1,12 +1,13 @@
 #pragma once
 //! \file test_meshes.h
 //! \brief Small meshes for the tests: grids mapped by a function, disjoint unions, mapped copies,
-//! worn sphere caps. Header-only helpers shared by the test files.
+//! worn sphere caps, a CAD plate. Header-only helpers shared by the test files.
 
 #include "sdflow/mesh.h"
 #include "sdflow/remesh/face_patch.h"
 #include "support/analytic_meshes.h"
 
+#include <array>
 #include <functional>
 #include <random>
 #include <vector>
@@ -90,6 +91,49 @@ inline Mesh worn_sphere_cap(double* edge_length)
     }
   *edge_length = ell;
   return extract_face_patch(sphere, in_cap).mesh;
+}
+
+//! A closed plate `length` × `width` × `thickness` as a CAD export triangulates it: each face a
+//! grid of `nx` × `ny` cells cut into two triangles, the rim a strip of long thin triangles between
+//! the two grids' edges. Its edges are sharp (90°) and it is thinner than its mean edge.
+inline Mesh cad_plate(double length, double width, double thickness, int nx, int ny)
+{
+  const int layer = (nx + 1) * (ny + 1);
+  const auto id = [&](int ix, int iy, int top) { return ix * (ny + 1) + iy + (top ? 0 : layer); };
+  VertexVectors x(2 * layer, 3);
+  for (int top : {1, 0})
+    for (int ix = 0; ix <= nx; ++ix)
+      for (int iy = 0; iy <= ny; ++iy)
+        x.row(id(ix, iy, top)) << length * ix / nx, width * iy / ny, top ? 0.5 * thickness : -0.5 * thickness;
+  std::vector<Eigen::Vector3i> t;
+  for (int top : {1, 0})
+    for (int ix = 0; ix < nx; ++ix)
+      for (int iy = 0; iy < ny; ++iy) {
+        const int a = id(ix, iy, top), b = id(ix + 1, iy, top), c = id(ix + 1, iy + 1, top), d = id(ix, iy + 1, top);
+        if (top)
+          t.insert(t.end(), {{a, b, c}, {a, c, d}});
+        else
+          t.insert(t.end(), {{a, c, b}, {a, d, c}});
+      }
+  std::vector<std::array<int, 2>> rim; // the grid's boundary, counter-clockwise seen from the top
+  for (int ix = 0; ix < nx; ++ix)
+    rim.push_back({ix, 0});
+  for (int iy = 0; iy < ny; ++iy)
+    rim.push_back({nx, iy});
+  for (int ix = nx; ix > 0; --ix)
+    rim.push_back({ix, ny});
+  for (int iy = ny; iy > 0; --iy)
+    rim.push_back({0, iy});
+  for (std::size_t k = 0; k < rim.size(); ++k) {
+    const auto& p = rim[k];
+    const auto& q = rim[(k + 1) % rim.size()];
+    const int a = id(p[0], p[1], 1), b = id(q[0], q[1], 1), c = id(q[0], q[1], 0), d = id(p[0], p[1], 0);
+    t.insert(t.end(), {{a, d, c}, {a, c, b}});
+  }
+  FaceIndices faces(static_cast<Eigen::Index>(t.size()), 3);
+  for (std::size_t k = 0; k < t.size(); ++k)
+    faces.row(static_cast<Eigen::Index>(k)) = t[k].transpose();
+  return make_mesh(x, faces);
 }
 
 } // namespace sdflow::test

@@ -213,11 +213,25 @@ constexpr double kRefinementRadius = 2;
 //! a fraction of ℓ alone, 64 times the vertices where it applied).
 constexpr double kFinestRefinement = 0.5;
 
-//! A refinement round is not run when its targets ask for more than this many times the vertices
-//! of stage 1's first remeshing (estimated_vertices), and is stopped when it makes more
-//! (RemeshOptions::max_vertices): stage 1 is skipped. The refinements it is for are local (the
-//! band along a crease), a few tens of percent more vertices.
+//! A refinement round is not run when its targets ask for more than refinement_bound vertices
+//! (estimated_vertices), and is stopped when it makes more (RemeshOptions::max_vertices): stage 1
+//! is skipped. The refinements it is for are local (the band along a crease), a few tens of percent
+//! more vertices: the bound is this many times the vertices of stage 1's first remeshing...
 constexpr double kMaxRefinementGrowth = 4;
+
+//! ... or this many vertices, when more. A small surface needs more than 4× its first remeshing
+//! when a band of ℓ/2-to-ℓ/8 edges is a large share of it: CGAL's mpi_triang.off (90 vertices,
+//! genus 1) made 65 vertices and 21 crossing pairs in its first remeshing and asked ~380 for the
+//! next round, which the growth factor alone refused at every look until nothing was left. The
+//! factor is there against a round that runs away in memory (rotor_small.off: 58k vertices and
+//! more within one remeshing); a few thousand vertices cost milliseconds and a few megabytes.
+constexpr double kSmallSurfaceVertices = 2000;
+
+//! The vertices a refinement round may ask for or make, `first` those of the first remeshing.
+double refinement_bound(std::size_t first)
+{
+  return std::max(kMaxRefinementGrowth * static_cast<double>(first), kSmallSurfaceVertices);
+}
 
 //! The vertices a remeshing of `mesh` to `targets` (one per vertex) makes, about: each vertex of
 //! a regular triangulation with edges t owns an area of (√3/2) t²; each face's area is shared by
@@ -278,7 +292,7 @@ void refine_targets(const Mesh& input, const std::vector<Eigen::Vector3d>& own, 
 //! vertices (empty: the uniform ℓ of `remesh`); when the input does not cross itself and the result
 //! does, again with the targets around the crossings made finer (refine_targets), until it does not;
 //! the input is kept when the rounds are spent, a round leaves as many crossings as the one before
-//! or more, or it would grow the first remeshing, or grows it, more than kMaxRefinementGrowth times.
+//! or more, or it would ask for, or makes, more vertices than refinement_bound allows.
 StageOne remesh_without_own_crossings(const Mesh& input, const std::vector<FacePair>& crossings,
                                       std::vector<double> targets, RemeshOptions remesh,
                                       const RetriangulationOptions& options, double ell, RetriangulationResult& r)
@@ -300,8 +314,8 @@ StageOne remesh_without_own_crossings(const Mesh& input, const std::vector<FaceP
     RemeshResult remeshed = isotropic_remesh(input, remesh);
     r.remeshed_vertices = std::max(r.remeshed_vertices, static_cast<long>(remeshed.mesh.n_vertices()));
     if (remeshed.statistics.stopped) {
-      logger().debug("stage 1, round {}: stopped at {} vertices, {} times the first remeshing's", round,
-                     remeshed.mesh.n_vertices(), kMaxRefinementGrowth);
+      logger().debug("stage 1, round {}: stopped at {} vertices, the bound of a refinement", round,
+                     remeshed.mesh.n_vertices());
       return refuse();
     }
     StageOne s{std::move(remeshed.mesh), {}};
@@ -329,18 +343,17 @@ StageOne remesh_without_own_crossings(const Mesh& input, const std::vector<FaceP
       targets.assign(input.n_vertices(), ell);
     refine_targets(input, crossing_points(s.mesh, s.pairs), *thickness, ell,
                    kFinestRefinement * options.min_edge_fraction * ell, targets);
-    if (const double estimate = estimated_vertices(input, targets);
-        estimate > kMaxRefinementGrowth * static_cast<double>(first_vertices)) {
-      logger().debug("stage 1: the next round would remesh into about {:.0f} vertices, more than {} times the "
-                     "first remeshing's {}: not run",
-                     estimate, kMaxRefinementGrowth, first_vertices);
+    if (const double estimate = estimated_vertices(input, targets); estimate > refinement_bound(first_vertices)) {
+      logger().debug("stage 1: the next round would remesh into about {:.0f} vertices, more than {:.0f} (the "
+                     "first remeshing made {}): not run",
+                     estimate, refinement_bound(first_vertices), first_vertices);
       return refuse();
     }
     // The estimate holds for a remesher that meets its targets (within 30% on the rounds measured);
     // on a thin part with sharp edges it did not: rotor_small.off's second refinement round, at
     // targets down to ℓ/16 and estimated at 9.1k vertices, made 58k in its second iteration and
     // ran out of memory in its third.
-    remesh.max_vertices = static_cast<std::size_t>(kMaxRefinementGrowth * static_cast<double>(first_vertices));
+    remesh.max_vertices = static_cast<std::size_t>(refinement_bound(first_vertices));
     ++r.refinements;
   }
 }
