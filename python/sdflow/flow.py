@@ -22,6 +22,9 @@ class Event:
     gap at them where the topology changed (`crossing_size`, else None), the components, genus and
     boundary loops before and after, the faces before, after and rebuilt, the relative volume
     change the restoration made and the volume dropped as debris. Other events leave them None.
+    A "refused" event names why in `refusal`: "topology-without-crossing" (a topology change where
+    the surface did not cross itself) or "remeshing-crossed" (the remeshing kept making crossings
+    of its own and nothing was rebuilt).
     """
     kind: str
     step: int
@@ -41,6 +44,7 @@ class Event:
     faces_rebuilt: int | None = None
     volume_restored: float | None = None
     debris_volume: float | None = None
+    refusal: str | None = None
 
 
 class Start(Event):
@@ -68,8 +72,7 @@ class Merged(Event):
 
 
 class Refused(Event):
-    """A re-triangulation was refused, the surface kept: it would have changed the topology where
-    the surface did not cross itself."""
+    """A re-triangulation was refused, the surface kept (`refusal` says why)."""
 
 
 class Fallback(Event):

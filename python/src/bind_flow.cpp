@@ -66,6 +66,8 @@ py::dict event_dict(const StepEvent& e)
   d["time"] = e.time;
   d["detail"] = e.detail;
   d["rejections"] = e.rejections;
+  if (e.kind == StepEventKind::refused)
+    d["refusal"] = std::string(refusal_name(e.refusal));
   if (const auto& m = e.retriangulation) {
     d["crossing_pairs"] = m->crossing_pairs;
     d["crossing_size"] = std::isfinite(m->crossing_size) ? py::object(py::float_(m->crossing_size)) : py::none();

@@ -4,12 +4,14 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/retriangulation.h"
 #include "sdflow/flow/simulation.h"
+#include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/expression.h"
 #include "sdflow/shapes/mesher.h"
 #include "support/analytic_meshes.h"
+#include "support/test_meshes.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -460,5 +462,43 @@ TEST(RetriangulatingRun, a_step_no_tau_can_take_is_retried_after_a_retriangulati
   EXPECT_NE(events.find("stopped"), std::string::npos) << events;
 }
 
+
+//! A thin plate with sharp edges whose remeshing crosses itself at the run's ℓ whatever the rounds
+//! finer there do (Pipeline.refining_where_the_remeshing_crossed_a_sharp_edged_plate_stays_bounded):
+//! stage 1 is refused and nothing is rebuilt. That refusal is reported: the hook says so and why,
+//! and the run writes it to events.log and to the step's typed events.
+TEST(RetriangulationHook, a_remeshing_refused_with_nothing_rebuilt_is_reported_with_its_reason)
+{
+  const Mesh plate = test::cad_plate(1, 0.3, 0.03, 20, 3);
+  RetriangulationSchedule schedule;
+  schedule.local = false;
+  schedule.pipeline.edge_length = mean_edge_length(plate);
+  Mesh mesh = plate;
+  const RetriangulationReport report = make_retriangulation_hook(schedule)(mesh, {.step = 1, .force = true});
+  EXPECT_TRUE(report.refused);
+  EXPECT_EQ(report.refusal, RefusalReason::remeshing_crossed);
+  EXPECT_EQ(refusal_name(report.refusal), "remeshing-crossed");
+  EXPECT_FALSE(report.changed());
+  EXPECT_NE(report.detail.find("refused"), std::string::npos) << report.detail;
+  EXPECT_EQ(vertex_positions(mesh), vertex_positions(plate)) << "a refusal keeps the surface as it was";
+  EXPECT_EQ(face_indices(mesh), face_indices(plate));
+
+  RunParameters p;
+  p.steps = 1;
+  p.retriangulation = schedule;
+  SurfaceDiffusion flow(plate, p);
+  const StepRecord record = flow.step();
+  const auto refused = std::find_if(record.events.begin(), record.events.end(),
+                                    [](const StepEvent& e) { return e.kind == StepEventKind::refused; });
+  ASSERT_NE(refused, record.events.end()) << event_names(record.events);
+  EXPECT_EQ(refused->refusal, RefusalReason::remeshing_crossed);
+  EXPECT_NE(refused->detail.find("refused"), std::string::npos);
+  ASSERT_TRUE(refused->retriangulation);
+  EXPECT_EQ(refused->retriangulation->before, refused->retriangulation->after);
+  bool noted = false;
+  for (const FlowNote& note : flow.take_notes())
+    noted = noted || note.text.find("re-triangulation refused (remeshing-crossed)") != std::string::npos;
+  EXPECT_TRUE(noted) << "events.log gets the refusal";
+}
 } // namespace
 } // namespace sdflow

@@ -310,6 +310,16 @@ double crossing_size(const Mesh& mesh, const std::vector<FacePair>& crossings)
 
 } // namespace
 
+std::string_view refusal_name(RefusalReason reason)
+{
+  switch (reason) {
+  case RefusalReason::none: return "";
+  case RefusalReason::topology_without_crossing: return "topology-without-crossing";
+  case RefusalReason::remeshing_crossed: return "remeshing-crossed";
+  }
+  return "unknown";
+}
+
 void validate_retriangulation_schedule(const RetriangulationSchedule& s)
 {
   if (s.every < 1)
@@ -391,6 +401,7 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
       // crossing itself: its change is then taken as it comes.
       if (crossings.empty() && schedule.pipeline.refinement_rounds > 0) {
         report.refused = true;
+        report.refusal = RefusalReason::topology_without_crossing;
         report.degraded_left = degraded_elements(mesh, schedule).total();
         report.detail = fmt::format("{}: {}{}; refused: it would change the topology ({}) where the surface does not "
                                     "cross itself, so the surface keeps its triangles; {} degraded elements left",
@@ -405,6 +416,16 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
                                   "smallest neck or gap there {:.3g} = {:.3g} ℓ before the re-triangulation)",
                                   describe_change(topology_before, topology_after), crossings.size(), size,
                                   size / schedule.pipeline.edge_length);
+    }
+    if (r.remeshing_refused && !r.rebuilt && r.dropped_components == 0 && r.merged_components == 0) {
+      // Stage 1 refused and nothing else to do: the surface keeps its triangles, and the run says so.
+      report.refused = true;
+      report.refusal = RefusalReason::remeshing_crossed;
+      report.degraded_left = degraded_elements(mesh, schedule).total();
+      report.detail = fmt::format("{}: {}{}; refused: nothing was rebuilt, so the surface keeps its triangles; {} "
+                                  "degraded elements left",
+                                  verdict.reason, fallback, retriangulation_summary(r), report.degraded_left);
+      return report;
     }
     const std::string volume_note =
         schedule.restore_volume ? restore_volume(mesh, r.mesh, report.measures) : std::string{};

@@ -11,6 +11,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <string_view>
 
 namespace sdflow {
 
@@ -88,6 +89,21 @@ struct RetriangulationMeasures {
   double debris_volume = 0;
 };
 
+//! Why a re-triangulation was refused and the surface kept as it was.
+enum class RefusalReason {
+  none,
+  //! It would have changed the topology where the surface did not cross itself (no neck or gap
+  //! of the flow had closed).
+  topology_without_crossing,
+  //! Stage 1 kept making crossings of its own on a surface that did not cross itself, and nothing
+  //! else was to be rebuilt: the re-triangulation did nothing (retri/pipeline.h).
+  remeshing_crossed,
+};
+
+//! The name events.log, metrics and Python use for `reason` ("topology-without-crossing", ...;
+//! "" for none).
+std::string_view refusal_name(RefusalReason reason);
+
 //! What a re-triangulation hook did to the mesh (each flag becomes an event of the step's row).
 struct RetriangulationReport {
   bool remeshed = false; //!< triangulation improved (same topology)
@@ -95,9 +111,9 @@ struct RetriangulationReport {
   bool surgery = false;  //!< self-intersections removed and the surface rebuilt
   bool split = false;    //!< a component broke into several
   bool merged = false;   //!< components were joined
-  //! The re-triangulation was refused and the surface kept as it was: it would have changed the
-  //! topology where the surface did not cross itself (no neck or gap of the flow had closed).
+  //! The re-triangulation was refused and the surface kept as it was, for `refusal`.
   bool refused = false;
+  RefusalReason refusal = RefusalReason::none;
   std::string detail;    //!< one line for events.log (also when `refused`)
   long degraded_left = -1; //!< degraded elements left by a re-triangulation (-1: none ran)
   double check_seconds = 0;  //!< wall time of the look at the surface (intersections, degraded elements)

@@ -21,8 +21,7 @@ enum class StepEventKind {
   surgery,  //!< crossings removed and the surface rebuilt around them (a pinch-off, a seal, a contact)
   split,    //!< a component broke into several
   merged,   //!< components were joined
-  refused,  //!< a re-triangulation that would have changed the topology where the surface did not
-            //!< cross itself was refused, the surface kept
+  refused,  //!< a re-triangulation was refused, the surface kept (StepEvent::refusal says why)
 };
 
 //! The name metrics.csv, events.log and Python use for `kind` ("surgery", ...).
@@ -38,6 +37,8 @@ struct StepEvent {
   std::optional<RetriangulationMeasures> retriangulation;
   //! The re-triangulation's line of events.log (`refused`: why), the fallback's reason; else empty.
   std::string detail;
+  RefusalReason refusal = RefusalReason::none; //!< `refused`: why, as data
+
 };
 
 //! The kinds of `events` joined by '+' in order ("surgery+split"), metrics.csv's `event` column.

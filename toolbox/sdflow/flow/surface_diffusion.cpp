@@ -381,8 +381,11 @@ void SurfaceDiffusion::note_refusal(const RetriangulationReport& report, std::ve
   if (!report.refused)
     return;
   if (!has_event(events, StepEventKind::refused))
-    events.push_back({.kind = StepEventKind::refused, .retriangulation = report.measures, .detail = report.detail});
-  note(step_, time_, fmt::format("re-triangulation refused: {}", report.detail));
+    events.push_back({.kind = StepEventKind::refused,
+                      .retriangulation = report.measures,
+                      .detail = report.detail,
+                      .refusal = report.refusal});
+  note(step_, time_, fmt::format("re-triangulation refused ({}): {}", refusal_name(report.refusal), report.detail));
 }
 
 void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report, const VertexVectors& before,
