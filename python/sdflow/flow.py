@@ -23,7 +23,8 @@ class Event:
     boundary loops before and after, the faces before, after and rebuilt, the relative volume
     change the restoration made and the volume dropped as debris. Other events leave them None.
     A "refused" event names why in `refusal`: "topology-without-crossing" (a topology change where
-    the surface did not cross itself) or "remeshing-crossed" (the remeshing kept making crossings
+    the surface did not cross itself), "topology-beyond-crossings" (a change larger than, or away
+    from, what the crossings explain) or "remeshing-crossed" (the remeshing kept making crossings
     of its own and nothing was rebuilt).
     """
     kind: str

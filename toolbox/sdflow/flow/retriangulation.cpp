@@ -2,6 +2,7 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/flow/degraded_elements.h"
+#include "sdflow/flow/topology_guard.h"
 #include "sdflow/flow/volume.h"
 #include "sdflow/geometry/material_volume.h"
 #include "sdflow/geometry/measures.h"
@@ -316,6 +317,7 @@ std::string_view refusal_name(RefusalReason reason)
   case RefusalReason::none: return "";
   case RefusalReason::topology_without_crossing: return "topology-without-crossing";
   case RefusalReason::remeshing_crossed: return "remeshing-crossed";
+  case RefusalReason::topology_beyond_crossings: return "topology-beyond-crossings";
   }
   return "unknown";
 }
@@ -408,6 +410,25 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
                                     verdict.reason, fallback, retriangulation_summary(r),
                                     describe_change(topology_before, topology_after), report.degraded_left);
         return report;
+      }
+      // Where it crossed, the change must be located at the crossings and no larger than they
+      // explain: a remeshing or a rebuild that tears a thin part or seals handles elsewhere in the
+      // same pass is the pipeline's (CGAL's turbine.off went from genus 11 to 0 with 4 pairs crossed).
+      if (schedule.pipeline.refinement_rounds > 0) {
+        if (const TopologyGuardVerdict located = explain_topology_change(
+                mesh, r.mesh, crossings, schedule.pipeline.edge_length, r.dropped_components);
+            !located.explained) {
+          report.refused = true;
+          report.refusal = RefusalReason::topology_beyond_crossings;
+          report.degraded_left = degraded_elements(mesh, schedule).total();
+          report.detail = fmt::format("{}: {}{}; refused: it would change the topology ({}) beyond what the {} face "
+                                      "pairs crossed explain ({}), so the surface keeps its triangles; {} degraded "
+                                      "elements left",
+                                      verdict.reason, fallback, retriangulation_summary(r),
+                                      describe_change(topology_before, topology_after), crossings.size(),
+                                      located.reason, report.degraded_left);
+          return report;
+        }
       }
       const double size = crossing_size(mesh, crossings);
       measured.crossing_pairs = static_cast<long>(crossings.size());

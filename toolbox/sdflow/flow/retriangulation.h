@@ -95,6 +95,9 @@ enum class RefusalReason {
   //! It would have changed the topology where the surface did not cross itself (no neck or gap
   //! of the flow had closed).
   topology_without_crossing,
+  //! It would have changed the topology more than, or away from, what the regions where the
+  //! surface crossed itself explain (flow/topology_guard.h).
+  topology_beyond_crossings,
   //! Stage 1 kept making crossings of its own on a surface that did not cross itself, and nothing
   //! else was to be rebuilt: the re-triangulation did nothing (retri/pipeline.h).
   remeshing_crossed,

@@ -20,4 +20,5 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/suitesparse_output.cpp
   sdflow/flow/surface_diffusion.cpp
   sdflow/flow/time_step.cpp
+  sdflow/flow/topology_guard.cpp
   sdflow/flow/volume.cpp)
