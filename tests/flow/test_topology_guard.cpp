@@ -22,6 +22,8 @@ namespace sdflow {
 namespace {
 
 constexpr double kEll = 0.2;
+//! The pipeline's stage 6 at its defaults for ℓ = kEll.
+const ComponentOptions kDebris{.min_faces = 16, .min_thickness = 0.01 * kEll};
 
 //! `mesh` moved by `offset`.
 Mesh shifted(Mesh mesh, const Eigen::Vector3d& offset)
@@ -49,25 +51,32 @@ TEST(TopologyGuard, a_merge_at_the_crossing_is_explained_and_a_lost_handle_far_f
   ASSERT_EQ(count_topology(torus).genus, 1);
 
   const TopologyGuardVerdict good = explain_topology_change(before, analytic::disjoint_union(merged, torus), crossings,
-                                                            kEll, 0);
+                                                            kEll, kDebris);
   EXPECT_TRUE(good.explained) << good.reason;
   EXPECT_EQ(good.regions, 1);
   EXPECT_EQ(good.changes, 1);
 
   // The same, but where the torus was a sphere: its handle was lost far from any crossing.
   const Mesh sealed = analytic::disjoint_union(merged, analytic::icosphere(3, 1.5, {8, 0, 0}));
-  const TopologyGuardVerdict bad = explain_topology_change(before, sealed, crossings, kEll, 0);
+  const TopologyGuardVerdict bad = explain_topology_change(before, sealed, crossings, kEll, kDebris);
   EXPECT_FALSE(bad.explained);
   EXPECT_NE(bad.reason.find("genus 1 to genus 0"), std::string::npos) << bad.reason;
 
-  // The torus gone altogether: only as debris.
-  EXPECT_FALSE(explain_topology_change(before, merged, crossings, kEll, 0).explained);
-  EXPECT_TRUE(explain_topology_change(before, merged, crossings, kEll, 1).explained);
+  // The torus gone altogether: refused, whatever stage 6 dropped; a flattened icosahedron far away,
+  // a double sheet that stage 6 drops as debris already, may go.
+  const TopologyGuardVerdict gone = explain_topology_change(before, merged, crossings, kEll, kDebris);
+  EXPECT_FALSE(gone.explained);
+  EXPECT_NE(gone.reason.find("is gone"), std::string::npos) << gone.reason;
+  Mesh sheet = analytic::icosphere(0, 0.5);
+  for (const auto v : sheet.vertices())
+    sheet.set_point(v, Mesh::Point(sheet.point(v)[0] - 5, sheet.point(v)[1], 1e-4 * sheet.point(v)[2]));
+  const Mesh with_speck = analytic::disjoint_union(overlapping_spheres(), sheet);
+  EXPECT_TRUE(explain_topology_change(with_speck, merged, self_intersections(with_speck), kEll, kDebris).explained);
 
   // The torus in two pieces far from the crossing: a split the flow did not bring.
   const Mesh halves = analytic::disjoint_union(
       merged, analytic::disjoint_union(analytic::icosphere(2, 0.4, {6.5, 0, 0}), analytic::icosphere(2, 0.4, {9.5, 0, 0})));
-  EXPECT_FALSE(explain_topology_change(before, halves, crossings, kEll, 0).explained);
+  EXPECT_FALSE(explain_topology_change(before, halves, crossings, kEll, kDebris).explained);
 }
 
 //! Three tori (centre-line radius 1.5, tube 0.5, axis z) in a row along x, 3.2 apart, so that each
@@ -110,14 +119,14 @@ TEST(TopologyGuard, handles_lost_at_one_small_crossing_are_more_than_it_explains
   const RetriangulationResult joined = retriangulate(before, {.edge_length = kEll});
   ASSERT_EQ(count_topology(joined.mesh).components, 1);
   ASSERT_EQ(count_topology(joined.mesh).genus, genus);
-  const TopologyGuardVerdict good = explain_topology_change(before, joined.mesh, crossings, kEll, 0);
+  const TopologyGuardVerdict good = explain_topology_change(before, joined.mesh, crossings, kEll, kDebris);
   EXPECT_TRUE(good.explained) << good.reason;
   EXPECT_EQ(good.regions, 1);
 
   // One body of genus 0 over the same place: every handle lost, and a component joined, at one
   // crossing region.
   const Mesh blob = analytic::ellipsoid(4, 4.2, 2.2, 0.8);
-  const TopologyGuardVerdict bad = explain_topology_change(before, shifted(blob, {2.6, 0, 0}), crossings, kEll, 0);
+  const TopologyGuardVerdict bad = explain_topology_change(before, shifted(blob, {2.6, 0, 0}), crossings, kEll, kDebris);
   EXPECT_FALSE(bad.explained);
   EXPECT_EQ(bad.changes, 1 + genus);
   EXPECT_NE(bad.reason.find(fmt::format("genus {} → 0", genus)), std::string::npos) << bad.reason;
@@ -126,8 +135,8 @@ TEST(TopologyGuard, handles_lost_at_one_small_crossing_are_more_than_it_explains
 TEST(TopologyGuard, refuses_to_judge_without_crossings)
 {
   const Mesh sphere = analytic::icosphere(2);
-  EXPECT_THROW(explain_topology_change(sphere, sphere, {}, kEll, 0), InvalidParameter);
-  EXPECT_THROW(explain_topology_change(sphere, sphere, {{0, 5}}, 0, 0), InvalidParameter);
+  EXPECT_THROW(explain_topology_change(sphere, sphere, {}, kEll, kDebris), InvalidParameter);
+  EXPECT_THROW(explain_topology_change(sphere, sphere, {{0, 5}}, 0, kDebris), InvalidParameter);
 }
 
 

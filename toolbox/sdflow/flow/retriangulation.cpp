@@ -415,8 +415,11 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
       // explain: a remeshing or a rebuild that tears a thin part or seals handles elsewhere in the
       // same pass is the pipeline's (CGAL's turbine.off went from genus 11 to 0 with 4 pairs crossed).
       if (schedule.pipeline.refinement_rounds > 0) {
+        const double ell = schedule.pipeline.edge_length;
         if (const TopologyGuardVerdict located = explain_topology_change(
-                mesh, r.mesh, crossings, schedule.pipeline.edge_length, r.dropped_components);
+                mesh, r.mesh, crossings, ell,
+                {.min_faces = schedule.pipeline.min_component_faces,
+                 .min_thickness = schedule.pipeline.min_component_thickness * ell});
             !located.explained) {
           report.refused = true;
           report.refusal = RefusalReason::topology_beyond_crossings;

@@ -120,7 +120,7 @@ std::string location(const Mesh& mesh, const std::vector<int>& vertex_component,
 
 TopologyGuardVerdict explain_topology_change(const Mesh& before, const Mesh& after,
                                              const std::vector<FacePair>& crossings, double edge_length,
-                                             int dropped_components, const TopologyGuardOptions& options)
+                                             const ComponentOptions& debris, const TopologyGuardOptions& options)
 {
   if (crossings.empty())
     throw InvalidParameter("topology guard: no crossings given; a change without crossings is never the flow's");
@@ -204,15 +204,18 @@ TopologyGuardVerdict explain_topology_change(const Mesh& before, const Mesh& aft
       return verdict;
     }
   }
-  int lost = 0;
+  // A component away from the crossings may vanish only as what it was already: debris.
+  const std::vector<int> was_debris = keep_components(before, debris).dropped;
   for (int c = 0; c < count_before; ++c)
-    lost += !at_crossing_before[static_cast<std::size_t>(c)] && claimed[static_cast<std::size_t>(c)] == 0;
-  if (lost > dropped_components) {
-    verdict.explained = false;
-    verdict.reason = fmt::format("{} components farther than {} ℓ from every crossing are gone, {} of them as debris",
-                                 lost, options.reach, dropped_components);
-    return verdict;
-  }
+    if (!at_crossing_before[static_cast<std::size_t>(c)] && claimed[static_cast<std::size_t>(c)] == 0 &&
+        std::find(was_debris.begin(), was_debris.end(), c) == was_debris.end()) {
+      verdict.explained = false;
+      verdict.reason = fmt::format("a component ({}, {} triangles) farther than {} ℓ from every crossing is gone, at {}",
+                                   describe(topology_before[static_cast<std::size_t>(c)]),
+                                   topology_before[static_cast<std::size_t>(c)].faces, options.reach,
+                                   location(before, vertex_before, c));
+      return verdict;
+    }
 
   // At the crossings: the components there before and after, and what they hold.
   const auto totals = [](const std::vector<ComponentTopology>& topology, const std::vector<char>& at_crossing) {

@@ -6,6 +6,7 @@
 //! a seal around a contact both at once).
 
 #include "sdflow/mesh.h"
+#include "sdflow/retri/components.h"
 #include "sdflow/spatial/intersect.h"
 
 #include <string>
@@ -36,17 +37,16 @@ struct TopologyGuardVerdict {
   std::string reason; //!< why not, when not explained
 };
 
-//! Whether `after`, a re-triangulation of `before` that dropped `dropped_components` components
-//! as debris, changed the topology only as the crossings of `before` (its intersecting face pairs,
-//! not empty) explain: every component of `after` away from them (farther than
-//! TopologyGuardOptions::reach plus one ℓ) came from a component of `before` away from them
-//! (farther than `reach`; the one whose vertices lie nearest to its own) with its genus and
-//! boundary loops, one for one, and every component of `before` away from them is still there (or
-//! among the debris); the components at the crossings change by at most changes_per_region per
-//! crossing region. `edge_length` is the run's ℓ. Throws InvalidParameter without crossings or
-//! with ℓ ≤ 0.
+//! Whether `after`, a re-triangulation of `before`, changed the topology only as the crossings of
+//! `before` (its intersecting face pairs, not empty) explain: every component of `after` away from
+//! them (farther than TopologyGuardOptions::reach plus one ℓ) came from a component of `before`
+//! away from them (farther than `reach`; the one whose vertices lie nearest to its own) with its
+//! genus and boundary loops, one for one, and every component of `before` away from them is still
+//! there, unless `debris` (the pipeline's stage 6) would have dropped it from `before` already; the
+//! components at the crossings change by at most changes_per_region per crossing region.
+//! `edge_length` is the run's ℓ. Throws InvalidParameter without crossings or with ℓ ≤ 0.
 TopologyGuardVerdict explain_topology_change(const Mesh& before, const Mesh& after,
                                              const std::vector<FacePair>& crossings, double edge_length,
-                                             int dropped_components, const TopologyGuardOptions& options = {});
+                                             const ComponentOptions& debris, const TopologyGuardOptions& options = {});
 
 } // namespace sdflow
