@@ -58,6 +58,8 @@ toml::table event_json(const StepEvent& event)
                 {"time", event.time}};
   if (event.kind == StepEventKind::rejected)
     e.insert("rejections", event.rejections);
+  if (event.kind == StepEventKind::refused)
+    e.insert("refusal", std::string(refusal_name(event.refusal)));
   if (const auto& m = event.retriangulation) {
     e.insert("crossing_pairs", static_cast<int64_t>(m->crossing_pairs));
     e.insert("crossing_size", m->crossing_size); // NaN (left out) unless the topology changed at a crossing
