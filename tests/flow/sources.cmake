@@ -4,6 +4,7 @@ target_sources(sdflow_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/test_carried_ordering.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_degraded_elements.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_exact_kinetics.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_isotropic_energy.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_look_ahead.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_parameter_schema.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_parameters.cpp
@@ -13,6 +14,7 @@ target_sources(sdflow_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/test_run_control.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_samples.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_scheme.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_scheme_parts.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_simulation.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_single_precision_factor.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_step_event.cpp

@@ -1,7 +1,8 @@
-//! Boundary conditions of open surfaces (boundary_condition.h) and the material volume they
+//! Boundary conditions of open surfaces (boundary_condition.h, fixed_boundary.h) and the material volume they
 //! conserve (material_volume.h): the discrete identities, a flat disk, a bump under refinement in
 //! τ, the rim of a flow.
 #include "sdflow/flow/boundary_condition.h"
+#include "sdflow/flow/fixed_boundary.h"
 #include "sdflow/flow/scheme.h"
 #include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/geometry/laplacian.h"
@@ -88,7 +89,7 @@ TEST(ZeroFluxLaplacian, is_symmetric_conserving_and_the_laplacian_of_the_extende
   SparseMatrix held_l = l;
   Eigen::VectorXd curvature = h;
   std::vector<bool> held;
-  impose_boundary_condition(mesh, BoundaryCondition::fixed, held_l, curvature, held);
+  FixedBoundary{}.impose(mesh, held_l, curvature, held);
   ASSERT_EQ(held, rim);
   for (Eigen::Index i = 0; i < n; ++i)
     if (rim[i])

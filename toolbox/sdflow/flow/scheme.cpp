@@ -1,7 +1,7 @@
 #include "sdflow/flow/scheme.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/geometry/cotangent_curvature.h"
+#include "sdflow/flow/isotropic_energy.h"
 #include "sdflow/stopwatch.h"
 
 #include <fmt/format.h>
@@ -11,13 +11,25 @@
 
 namespace sdflow {
 
+SchemeParts scheme_parts(const SchemeOptions& options)
+{
+  return {std::make_shared<const IsotropicEnergy>(options.curvature), flow_boundary(options.boundary)};
+}
+
 FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options, const CotangentCache* cache)
+{
+  return flow_operators(mesh, options, scheme_parts(options), cache);
+}
+
+FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options, const SchemeParts& parts,
+                             const CotangentCache* cache)
 {
   if (!(options.beta >= 0) || !std::isfinite(options.beta))
     throw InvalidParameter(fmt::format("flow step: β must be finite and ≥ 0, got {}", options.beta));
   if (mesh.n_vertices() == 0 || mesh.n_faces() == 0)
     throw InvalidMesh("flow step: the mesh has no triangles");
   FlowOperators op;
+  op.parts = parts;
   if (cache) {
     cache->assemble(mesh, op.laplacian, op.areas); // checks that the cache fits the mesh
     op.normals = vertex_normals(mesh, cache->triangles(), options.normals);
@@ -40,11 +52,8 @@ FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options, con
         ++op.mass_fallbacks;
     }
   }
-  // The cotangent H is built from the L and M just assembled rather than assembling them again.
-  op.curvature = options.curvature.method == CurvatureMethod::cotangent
-                     ? cotangent_mean_curvature(mesh, op.normals, op.laplacian, op.areas)
-                     : mean_curvature(mesh, op.normals, options.curvature);
-  impose_boundary_condition(mesh, options.boundary, op.laplacian, op.curvature, op.held);
+  op.curvature = parts.energy->first_variation({mesh, op.normals, op.laplacian, op.areas});
+  parts.boundary->impose(mesh, op.laplacian, op.curvature, op.held);
   op.rhs = op.laplacian * op.curvature;
   return op;
 }
@@ -62,8 +71,7 @@ StepResult solve_step(const Mesh& mesh, const FlowOperators& op, double tau, dou
   if (!(tau > 0) || !std::isfinite(tau))
     throw InvalidParameter(fmt::format("flow step: τ must be finite and positive, got {}", tau));
   StepResult result;
-  const FlowSystem system{op.laplacian, op.areas, op.held, tau * beta};
-  result.w = solver.solve(system, op.rhs, guesses, &result.solve);
+  result.w = solver.solve(op.system(tau * beta), op.rhs, guesses, &result.solve);
   result.positions = vertex_positions(mesh);
   if (result.solve.factorised) {
     result.factorisations = 1;
@@ -98,7 +106,7 @@ StepResult extrapolated_step(const Mesh& mesh, const FlowOperators& op, double t
   Mesh halfway = mesh;
   set_vertex_positions(halfway, first_half.positions);
   const Stopwatch watch;
-  const FlowOperators halfway_operators = flow_operators(halfway, options, cache);
+  const FlowOperators halfway_operators = flow_operators(halfway, options, op.parts, cache);
   result.operators_seconds = watch.seconds();
   const StepResult second_half =
       solve_step(halfway, halfway_operators, tau / 2, options.beta, half_solver, {&first_half.w, 1});

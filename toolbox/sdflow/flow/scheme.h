@@ -1,10 +1,14 @@
 #pragma once
 //! \file scheme.h
 //! \brief One step of the semi-implicit scheme, eq. (6) of the paper in the SPD form of docs/design.md §2:
-//! (M + τβ L M⁻¹ L) w = L H, then X ← X - τ w N (so the normal velocity is V_N = -w ≈ -ΔH).
+//! (M + τβ L M⁻¹ L) w = L H, then X ← X - τ w N (so the normal velocity is V_N = -w ≈ -ΔH). The
+//! surface energy (surface_energy.h: H, the implicit system) and the boundary condition
+//! (flow_boundary.h) are its replaceable parts (SchemeParts).
 
 #include "sdflow/flow/boundary_condition.h"
+#include "sdflow/flow/flow_boundary.h"
 #include "sdflow/flow/solver.h"
+#include "sdflow/flow/surface_energy.h"
 #include "sdflow/geometry/cotangent_cache.h"
 #include "sdflow/geometry/curvature.h"
 #include "sdflow/geometry/normals.h"
@@ -13,6 +17,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -40,29 +45,50 @@ struct SchemeOptions {
   bool extrapolate = false;
 };
 
-//! The operators of the current surface; they do not depend on τ, so a rejected step reuses them.
+//! The scheme's replaceable parts (docs/design.md §11): a new energy or boundary condition is a
+//! new implementation of one of these interfaces, not a branch in the step.
+struct SchemeParts {
+  std::shared_ptr<const SurfaceEnergy> energy;
+  std::shared_ptr<const FlowBoundary> boundary;
+};
+
+//! The parts `options` select: the isotropic energy with its `curvature`, and its `boundary`.
+SchemeParts scheme_parts(const SchemeOptions& options);
+
 //! A volume-gradient area below this fraction of the Voronoi area marks a folded star.
 inline constexpr double kMassFallbackFraction = 0.1;
 
+//! The operators of the current surface; they do not depend on τ, so a rejected step reuses them.
 struct FlowOperators {
+  SchemeParts parts;           //!< the energy and boundary condition they were made with
   VertexVectors normals;       //!< N (#V by 3), eq. (8)
-  //! H (eq. 9 or cotangent, per SchemeOptions::curvature); on the boundary as its condition sets it
+  //! μ, the energy's first variation: for the isotropic energy H (eq. 9 or cotangent, per
+  //! SchemeOptions::curvature); on the boundary as its condition sets it
   Eigen::VectorXd curvature;
-  //! L, eq. (10) in symmetric form; with a fixed boundary, its rim eliminated (zero_flux_laplacian)
+  //! L, eq. (10) in symmetric form, as the boundary condition leaves it (a fixed rim eliminated,
+  //! zero_flux_laplacian)
   SparseMatrix laplacian;
   Eigen::VectorXd areas;       //!< M: mixed Voronoi or volume-gradient areas (SchemeOptions::mass)
   //! Vertices whose volume-gradient area was not usable (a folded or nearly flat-folded star near a
   //! pinch or a seal): they take their mixed Voronoi area instead, so the step goes on.
   long mass_fallbacks = 0;
-  Eigen::VectorXd rhs;         //!< L H
+  Eigen::VectorXd rhs;         //!< L μ
   std::vector<bool> held;      //!< vertices with w = 0: a fixed boundary (empty if none)
+
+  //! The step's linear system for τβ, as the energy forms it (M + τβ L M⁻¹ L for the isotropic one).
+  FlowSystem system(double tau_beta) const { return parts.energy->implicit_system(*this, tau_beta); }
 };
 
-//! N, H, L, M and L H of `mesh`. With `cache` (built for this connectivity) L and M are assembled
-//! into its kept pattern. A volume-gradient area below `kMassFallbackFraction` of the vertex's
-//! Voronoi area is replaced by the Voronoi area (counted in `mass_fallbacks`). Throws InvalidMesh
-//! on a degenerate star or triangle (a Voronoi area that is not positive).
+//! N, μ, L, M and L μ of `mesh` with the parts `options` select (scheme_parts).
 FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options = {},
+                             const CotangentCache* cache = nullptr);
+
+//! N, μ, L, M and L μ of `mesh` with the energy and boundary condition of `parts` (the curvature and
+//! boundary of `options` are then unused). With `cache` (built for this connectivity) L and M are
+//! assembled into its kept pattern. A volume-gradient area below `kMassFallbackFraction` of the
+//! vertex's Voronoi area is replaced by the Voronoi area (counted in `mass_fallbacks`). Throws
+//! InvalidMesh on a degenerate star or triangle (a Voronoi area that is not positive).
+FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options, const SchemeParts& parts,
                              const CotangentCache* cache = nullptr);
 
 //! The outcome of solving one step for a given τ (the mesh itself is not modified).
@@ -98,7 +124,7 @@ StepResult solve_step(const Mesh& mesh, const FlowOperators& operators, double t
 //! Local Richardson extrapolation of the step (step doubling, Hairer, Nørsett, Wanner I §II.4):
 //! 2·S_{τ/2}(S_{τ/2}(X)) − S_τ(X). The step S_τ is first order in τ (τβΔ² is not the linearised
 //! operator of ΔH), the combination second order. Costs three solves and the operators of the
-//! half-step surface (`cache`, optional, must fit `mesh`); `w` returned is w_{τ/2} + w'_{τ/2} − w_τ.
+//! half-step surface (`cache`, optional, must fit `mesh`; made with the parts of `operators`); `w` returned is w_{τ/2} + w'_{τ/2} − w_τ.
 //! The whole step solves with `solver`, the two half steps with `half_solver`: each keeps a factor
 //! of its own system, so both are reused from step to step as in plain steps.
 StepResult extrapolated_step(const Mesh& mesh, const FlowOperators& operators, double tau,

@@ -4,7 +4,9 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/carried_ordering.cpp
   sdflow/flow/checkpoint.cpp
   sdflow/flow/degraded_elements.cpp
+  sdflow/flow/fixed_boundary.cpp
   sdflow/flow/intersection_guard.cpp
+  sdflow/flow/isotropic_energy.cpp
   sdflow/flow/parameter_schema.cpp
   sdflow/flow/parameters.cpp
   sdflow/flow/refinement.cpp

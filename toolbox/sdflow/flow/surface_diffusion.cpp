@@ -191,7 +191,8 @@ StepRecord SurfaceDiffusion::step()
   set_vertex_positions(mesh_, trial.positions);
   if (p_.conserve_volume || record.start)
     set_vertex_positions(
-        mesh_, restore_volumes(mesh_, volumes, {triangles_, topology_.face_component, topology_.closed}).positions);
+        mesh_, restore_volumes(mesh_, volumes, {triangles_, topology_.face_component, topology_.closed}, *op_.parts.boundary)
+                   .positions);
   if (guard_) {
     const Stopwatch check;
     try {
@@ -332,7 +333,7 @@ void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
   }
   if (!(schedule.pipeline.edge_length > 0))
     schedule.pipeline.edge_length = start_length_;
-  schedule.pipeline.keep_boundary = p_.scheme.boundary == BoundaryCondition::fixed;
+  schedule.pipeline.keep_boundary = flow_boundary(p_.scheme.boundary)->keeps_rim();
   RetriangulationSchedule refined_schedule = schedule;
   refined_schedule.pipeline = refined(schedule.pipeline, p_.refinement);
   retriangulate_ = make_retriangulation_hook(refined_schedule);
@@ -343,7 +344,7 @@ void SurfaceDiffusion::restore_solver(FlowSolver& solver, const VertexVectors& p
 {
   const Mesh anchor = make_mesh(positions, triangles);
   const FlowOperators anchor_op = flow_operators(anchor, p_.scheme, &*cache_);
-  solver.restore(FlowSystem{anchor_op.laplacian, anchor_op.areas, anchor_op.held, tau_beta}, state);
+  solver.restore(anchor_op.system(tau_beta), state);
 }
 
 //! The hook's failure stops the flow like an unstable step: the surface stays the last accepted one.

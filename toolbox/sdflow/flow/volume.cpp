@@ -1,6 +1,7 @@
 #include "sdflow/flow/volume.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/flow/fixed_boundary.h"
 #include "sdflow/geometry/material_volume.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/normals.h"
@@ -19,7 +20,8 @@ namespace {
 
 //! Material volume of each component (material_volume.h), and the derivative of each volume when
 //! every vertex moves along `direction` at unit speed: Σ_f (b×c·d_a + c×a·d_b + a×b·d_c)/6. The
-//! boundary vertices do not move (their direction is zero), so neither do the caps.
+//! caps count as fixed, exact while the boundary holds its rim (a zero direction); a rim that moves
+//! leaves Newton's method with an approximate rate.
 void volumes_and_rates(const VertexVectors& x, const VertexVectors& direction, const FaceIndices& faces,
                        const std::vector<int>& component, const std::vector<BoundaryLoop>& loops,
                        std::vector<double>& volume, std::vector<double>& rate)
@@ -46,11 +48,11 @@ VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& t
   std::vector<bool> closed;
   for (const ComponentTopology& c : component_topology(mesh))
     closed.push_back(c.closed());
-  return restore_volumes(mesh, target_volumes, {face_indices(mesh), component, closed});
+  return restore_volumes(mesh, target_volumes, {face_indices(mesh), component, closed}, FixedBoundary{});
 }
 
 VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& target_volumes,
-                                  const MeshComponents& components)
+                                  const MeshComponents& components, const FlowBoundary& boundary)
 {
   const FaceIndices& faces = components.triangles;
   const std::vector<int>& component = components.face_component;
@@ -61,14 +63,13 @@ VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& t
   if (faces.rows() != static_cast<Eigen::Index>(mesh.n_faces()) || component.size() != mesh.n_faces())
     throw InvalidParameter(fmt::format("restore_volumes: {} triangles and {} face components for a mesh of {} faces",
                                        faces.rows(), component.size(), mesh.n_faces()));
-  // The boundary stays where it is (a fixed rim must, and the cap is then fixed too): the offset
-  // moves the other vertices only.
+  // The offset moves rim vertices only as the boundary condition allows (a fixed rim must stay).
   VertexVectors normals = vertex_normals(mesh, faces);
   const bool open = std::find(components.closed.begin(), components.closed.end(), false) != components.closed.end();
   const std::vector<BoundaryLoop> loops = open ? boundary_loop_vertices(mesh, component) : std::vector<BoundaryLoop>{};
   for (const BoundaryLoop& loop : loops)
     for (const int v : loop.vertices)
-      normals.row(v).setZero();
+      normals.row(v) = boundary.rim_restoration_direction(mesh, v, normals.row(v).transpose()).transpose();
   std::vector<int> vertex_component(mesh.n_vertices(), -1);
   for (Eigen::Index f = 0; f < faces.rows(); ++f)
     for (int c = 0; c < 3; ++c)

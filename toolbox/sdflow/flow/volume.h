@@ -3,8 +3,10 @@
 //! \brief Optional exact volume conservation: after a step, each component is offset along its
 //! vertex normals (eq. 8) by one uniform distance that restores its material volume
 //! (geometry/material_volume.h: the enclosed volume of a closed component, the volume closed by
-//! flat caps over the boundary loops of an open one). Boundary vertices are not moved.
+//! flat caps over the boundary loops of an open one). Boundary vertices move only as the boundary
+//! condition lets them (FlowBoundary::rim_restoration_direction); the convenience forms hold them.
 
+#include "sdflow/flow/flow_boundary.h"
 #include "sdflow/mesh.h"
 
 #include <vector>
@@ -20,7 +22,7 @@ struct VolumeRestoration {
   std::vector<double> dropped_volumes;
 };
 
-//! Offset each component's non-boundary vertices so that its material volume equals
+//! Offset each component's non-boundary vertices (boundary vertices held) so that its material volume equals
 //! `target_volumes[c]` (components in the order of face_component_ids). The volume is a cubic in
 //! the offset δ; Newton's method from δ = 0 reaches round-off in a few iterations.
 //! Throws InvalidParameter if the target count differs from the component count, SolverFailure if
@@ -36,9 +38,10 @@ struct MeshComponents {
 };
 
 //! The same with the mesh's triangles and components given, so that a step does not find them
-//! again. Throws InvalidParameter also when they do not match the mesh's face count.
+//! again, and boundary vertices offset along the directions `boundary` gives them. Throws
+//! InvalidParameter also when the components do not match the mesh's face count.
 VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& target_volumes,
-                                  const MeshComponents& components);
+                                  const MeshComponents& components, const FlowBoundary& boundary);
 
 //! Offset the components of `after`, a re-triangulation of `before`, so that volume lost or gained
 //! by the re-triangulation is given back. Each component of `after` belongs to the components of

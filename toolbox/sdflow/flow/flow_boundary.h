@@ -1,0 +1,39 @@
+#pragma once
+//! \file flow_boundary.h
+//! \brief What the scheme needs from a boundary condition at the rim of an open surface (docs/method.md,
+//! "Boundary conditions"; docs/design.md §11). Surface diffusion is of fourth order: a rim needs two
+//! conditions, which a FlowBoundary imposes on a step's operators, and it says how re-triangulations
+//! and the volume restoration treat the rim. A new condition is a new implementation, chosen by
+//! `flow_boundary` (boundary_condition.h); `flow_operators`, the stepper and the volume restoration
+//! call only these.
+
+#include "sdflow/geometry/laplacian.h"
+#include "sdflow/mesh.h"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace sdflow {
+
+class FlowBoundary {
+public:
+  virtual ~FlowBoundary() = default;
+
+  //! Impose the condition on a step's operators of `mesh`, after the energy's μ (surface_energy.h)
+  //! and before the right-hand side L μ is formed: it may change L (the flux of V_N = -M⁻¹Lμ), μ at
+  //! rim vertices, and flag in `held` (#V, or empty for none) the vertices whose w is 0, which the
+  //! solver imposes (FlowSystem::held) and the time-step rule leaves out. A closed mesh is left as it is.
+  virtual void impose(const Mesh& mesh, SparseMatrix& laplacian, Eigen::VectorXd& first_variation,
+                      std::vector<bool>& held) const = 0;
+
+  //! Whether re-triangulations keep the rim bit for bit (retri/pipeline.h, `keep_boundary`) rather
+  //! than remeshing it with the interior.
+  virtual bool keeps_rim() const = 0;
+
+  //! The direction along which the volume restoration (volume.h) may offset rim vertex `v`, whose
+  //! unit normal (eq. 8) is `normal`; zero holds it where the step left it.
+  virtual Eigen::Vector3d rim_restoration_direction(const Mesh& mesh, int v, const Eigen::Vector3d& normal) const = 0;
+};
+
+} // namespace sdflow

@@ -1,0 +1,24 @@
+#include "sdflow/flow/isotropic_energy.h"
+
+#include "sdflow/flow/scheme.h"
+#include "sdflow/geometry/cotangent_curvature.h"
+#include "sdflow/geometry/measures.h"
+
+namespace sdflow {
+
+double IsotropicEnergy::value(const Mesh& mesh) const { return surface_area(mesh); }
+
+Eigen::VectorXd IsotropicEnergy::first_variation(const SurfaceGeometry& g) const
+{
+  // The cotangent H is built from the L and M just assembled rather than assembling them again.
+  return curvature_.method == CurvatureMethod::cotangent
+             ? cotangent_mean_curvature(g.mesh, g.normals, g.laplacian, g.areas)
+             : mean_curvature(g.mesh, g.normals, curvature_);
+}
+
+FlowSystem IsotropicEnergy::implicit_system(const FlowOperators& op, double tau_beta) const
+{
+  return {op.laplacian, op.areas, op.held, tau_beta};
+}
+
+} // namespace sdflow
