@@ -19,7 +19,9 @@ namespace sdflow {
 //! One step's linear system, by reference to the operators of the current surface.
 //! Held vertices (fixed boundary) get w = 0: their rows and columns are replaced by M_ii.
 struct FlowSystem {
-  const SparseMatrix& laplacian;  //!< L, symmetric (#V by #V)
+  //! K of the implicit term τβ K M⁻¹ K, symmetric (#V by #V): the Laplacian L for the isotropic
+  //! energy (surface_energy.h)
+  const SparseMatrix& laplacian;
   const Eigen::VectorXd& areas;   //!< diagonal of M, all positive
   const std::vector<bool>& held;  //!< held[v]: w_v = 0; empty means no vertex is held
   double tau_beta = 0;            //!< τβ ≥ 0 (0 is the explicit scheme, w = M⁻¹ L H)
