@@ -302,6 +302,36 @@ TEST(ParameterSchema, implied_settings_follow_the_keys)
   EXPECT_FALSE(q.scheme.extrapolate) << "only the flag --tolerance implies extrapolated steps";
 }
 
+TEST(ParameterSchema, the_presets_set_exactly_the_entries_that_give_a_paper_value)
+{
+  const RunParameters defaults;
+  RunParameters paper;
+  paper.scheme.beta = 0.75; // a parameter no preset touches
+  paper.retriangulation.pipeline.edge_length = 0.2;
+  apply_preset("paper", paper);
+  int differing = 0;
+  for (const ParameterEntry& e : parameter_schema()) {
+    SCOPED_TRACE(e.key);
+    if (e.paper) {
+      EXPECT_EQ(e.get(paper), *e.paper);
+      differing += e.get(paper) != e.get(defaults);
+    } else if (e.key != "beta" && e.key != "retriangulation.edge_length") {
+      EXPECT_EQ(e.get(paper), e.get(defaults)) << "a preset changed a parameter the schema does not give it";
+    }
+  }
+  // Where the paper's scheme differs from the defaults: eq. (9) H, its boundary rule, uniform ℓ, flat
+  // projection, no volume restoration, neither local remeshing nor local surgery, no start steps, no
+  // refinement (its Voronoi areas and plain steps are the defaults too).
+  EXPECT_EQ(differing, 9);
+  EXPECT_EQ(paper.scheme.beta, 0.75);
+  EXPECT_EQ(paper.retriangulation.pipeline.edge_length, 0.2);
+
+  apply_preset("default", paper);
+  paper.scheme.beta = defaults.scheme.beta;
+  paper.retriangulation.pipeline.edge_length = defaults.retriangulation.pipeline.edge_length;
+  EXPECT_EQ(run_parameters_toml(paper), run_parameters_toml(defaults)) << "the default preset undoes the paper's";
+}
+
 TEST(ParameterSchema, readme_table_is_the_schemas)
 {
   // README's table of scenario keys is `sdflow run --help-scenario`, pasted between the markers.

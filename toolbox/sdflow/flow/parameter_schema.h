@@ -136,6 +136,9 @@ struct ParameterEntry {
     std::string flag, value, help;
   };
   std::vector<Shorthand> shorthands;
+  //! What `preset = "paper"` sets the parameter to (apply_preset); `preset = "default"` sets it to
+  //! its default. Empty: neither preset touches it.
+  std::optional<ParameterValue> paper;
 
   //! "retriangulation" for "retriangulation.edge_length", "" at the top level.
   std::string section() const;

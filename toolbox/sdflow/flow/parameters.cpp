@@ -199,39 +199,12 @@ VertexMass vertex_mass(const std::string& name)
 
 void apply_preset(const std::string& name, RunParameters& p)
 {
-  RunParameters defaults;
-  const RunParameters* source = &defaults;
-  RunParameters paper;
-  if (name == "paper") {
-    paper.scheme.curvature = {.method = CurvatureMethod::normal_curvature_integral};
-    paper.scheme.mass = VertexMass::voronoi;
-    paper.scheme.extrapolate = false;
-    paper.scheme.boundary = BoundaryCondition::paper;
-    paper.time_step.adaptive.tolerance = 0;
-    paper.time_step.adaptive.start_steps = 0;
-    paper.retriangulation.pipeline.edges_per_radius = 0;
-    paper.retriangulation.pipeline.curved_projection = false;
-    paper.retriangulation.restore_volume = false;
-    paper.retriangulation.local = false;
-    paper.retriangulation.local_surgery = false;
-    paper.refinement = 1;
-    source = &paper;
-  } else if (name != "default") {
+  if (name != "paper" && name != "default")
     throw InvalidParameter(fmt::format("preset must be \"paper\" or \"default\", got \"{}\"", name));
-  }
-  p.scheme.curvature = source->scheme.curvature;
-  p.scheme.mass = source->scheme.mass;
-  p.scheme.extrapolate = source->scheme.extrapolate;
-  p.scheme.boundary = source->scheme.boundary;
-  p.time_step.adaptive.tolerance = source->time_step.adaptive.tolerance;
-  p.time_step.adaptive.start_steps = source->time_step.adaptive.start_steps;
-  p.retriangulation.pipeline.edges_per_radius = source->retriangulation.pipeline.edges_per_radius;
-  p.retriangulation.pipeline.min_edge_fraction = source->retriangulation.pipeline.min_edge_fraction;
-  p.retriangulation.pipeline.curved_projection = source->retriangulation.pipeline.curved_projection;
-  p.retriangulation.restore_volume = source->retriangulation.restore_volume;
-  p.retriangulation.local = source->retriangulation.local;
-  p.retriangulation.local_surgery = source->retriangulation.local_surgery;
-  p.refinement = source->refinement;
+  const RunParameters defaults;
+  for (const ParameterEntry& e : parameter_schema())
+    if (e.paper)
+      e.set(p, name == "paper" ? *e.paper : e.get(defaults));
 }
 
 void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
@@ -286,7 +259,6 @@ void validate_flow_parameters(const RunParameters& p)
     throw InvalidParameter(fmt::format("an error tolerance ({}) needs extrapolated steps (extrapolate = true): "
                                        "they provide the error estimate",
                                        p.time_step.adaptive.tolerance));
-  validate_retriangulation_schedule(p.retriangulation);
 }
 
 std::string run_parameters_toml(const RunParameters& p)

@@ -73,9 +73,10 @@ VertexMass vertex_mass(const std::string& name);
 //! The presets of the `preset` key and `--preset`: "paper" is the paper's scheme exactly (eq. 9 H,
 //! Voronoi areas, plain steps, no error control, uniform re-triangulation edge length, no volume
 //! restoration after re-triangulation, flat projection in remeshing, the whole re-triangulation
-//! pipeline instead of local remeshing and surgery); "default" sets those options
-//! back to sdflow's defaults.
-//! Other parameters (time steps, β, the re-triangulation's ℓ and triggers) are left alone.
+//! pipeline instead of local remeshing and surgery, no start steps, no refinement, the paper's
+//! boundary rule); "default" sets those options back to sdflow's defaults. Which parameters a
+//! preset sets, and to what, is the schema's (`ParameterEntry::paper`); the others (time steps, β,
+//! the re-triangulation's ℓ and triggers) are left alone.
 //! Throws InvalidParameter, listing the names, on another name.
 void apply_preset(const std::string& name, RunParameters& parameters);
 
@@ -86,9 +87,9 @@ void apply_preset(const std::string& name, RunParameters& parameters);
 //! twice under two names, or a value of the wrong type or outside its range.
 void read_run_parameters(const std::filesystem::path& file, RunParameters& parameters);
 
-//! Check the range of every parameter in use (parameter_schema.h) and their consistency (τ for
-//! the chosen mode, an error tolerance with extrapolated steps, the re-triangulation schedule);
-//! throws InvalidParameter naming the key.
+//! Check the range of every parameter in use (parameter_schema.h: the one place ranges are given,
+//! the re-triangulation's included) and their consistency (τ for the chosen mode, an error
+//! tolerance with extrapolated steps); throws InvalidParameter naming the key.
 void validate_flow_parameters(const RunParameters& parameters);
 
 //! validate_flow_parameters, and a stop condition (a number of steps or an end time) for a run.

@@ -322,23 +322,8 @@ std::string_view refusal_name(RefusalReason reason)
   return "unknown";
 }
 
-void validate_retriangulation_schedule(const RetriangulationSchedule& s)
-{
-  if (s.every < 1)
-    throw InvalidParameter(fmt::format("retriangulation.every must be ≥ 1, got {}", s.every));
-  if (!(s.min_angle_deg >= 0 && s.min_angle_deg < 60))
-    throw InvalidParameter(fmt::format("retriangulation.min_angle must be in [0, 60) degrees, got {}", s.min_angle_deg));
-  if (!(s.degraded_fraction >= 0 && s.degraded_fraction < 1))
-    throw InvalidParameter(
-        fmt::format("retriangulation.degraded_fraction must be in [0, 1), got {}", s.degraded_fraction));
-  if (!(s.edge_ratio > 1) || !std::isfinite(s.edge_ratio))
-    throw InvalidParameter(fmt::format("retriangulation.edge_ratio must be a finite number > 1, got {}", s.edge_ratio));
-  validate_retriangulation_options(s.pipeline);
-}
-
 RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& schedule)
 {
-  validate_retriangulation_schedule(schedule);
   if (!(schedule.pipeline.edge_length > 0))
     throw InvalidParameter("the re-triangulation hook needs a resolved target edge length (> 0)");
   auto watch = std::make_shared<IntersectionWatch>();

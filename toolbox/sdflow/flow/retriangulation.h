@@ -133,10 +133,8 @@ struct RetriangulationReport {
 //! be deterministic for resumed runs to match uninterrupted ones.
 using RetriangulationHook = std::function<RetriangulationReport(Mesh&, const RetriangulationContext&)>;
 
-//! Throws InvalidParameter for a schedule out of range (the pipeline's options included).
-void validate_retriangulation_schedule(const RetriangulationSchedule& schedule);
-
-//! The hook a flow makes from its schedule (SurfaceDiffusion, surface_diffusion.h).
+//! The hook a flow makes from its schedule (SurfaceDiffusion, surface_diffusion.h). The schedule's
+//! ranges are the run schema's, checked with the run's other parameters (validate_flow_parameters);
 //! `schedule.pipeline.edge_length` must be resolved (> 0). Deterministic: its only state is a cache of the self-intersection search
 //! (refitted between steps), and what it reports in RetriangulationReport::degraded_left comes back
 //! through the context (and the checkpoint), so a resumed run re-triangulates exactly as the original.

@@ -13,6 +13,10 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/resolution_check.cpp
   sdflow/flow/retriangulation.cpp
   sdflow/flow/run_lock.cpp
+  sdflow/flow/schema_retriangulation.cpp
+  sdflow/flow/schema_run.cpp
+  sdflow/flow/schema_scheme.cpp
+  sdflow/flow/schema_time_step.cpp
   sdflow/flow/scheme.cpp
   sdflow/flow/simulation.cpp
   sdflow/flow/single_precision_factor.cpp

@@ -1,0 +1,146 @@
+//! \file schema_retriangulation.cpp
+//! \brief The run schema's [retriangulation] section: when (flow/retriangulation.h) and how
+//! (retri/pipeline.h) the surface is re-triangulated.
+
+#include "sdflow/flow/detail/schema_sections.h"
+
+namespace sdflow::detail {
+
+//! [retriangulation]: when (flow/retriangulation.h) and how (retri/pipeline.h).
+void add_retriangulation_entries(std::vector<ParameterEntry>& s)
+{
+  using RS = RetriangulationSchedule;
+  using RO = RetriangulationOptions;
+  {
+    auto& e = add(s, entry("retriangulation.enabled", "--retriangulate", ParameterType::boolean,
+                           "Re-triangulate between steps when the surface intersects itself or its triangles degrade "
+                           "(paper §3.2.1); off, a step that makes the surface intersect itself stops the run (exit 3)"));
+    e.meshlab = {.name = "Retriangulate", .label = "Re-triangulate",
+                 .help = "Re-triangulate between steps when the surface intersects itself (a pinch-off, a hole "
+                         "closing, bodies touching) or its triangles degrade (an angle below 15°, an edge outside "
+                         "[ℓ/2, 2ℓ]), by the pipeline of <i>Surface diffusion: re-triangulate</i>. The number of "
+                         "vertices then changes. On by default, as in sdflow run; off, the filter fails at the first "
+                         "step that makes the surface intersect itself."};
+    bind<bool>(e, &RunParameters::retriangulation, &RS::enabled);
+  }
+  {
+    auto& e = add(s, entry("retriangulation.every", "--retriangulate-every", ParameterType::integer,
+                           "Look at the surface after every k-th step"));
+    e.range = at_least(1);
+    bind<long>(e, &RunParameters::retriangulation, &RS::every);
+  }
+  {
+    auto& e = add(s, entry("retriangulation.min_angle", "--min-angle", ParameterType::real,
+                           "Degraded: a triangle with an angle below this (degrees)"));
+    e.range = {.min = 0, .max = 60, .max_open = true};
+    bind<double>(e, &RunParameters::retriangulation, &RS::min_angle_deg);
+  }
+  {
+    auto& e = add(s, entry("retriangulation.edge_ratio", "--edge-ratio", ParameterType::real,
+                           "Degraded: an edge longer than r·ℓ_v or shorter than ℓ_v/r of its local target ℓ_v"));
+    e.range = above(1);
+    bind<double>(e, &RunParameters::retriangulation, &RS::edge_ratio);
+  }
+  {
+    auto& e = add(s, entry("retriangulation.degraded_fraction", "--degraded-fraction", ParameterType::real,
+                           "Re-triangulate when more than this fraction of the triangles is degraded (0: any one)"));
+    e.range = {.min = 0, .max = 1, .max_open = true};
+    bind<double>(e, &RunParameters::retriangulation, &RS::degraded_fraction);
+  }
+  {
+    auto& e = add(s, entry("retriangulation.always", "--retriangulate-always", ParameterType::boolean,
+                           "Run the whole pipeline after every k-th step, needed or not (the paper's practice)"));
+    bind<bool>(e, &RunParameters::retriangulation, &RS::always);
+  }
+  {
+    auto& e = add(s, entry("retriangulation.local", "--retriangulate-local", ParameterType::boolean,
+                           "When only degraded elements call for a re-triangulation, remesh just the region around them "
+                           "(three rings of faces, boundary kept) instead of running the whole pipeline (the whole "
+                           "pipeline when that fails or the region holds more than a tenth of the surface)"));
+    bind<bool>(e, &RunParameters::retriangulation, &RS::local);
+    e.paper = false;
+  }
+  {
+    auto& e = add(s, entry("retriangulation.local_surgery", "--local-surgery", ParameterType::boolean,
+                           "At a self-intersection, rebuild only the faces near the crossing (the whole pipeline when "
+                           "that fails, and for components touching each other)"));
+    bind<bool>(e, &RunParameters::retriangulation, &RS::local_surgery);
+    e.paper = false;
+  }
+  {
+    auto& e = add(s, entry("retriangulation.edge_length", "--edge-length", ParameterType::real,
+                           "ℓ, the target edge length (0: the initial surface's mean edge length, written to run.toml "
+                           "as a number)"));
+    e.range = at_least(0);
+    e.meshlab = {.name = "EdgeLength", .label = "Re-triangulation edge length ℓ",
+                 .help = "Target edge length of the re-triangulation, used only when it is on (≥ 0; 0: the mesh's "
+                         "mean edge length at the start). The default is this mesh's mean edge length.",
+                 .source = MeshlabParameter::Default::mean_edge_length};
+    bind<double>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::edge_length);
+  }
+  {
+    auto& e = add(s, entry("retriangulation.remesh_iterations", "--remesh-iterations", ParameterType::integer,
+                           "Rounds of isotropic remeshing (0: none)"));
+    e.range = at_least(0);
+    bind<long>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::remesh_iterations);
+  }
+  {
+    auto& e = add(s, entry("retriangulation.edges_per_radius", "--edges-per-radius", ParameterType::real,
+                           "Curvature-adapted ℓ: edges per radius of curvature where finer than ℓ (0: uniform ℓ, the "
+                           "paper's)"));
+    e.range = at_least(0);
+    bind<double>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::edges_per_radius);
+    e.paper = 0.0;
+  }
+  {
+    auto& e = add(s, entry("retriangulation.min_edge_fraction", "--min-edge-fraction", ParameterType::real,
+                           "Floor of the adapted ℓ, as a fraction of ℓ"));
+    e.range = {.min = 0, .max = 1, .min_open = true};
+    bind<double>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::min_edge_fraction);
+  }
+  {
+    auto& e = add(s, entry("retriangulation.restore_volume", "--restore-volume", ParameterType::boolean,
+                           "Give each component (or group that split or fused) back the material volume a "
+                           "re-triangulation took or added"));
+    bind<bool>(e, &RunParameters::retriangulation, &RS::restore_volume);
+    e.paper = false;
+  }
+  {
+    auto& e = add(s, entry("retriangulation.curved_projection", "--curved-projection", ParameterType::boolean,
+                           "Remesh onto the smooth surface the triangles sample, not onto the flat triangles"));
+    bind<bool>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::curved_projection);
+    e.paper = false;
+  }
+  {
+    auto& e = add(s, entry("retriangulation.neighbours", "--neighbours", ParameterType::integer,
+                           "k, the nearest neighbours of the jet-fitted point normals"));
+    e.range = at_least(6);
+    bind<long>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::normals, &PointNormalsOptions::neighbours);
+  }
+  {
+    auto& e = add(s, entry("retriangulation.fill_holes", "--fill-holes", ParameterType::boolean,
+                           "Fill the holes a rebuild from points leaves"));
+    bind<bool>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::fill_holes);
+  }
+  {
+    auto& e = add(s, entry("retriangulation.max_hole_length", "--max-hole-length", ParameterType::real,
+                           "Holes with a longer boundary stay open (0: automatic)"));
+    e.range = at_least(0);
+    e.range.infinite_allowed = true; // as validate_retriangulation_options allows
+    bind<double>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::max_hole_length);
+  }
+  {
+    auto& e = add(s, entry("retriangulation.min_component_faces", "--min-component-faces", ParameterType::integer,
+                           "Components with fewer triangles are dropped as debris"));
+    e.range = at_least(1);
+    bind<long>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::min_component_faces);
+  }
+  {
+    auto& e = add(s, entry("retriangulation.min_component_thickness", "--min-component-thickness", ParameterType::real,
+                           "Closed components whose volume is below this fraction of ℓ times their area are dropped"));
+    e.range = at_least(0);
+    bind<double>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::min_component_thickness);
+  }
+}
+
+} // namespace sdflow::detail

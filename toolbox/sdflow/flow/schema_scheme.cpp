@@ -1,0 +1,155 @@
+//! \file schema_scheme.cpp
+//! \brief The run schema's sections on the scheme (flow/scheme.h), its linear solver and the options
+//! of the flow: volume, refinement, look-ahead, boundary.
+
+#include "sdflow/flow/detail/schema_sections.h"
+
+#include "sdflow/errors.h"
+
+#include <fmt/format.h>
+
+namespace sdflow::detail {
+
+//! The scheme of eq. (6) and its linear solver.
+void add_scheme_entries(std::vector<ParameterEntry>& s)
+{
+  {
+    auto& e = add(s, entry("beta", "--beta", ParameterType::real, "Implicitness β of eq. (6): 0.5 the paper's, 0 explicit"));
+    e.range = at_least(0);
+    e.meshlab = {.name = "Beta", .label = "Implicitness β",
+                 .help = "Weight of the implicit part of the scheme (I + τβΔ²) w = ΔH: 0.5 is the paper's stable "
+                         "choice, 0 the explicit scheme (which needs much smaller τ)."};
+    bind<double>(e, &RunParameters::scheme, &SchemeOptions::beta);
+  }
+  {
+    auto& e = add(s, entry("curvature", "--curvature", ParameterType::choice,
+                           "Mean curvature: `cotangent` (H = ½ N·ΔX, converges), `normal_integral` (eq. 9, the paper's) "
+                           "or `normal_integral_angle_sum` (eq. 9 over the angle sum, not 2π)"));
+    e.choices = {"cotangent", "normal_integral", "normal_integral_angle_sum"};
+    e.get = [](const RunParameters& p) -> ParameterValue { return curvature_name(p.scheme.curvature); };
+    e.set = [](RunParameters& p, const ParameterValue& v) {
+      p.scheme.curvature = curvature_options(std::get<std::string>(v));
+    };
+    e.meshlab = {.name = "Curvature", .label = "Mean curvature H",
+                 .help = "How H is computed: cotangent takes H = ½ N·ΔX (default: it converges to the exact flow on "
+                         "any smooth surface); normal_integral is the paper's eq. (9), the integral of normal "
+                         "curvatures divided by 2π, which does not converge off spheres; normal_integral_angle_sum "
+                         "divides by the vertex's angle sum instead. The result's quality holds this H."};
+    e.paper = std::string("normal_integral");
+  }
+  {
+    auto& e = add(s, entry("mass", "--mass", ParameterType::choice,
+                           "Vertex areas M of Δ = M⁻¹L: `voronoi` (eq. 10, mixed Voronoi) or `volume_gradient` (the "
+                           "volume a vertex sweeps, first-order volume conservation)"));
+    e.choices = {"voronoi", "volume_gradient"};
+    e.get = [](const RunParameters& p) -> ParameterValue { return mass_name(p.scheme.mass); };
+    e.set = [](RunParameters& p, const ParameterValue& v) { p.scheme.mass = vertex_mass(std::get<std::string>(v)); };
+    e.meshlab = {.name = "Mass", .label = "Vertex areas",
+                 .help = "The vertex areas M of the Laplacian Δ = M⁻¹L: voronoi is eq. (10)'s mixed Voronoi areas "
+                         "(the paper's, default); volume_gradient is the volume a vertex sweeps per unit normal "
+                         "motion, which conserves volume to first order in τ."};
+    e.paper = std::string("voronoi");
+  }
+  {
+    auto& e = add(s, entry("extrapolate", "--extrapolate", ParameterType::boolean,
+                           "Richardson-extrapolate each step from one step of τ and two of τ/2: second order in τ, "
+                           "three solves a step"));
+    e.meshlab = {.name = "Extrapolate", .label = "Extrapolated steps",
+                 .help = "Richardson-extrapolate each step from one full and two half steps: second order in τ "
+                         "instead of first, at three solves a step. Off: the paper's scheme."};
+    bind<bool>(e, &RunParameters::scheme, &SchemeOptions::extrapolate);
+    e.paper = false;
+  }
+  {
+    auto& e = add(s, entry("solver", "--solver", ParameterType::choice,
+                           "Linear solver: `cholmod` (supernodal Cholesky of the SPD form) or `qr` (the paper's sparse "
+                           "QR, slow)"));
+    e.choices = {"cholmod", "qr"};
+    e.get = [](const RunParameters& p) -> ParameterValue {
+      return std::string(p.solver.kind == SolverKind::qr ? "qr" : "cholmod");
+    };
+    e.set = [](RunParameters& p, const ParameterValue& v) {
+      const std::string& s = std::get<std::string>(v);
+      if (s != "cholmod" && s != "qr")
+        throw InvalidParameter(fmt::format("solver must be \"cholmod\" or \"qr\", got \"{}\"", s));
+      p.solver.kind = s == "qr" ? SolverKind::qr : SolverKind::cholmod;
+    };
+  }
+  {
+    auto& e = add(s, entry("factorisation", "--factorisation", ParameterType::choice,
+                           "`reuse` a factorisation as a CG preconditioner until refactorising pays, or factorise "
+                           "`every_step`"));
+    e.choices = {"reuse", "every_step"};
+    e.get = [](const RunParameters& p) -> ParameterValue {
+      return std::string(p.solver.policy == FactorisationPolicy::reuse ? "reuse" : "every_step");
+    };
+    e.set = [](RunParameters& p, const ParameterValue& v) {
+      const std::string& s = std::get<std::string>(v);
+      if (s != "reuse" && s != "every_step")
+        throw InvalidParameter(fmt::format("factorisation must be \"reuse\" or \"every_step\", got \"{}\"", s));
+      p.solver.policy = s == "reuse" ? FactorisationPolicy::reuse : FactorisationPolicy::every_step;
+    };
+  }
+  {
+    auto& e = add(s, entry("cg_tolerance", "--cg-tolerance", ParameterType::real,
+                           "Relative residual at which CG with a reused factor stops"));
+    e.range = above(0);
+    bind<double>(e, &RunParameters::solver, &SolverOptions::cg_tolerance);
+    e.in_use = [](const RunParameters& p) { return p.solver.policy == FactorisationPolicy::reuse; };
+  }
+}
+
+//! The flow's options: volume, refinement, look-ahead, the boundary condition.
+void add_flow_option_entries(std::vector<ParameterEntry>& s)
+{
+  {
+    auto& e = add(s, entry("conserve_volume", "--conserve-volume", ParameterType::boolean,
+                           "Restore each component's material volume after every step (a uniform normal offset)"));
+    e.meshlab = {.name = "ConserveVolume", .label = "Conserve volume exactly",
+                 .help = "After each step, move every component along its normals by one uniform distance "
+                         "that restores its volume (an open surface's boundary stays put; its volume is that "
+                         "closed by flat caps over its boundary). The flow conserves volume in theory; this removes the "
+                         "small drift of the discrete scheme."};
+    bind<bool>(e, &RunParameters::conserve_volume);
+  }
+  {
+    auto& e = add(s, entry("refinement", "--refinement", ParameterType::real,
+                           "s, the refinement of the curvature-adapted sizing and the time-step bound: edges per "
+                           "radius × √s, displacement bound ÷ s, so event times converge as ℓ shrinks (0: automatic, "
+                           "max(1, R / (8 ℓ)) for the initial surface's typical radius of curvature R, written to "
+                           "run.toml as a number; 1: the sizing and bound as given)"));
+    e.range = {.min = 0, .max = 1e6};
+    bind<double>(e, &RunParameters::refinement);
+    e.paper = 1.0;
+  }
+  {
+    auto& e = add(s, entry("look_ahead", "--look-ahead", ParameterType::boolean,
+                           "Take the next step's first trial on the second core while the surface is looked at for "
+                           "re-triangulation (the same results either way; off: one after the other)"));
+    e.resumable = true;
+    bind<bool>(e, &RunParameters::look_ahead);
+  }
+  {
+    auto& e = add(s, entry("boundary", "--boundary", ParameterType::choice,
+                           "At the boundary of an open surface: `fixed` (the rim stays put and no material crosses "
+                           "it; the default) or `paper` (the rim moves, with H = 0 there: the paper's §4.3)"));
+    e.choices = {"fixed", "paper"};
+    e.key_aliases = {"fixed_boundary"}; // its older boolean key: true is `fixed`, false `paper`
+    e.shorthands = {{"--fixed-boundary", "fixed", "A fixed boundary (the default): --boundary fixed"}};
+    e.get = [](const RunParameters& p) -> ParameterValue {
+      return std::string(boundary_condition_name(p.scheme.boundary));
+    };
+    e.set = [](RunParameters& p, const ParameterValue& v) {
+      p.scheme.boundary = boundary_condition(std::get<std::string>(v));
+    };
+    e.meshlab = {.name = "FixedBoundary", .label = "Fixed boundary",
+                 .help = "At the boundary of an open surface. On: the boundary stays where it is and no material "
+                         "flows through it (the surface ends on a large body that does not move), so the volume "
+                         "under the surface is conserved. Off: boundary vertices move like interior ones, with zero "
+                         "mean curvature there (the paper's rule; the volume is not conserved).",
+                 .boolean_choices = std::pair<std::string, std::string>{"paper", "fixed"}};
+    e.paper = std::string("paper");
+  }
+}
+
+} // namespace sdflow::detail
