@@ -186,25 +186,27 @@ void FilterSdflowPlugin::initParameterSet(QAction* action, MeshModel& model, Ric
   case FP_SURFACE_DIFFUSION:
     add_diffusion_parameters(parameters, mean_edge_length);
     break;
-  case FP_RETRIANGULATE:
+  case FP_RETRIANGULATE: {
+    const sdflow::meshlab::RetriangulationSettings defaults = sdflow::meshlab::default_retriangulation_settings();
     parameters.addParam(RichFloat("EdgeLength", static_cast<float>(mean_edge_length), "Target edge length ℓ",
                                   "Edge length the surface is remeshed to (≥ 0; 0: the mesh's mean edge length). "
                                   "The default is this mesh's mean edge length; a smaller ℓ gives more triangles."));
-    parameters.addParam(RichInt("RemeshIterations", 3, "Remesh iterations",
+    parameters.addParam(RichInt("RemeshIterations", defaults.remesh_iterations, "Remesh iterations",
                                 "Rounds of isotropic remeshing towards ℓ (edge splits, collapses, flips and "
                                 "tangential smoothing); 0 keeps the triangles as they are."));
-    parameters.addParam(RichBool("AlwaysRebuild", false, "Always rebuild from points",
+    parameters.addParam(RichBool("AlwaysRebuild", defaults.always_rebuild, "Always rebuild from points",
                                  "On: rebuild the surface from its points (jet normals, advancing front) and fill "
                                  "its holes even when nothing intersects. Off: rebuild only when the remeshed "
                                  "surface intersects itself, otherwise keep it."));
-    parameters.addParam(RichBool("FillHoles", true, "Fill holes",
+    parameters.addParam(RichBool("FillHoles", defaults.fill_holes, "Fill holes",
                                  "Fill the holes a rebuild from points leaves: every hole of a closed surface; on "
                                  "an open one, the loops shorter than half its shortest boundary. Off: leave them "
                                  "open."));
-    parameters.addParam(RichInt("MinComponentFaces", 16, "Minimum component faces",
+    parameters.addParam(RichInt("MinComponentFaces", defaults.min_component_faces, "Minimum component faces",
                                 "Connected components with fewer triangles are dropped as debris (≥ 1); closed "
                                 "components enclosing almost no volume are dropped too."));
     break;
+  }
   }
 }
 

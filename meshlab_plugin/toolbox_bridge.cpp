@@ -248,6 +248,14 @@ ShadedSurface surface_diffusion(const Surface& input, const std::string& name, c
   return shaded(flow.mesh(), flow.operators().normals, flow.operators().curvature);
 }
 
+RetriangulationSettings default_retriangulation_settings()
+{
+  const RetriangulationOptions defaults;
+  return {.edge_length = defaults.edge_length, .remesh_iterations = defaults.remesh_iterations,
+          .always_rebuild = defaults.always_rebuild, .fill_holes = defaults.fill_holes,
+          .min_component_faces = defaults.min_component_faces};
+}
+
 ShadedSurface retriangulate_surface(const Surface& input, const std::string& name,
                                     const RetriangulationSettings& settings, const Reporter& reporter)
 {

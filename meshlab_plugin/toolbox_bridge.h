@@ -55,14 +55,18 @@ struct DialogValue {
 //! Settings of "Surface diffusion N steps": its parameters' values by name (diffusion_parameters).
 using DiffusionSettings = std::map<std::string, DialogValue>;
 
-//! Settings of "Surface diffusion: re-triangulate"; each maps to one option of `sdflow retriangulate`.
+//! Settings of "Surface diffusion: re-triangulate"; each maps to one option of `sdflow retriangulate`
+//! (RetriangulationOptions, retri/pipeline.h, whose defaults default_retriangulation_settings gives).
 struct RetriangulationSettings {
-  double edge_length = 0;         //!< target edge length ℓ; 0: the input's mean edge length
-  int remesh_iterations = 3;      //!< rounds of isotropic remeshing (0: none)
-  bool always_rebuild = false;    //!< rebuild from the points even when nothing intersects
-  bool fill_holes = true;         //!< fill the holes the rebuild leaves
-  int min_component_faces = 16;   //!< drop components with fewer triangles
+  double edge_length = 0;       //!< target edge length ℓ; 0: the input's mean edge length
+  int remesh_iterations = 0;    //!< rounds of isotropic remeshing (0: none)
+  bool always_rebuild = false;  //!< rebuild from the points even when nothing intersects
+  bool fill_holes = false;      //!< fill the holes the rebuild leaves
+  int min_component_faces = 0;  //!< drop components with fewer triangles
 };
+
+//! The re-triangulation's defaults (RetriangulationOptions{}): the dialog's, typed only in the toolbox.
+RetriangulationSettings default_retriangulation_settings();
 
 //! Mean edge length of `input`, or 0 if it is not a valid surface: the default of the edge
 //! length parameters.
