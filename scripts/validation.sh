@@ -99,7 +99,9 @@ run_one() { # NAME|MESH ARGS|RUN ARGS
   local mesh_args=${rest%%|*} run_args=${rest#*|}
   local dir=$work/$name
   [[ -n $name ]] || return 0
-  if [[ $force == 0 && -f $dir/done ]]; then return 0; fi
+  # A run that finished, or failed (deterministically, with the same binary), is not run again
+  # unless --force.
+  if [[ $force == 0 && ( -f $dir/done || -f $dir/failed ) ]]; then return 0; fi
   rm -rf "$dir"
   mkdir -p "$dir"
   # shellcheck disable=SC2086 # the argument lists are ours, split on purpose
@@ -111,6 +113,8 @@ run_one() { # NAME|MESH ARGS|RUN ARGS
     echo $((SECONDS - start)) > "$dir/seconds"
     touch "$dir/done"
   else
+    echo $((SECONDS - start)) > "$dir/seconds"
+    grep -m1 "error:" "$dir/run.log" > "$dir/failed" || echo "stopped without an error line" > "$dir/failed"
     echo "validation.sh: $name failed (see $dir/run.log)" >&2
   fi
 }
@@ -121,15 +125,21 @@ if ((${#plan[@]} > 0 && !tables_only)); then
 fi
 
 # --- what the runs measured ---------------------------------------------------------------------
-# Only finished runs count: an unfinished one (killed, or still running) shows "–".
-metrics() { [[ -f $work/$1/done ]] && echo "$work/$1/run/metrics.csv" || echo "$work/$1/unfinished"; }
+# Only finished runs count: an unfinished one (killed, or still running) shows "–". A failed run
+# (its sdflow stopped with an error) counts as finished: its table cell says where it stopped.
+finished() { [[ -f $work/$1/done || -f $work/$1/failed ]]; }
+metrics() { finished "$1" && echo "$work/$1/run/metrics.csv" || echo "$work/$1/unfinished"; }
 # Time of the first row after which the genus fell (a hole sealed) or the component count rose.
 event_time() { # NAME genus|components
   local file; file=$(metrics "$1")
   [[ -f $file ]] || { echo "–"; return; }
-  awk -F, -v what="$2" 'NR == 2 { g = $7; c = $6 } NR > 2 && ((what == "genus" && $7 < g) || (what == "components" && $6 > c)) { printf "%.6g", $2; found = 1; exit } END { if (!found) printf "none" }' "$file"
+  local failed=0; [[ -f $work/$1/failed ]] && failed=1
+  awk -F, -v what="$2" -v failed="$failed" 'NR == 2 { g = $7; c = $6 } NR > 2 && ((what == "genus" && $7 < g) || (what == "components" && $6 > c)) { printf "%.6g", $2; found = 1; exit } { last = $2 } END { if (!found) { if (failed) printf "failed before it, at %.6g", last; else printf "none" } }' "$file"
 }
-final_components() { local f; f=$(metrics "$1"); [[ -f $f ]] && tail -n 1 "$f" | cut -d, -f6 || echo "–"; }
+final_components() {
+  local f; f=$(metrics "$1")
+  if [[ -f $work/$1/failed ]]; then echo "stopped"; elif [[ -f $f ]]; then tail -n 1 "$f" | cut -d, -f6; else echo "–"; fi
+}
 vertices() { local f; f=$(metrics "$1"); [[ -f $f ]] && sed -n 2p "$f" | cut -d, -f4 || echo "–"; }
 volume_drift() { # relative change from the first row to the last, in %
   local f; f=$(metrics "$1")
@@ -287,7 +297,7 @@ doc=docs/validation.md
 unfinished() { # PREFIX: how many of the plan's runs named PREFIX* have not finished
   local entry count=0
   for entry in "${plan[@]}"; do
-    [[ ${entry%%|*} == "$1"* && ! -f $work/${entry%%|*}/done ]] && count=$((count + 1))
+    [[ ${entry%%|*} == "$1"* ]] && ! finished "${entry%%|*}" && count=$((count + 1))
   done
   echo "$count"
 }
