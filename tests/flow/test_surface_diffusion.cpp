@@ -67,7 +67,10 @@ TEST(SurfaceDiffusion, a_dumbbell_pinches_off_in_memory_exactly_as_its_recorded_
         metrics_row(flow.steps(), flow.time(), last_step.tau, flow.metrics(), event_names(last_step.events)));
     events.push_back(event_names(last_step.events));
   }
-  EXPECT_EQ(events.back(), "remeshed+surgery+split") << "the last step's re-triangulation should cut the neck";
+  // (after the trials it rejected, if any)
+  EXPECT_TRUE(events.back().ends_with("remeshed+surgery+split")) << "the last step's re-triangulation should cut the "
+                                                                    "neck: "
+                                                                 << events.back();
   // The events carry what the re-triangulation measured: one body into two where the flow's neck
   // crossed itself, thinner there than the run's ℓ; the faces it had, made and rebuilt.
   ASSERT_FALSE(last_step.events.empty());
@@ -90,8 +93,9 @@ TEST(SurfaceDiffusion, a_dumbbell_pinches_off_in_memory_exactly_as_its_recorded_
   EXPECT_GT(std::abs(m.volume_restored), 0.0) << "the rebuilt neck's volume is given back";
   EXPECT_LT(std::abs(m.volume_restored), 1e-2);
   EXPECT_NE(split.detail.find("topology changed (components 1 → 2"), std::string::npos) << split.detail;
-  for (const StepEvent& e : last_step.events) // one re-triangulation, the same measures on each event
-    EXPECT_EQ(e.retriangulation->faces_rebuilt, m.faces_rebuilt) << event_name(e.kind);
+  for (const StepEvent& e : last_step.events) // one re-triangulation, the same measures on each of its events
+    if (e.retriangulation)
+      EXPECT_EQ(e.retriangulation->faces_rebuilt, m.faces_rebuilt) << event_name(e.kind);
   const auto parts = component_topology(flow.mesh());
   ASSERT_EQ(parts.size(), 2u);
   for (const auto& c : parts)
@@ -181,6 +185,65 @@ TEST(SurfaceDiffusion, start_steps_damp_noise_keep_the_volume_and_free_the_pace)
   EXPECT_LT(roughness_after_start, 0.5 * edge_scale_roughness(start));
   EXPECT_GT(largest_tau, 3 * slow_tau);
   EXPECT_NEAR(enclosed_volume(flow.mesh()), volume, 1e-3 * volume);
+}
+
+//! A re-triangulation that leaves edge-scale noise on a smooth surface at step `at` (the vertices
+//! moved along their direction from the origin by up to 20% of the mean edge length), as a fresh patch of triangles does.
+RetriangulationHook roughening_at(long at)
+{
+  return [at](Mesh& mesh, const RetriangulationContext& context) {
+    RetriangulationReport report;
+    if (context.step != at)
+      return report;
+    const double ell = mean_edge_length(mesh);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> noise(-0.2 * ell, 0.2 * ell);
+    for (const auto v : mesh.vertices()) {
+      const Eigen::Vector3d p = to_eigen(mesh.point(v));
+      mesh.set_point(v, to_point(p * (1 + noise(rng) / p.norm())));
+    }
+    report.remeshed = true;
+    report.detail = "roughened";
+    return report;
+  };
+}
+
+TEST(SurfaceDiffusion, the_first_step_on_a_new_triangulation_damps_what_it_does_not_resolve)
+{
+  // Four steps on a smooth ellipsoid, then a "re-triangulation" that roughens it at the edges'
+  // scale, as fresh triangles around a closing neck are. The next step is a backward-Euler start
+  // step (time_step.h), no longer than the adaptive rule's, with the volume given back after it;
+  // without start steps (the paper's preset has none) it is a regular step, whose β = ½ flips the
+  // noise: its displacement bound rejects the rule's τ (measured: τ 0.222 with the start step,
+  // 0.0234 without, after a rejection).
+  double tau_after[2] = {0, 0};
+  for (const int start_steps : {3, 0}) {
+    SCOPED_TRACE(fmt::format("start_steps = {}", start_steps));
+    RunParameters p = adaptive_run(6);
+    p.retriangulation.enabled = true;
+    p.time_step.adaptive.start_steps = start_steps;
+    SurfaceDiffusion flow(analytic::ellipsoid(2, 5, 4, 3), p, roughening_at(4));
+    double tau_before = 0, roughened_volume = 0, roughness = 0;
+    while (!flow.finished()) {
+      const StepRecord record = flow.step();
+      if (record.step < 4) {
+        EXPECT_FALSE(record.start) << "the smooth ellipsoid is resolved: no start step at step " << record.step;
+      } else if (record.step == 4) {
+        tau_before = record.tau;
+        roughened_volume = enclosed_volume(flow.mesh()); // after the hook ran
+        roughness = edge_scale_roughness(flow.mesh());
+      } else if (record.step == 5) {
+        EXPECT_EQ(record.start, start_steps > 0) << event_names(record.events);
+        tau_after[start_steps > 0 ? 0 : 1] = record.tau;
+        if (record.start) {
+          EXPECT_LE(record.tau, 1.25 * tau_before) << "a start step mid-run takes no more than the rule would";
+          EXPECT_NEAR(enclosed_volume(flow.mesh()), roughened_volume, 1e-9 * roughened_volume);
+          EXPECT_LT(edge_scale_roughness(flow.mesh()), roughness) << "the step damps the noise";
+        }
+      }
+    }
+  }
+  EXPECT_GT(tau_after[0], 3 * tau_after[1]) << "the start step keeps the pace the rule had";
 }
 
 TEST(SurfaceDiffusion, a_restored_state_continues_bit_for_bit)

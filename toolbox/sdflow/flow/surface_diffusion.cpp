@@ -568,9 +568,13 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
   volumes = material_volumes(positions, triangles_, topology_.face_component, topology_.count, topology_.loops);
   times.acceptance += watch.seconds();
   const AdaptiveOptions adaptive = refined(p_.time_step.adaptive, p_.refinement);
-  // The start phase (time_step.h) decides on the surface's unresolved variation, every start step.
+  // The start phase (time_step.h) decides on the surface's unresolved variation, every start step:
+  // a run's first steps, and the first step on each new triangulation (whose warm starts were
+  // reset), where the fresh triangles carry variation the mesh does not resolve that the scheme's
+  // β = ½ would flip instead of damping, so that τ would collapse trial after trial.
+  const bool new_triangulation = step_ > 0 && previous_w_.size() == 0 && adaptive.start_steps > 0;
   const bool may_start = p_.time_step.mode == TimeStepMode::adaptive && adaptive.initial_tau == 0 &&
-                         next_step <= adaptive.start_steps;
+                         (next_step <= adaptive.start_steps || new_triangulation);
   const bool need_automatic_tau =
       controller_.adaptive() && controller_.state().next_tau == 0 && adaptive.initial_tau == 0;
   const Eigen::VectorXd explicit_speed =
@@ -579,10 +583,15 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
   const double automatic = need_automatic_tau ? automatic_tau(explicit_speed, op_.held, edge_lengths, adaptive) : 0.0;
   const std::vector<bool> resolved =
       may_start ? resolved_vertices(explicit_speed, op_.held, edge_lengths) : std::vector<bool>{};
-  bool start = may_start && is_start_step(adaptive, next_step, resolved, op_.held);
-  double start_trial_tau = may_start ? start_tau(adaptive, start_length_) : 0.0;
-  int start_retries = 0;
+  bool start = may_start && is_start_step(adaptive, new_triangulation ? 1 : next_step, resolved, op_.held);
   const double time_left = std::isfinite(p_.end_time) ? p_.end_time - time_ : std::numeric_limits<double>::infinity();
+  // On a new triangulation mid-run, no longer a step than the rule would take: the step stays as
+  // accurate as the others, only its stiffest modes are damped rather than flipped.
+  double start_trial_tau = !may_start          ? 0.0
+                           : new_triangulation ? std::min(start_tau(adaptive, start_length_),
+                                                          controller_.propose(next_step, automatic, time_left))
+                                               : start_tau(adaptive, start_length_);
+  int start_retries = 0;
   const std::array<Eigen::VectorXd, 2> guesses = warm_starts(previous_w_, earlier_w_);
   for (;;) {
     if (cancel_trials_ && cancel_trials_->load())

@@ -25,7 +25,10 @@
 //! shrinks it as that bound asks (by kStartShrink when a triangle turns over), up to kStartRetries
 //! times and not below the automatic τ, and restores the volume of each closed component after it.
 //! The rule above takes over at the first step whose surface is resolved everywhere, or after
-//! start_steps steps (is_start_step), from the last start step's τ.
+//! start_steps steps (is_start_step), from the last start step's τ. With start_steps > 0, the first
+//! step on each new triangulation (after a re-triangulation) is a start step too when its surface
+//! has unresolved vertices, of at most the τ the rule would try: fresh triangles carry variation
+//! below the mesh's scale, which β = ½ flips rather than damps, so that τ would otherwise collapse.
 //! With constant τ or a schedule, a step that turns a triangle over, produces a non-finite
 //! position or changes a component's material volume (closed, or open with its boundary) by more
 //! than `max_volume_change` (the adaptive bound: such a step is no approximation of the flow, which
