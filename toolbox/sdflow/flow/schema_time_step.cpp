@@ -134,7 +134,8 @@ void add_adaptive_entries(std::vector<ParameterEntry>& s)
     auto& e = adaptive("adaptive.start_steps", "--start-steps", ParameterType::integer, at_least(0),
                        "Adaptive τ: a run's first steps that may be start steps, whose τ_s = start_damping·(ℓ/π)⁴ "
                        "damps what the mesh does not resolve (noise, sharp edges, creases) when that, not the "
-                       "resolved scales, would set τ (0: none)");
+                       "resolved scales, would set τ; the first step on each new triangulation may be one too, "
+                       "of at most the rule's τ (0: none)");
     bind<long>(e, &RunParameters::time_step, &TimeStepOptions::adaptive, &AdaptiveOptions::start_steps);
     e.paper = 0L;
   }
