@@ -9,7 +9,7 @@
 
 #include "sdflow/io/io.h"
 #include "sdflow/io/repair.h"
-#include "sdflow/retri/resolve_intersections.h"
+#include "sdflow/retri/surface_repair.h"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>

@@ -6,7 +6,7 @@
 
 #include "sdflow/io/io.h"
 #include "sdflow/io/repair.h"
-#include "sdflow/retri/resolve_intersections.h"
+#include "sdflow/retri/surface_repair.h"
 
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>

@@ -4,6 +4,6 @@ target_sources(sdflow_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/test_local_surgery.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_pipeline.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_remove_intersections.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/test_resolve_intersections.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_surface_repair.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_surface_union.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_zip_loops.cpp)

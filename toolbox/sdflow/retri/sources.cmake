@@ -6,7 +6,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/retri/local_surgery.cpp
   sdflow/retri/open_orientation.cpp
   sdflow/retri/remove_intersections.cpp
-  sdflow/retri/resolve_intersections.cpp
+  sdflow/retri/surface_repair.cpp
   sdflow/retri/surface_union.cpp
   sdflow/retri/surgery_patch.cpp
   sdflow/retri/zip_loops.cpp

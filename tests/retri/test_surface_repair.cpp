@@ -6,7 +6,7 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/geometry/topology.h"
-#include "sdflow/retri/resolve_intersections.h"
+#include "sdflow/retri/surface_repair.h"
 #include "sdflow/spatial/intersect.h"
 
 #include <gtest/gtest.h>

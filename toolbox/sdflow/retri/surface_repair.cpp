@@ -1,4 +1,4 @@
-#include "sdflow/retri/resolve_intersections.h"
+#include "sdflow/retri/surface_repair.h"
 
 #include "sdflow/errors.h"
 #include "sdflow/spatial/intersect.h"

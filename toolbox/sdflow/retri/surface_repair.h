@@ -1,5 +1,5 @@
 #pragma once
-//! \file resolve_intersections.h
+//! \file surface_repair.h
 //! \brief A surface that crosses itself made into one that does not, by re-triangulating it
 //! (pipeline.h) until no face pair intersects: what `sdflow repair --remove-self-intersections`
 //! does after the repairs of io/repair.h. One pass removes the intersecting faces of the remeshed
