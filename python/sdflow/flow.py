@@ -16,7 +16,7 @@ class Event:
     """Something that happened in a step besides the step itself (metrics.csv's `event` column).
 
     `kind` is one of "start", "rejected", "fallback", "remeshed", "surgery", "split", "merged",
-    "refused"; `detail` is the re-triangulation's line of events.log for "remeshed" to "merged" and
+    "cleaned", "refused"; `detail` is the re-triangulation's line of events.log for "remeshed" to "cleaned" and
     "refused" (why it was refused), the reason for "fallback". A re-triangulation's events carry
     what it measured: the face pairs that crossed before it (`crossing_pairs`), the smallest neck or
     gap at them where the topology changed (`crossing_size`, else None), the components, genus and
@@ -72,6 +72,10 @@ class Merged(Event):
     """Components were joined."""
 
 
+class Cleaned(Event):
+    """Components too small to flow were dropped as debris (`debris_volume` says how much)."""
+
+
 class Refused(Event):
     """A re-triangulation was refused, the surface kept (`refusal` says why)."""
 
@@ -81,7 +85,7 @@ class Fallback(Event):
 
 
 _EVENT_TYPES = {"start": Start, "rejected": Rejected, "remeshed": Remeshed, "surgery": Surgery, "split": Split,
-                "merged": Merged, "fallback": Fallback, "refused": Refused}
+                "merged": Merged, "cleaned": Cleaned, "fallback": Fallback, "refused": Refused}
 
 
 @dataclass(frozen=True)

@@ -500,5 +500,57 @@ TEST(RetriangulationHook, a_remeshing_refused_with_nothing_rebuilt_is_reported_w
     noted = noted || note.text.find("re-triangulation refused (remeshing-crossed)") != std::string::npos;
   EXPECT_TRUE(noted) << "events.log gets the refusal";
 }
+//! A tetrahedron (4 faces, below the clean-up's 16) of edge `size` at `corner`, outward oriented.
+Mesh tetrahedron(double size, const Eigen::Vector3d& corner)
+{
+  VertexVectors points(4, 3);
+  points << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  points *= size;
+  points.rowwise() += corner.transpose();
+  FaceIndices faces(4, 3);
+  faces << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
+  return make_mesh(points, faces);
+}
+
+//! The plate above, whose remeshing is refused, with a stray tetrahedron far from it: the clean-up
+//! still drops the tetrahedron, so the surface changed although nothing was remeshed or rebuilt.
+//! The hook must say so (an earlier hook reported "not changed" and the flow kept the old
+//! connectivity's operators for a surface with fewer faces).
+TEST(RetriangulationHook, debris_dropped_after_a_refused_remeshing_is_a_change_the_flow_adopts)
+{
+  const Mesh plate = test::cad_plate(1, 0.3, 0.03, 20, 3);
+  const double ell = mean_edge_length(plate);
+  const Mesh with_debris = analytic::disjoint_union(plate, tetrahedron(ell, {3, 3, 3}));
+  RetriangulationSchedule schedule;
+  schedule.local = false;
+  schedule.pipeline.edge_length = ell;
+  Mesh mesh = with_debris;
+  const RetriangulationReport report = make_retriangulation_hook(schedule)(mesh, {.step = 1, .force = true});
+  EXPECT_TRUE(report.cleaned) << report.detail;
+  EXPECT_TRUE(report.changed());
+  EXPECT_FALSE(report.remeshed) << "the plate's remeshing is still refused";
+  EXPECT_EQ(mesh.n_faces(), plate.n_faces());
+  EXPECT_GT(report.measures.debris_volume, 0);
+
+  // The flow adopts such a change: a hook that only drops the debris, as the one above did.
+  RunParameters p;
+  p.steps = 2;
+  const RetriangulationHook drop_debris = [&](Mesh& surface, const RetriangulationContext&) {
+    RetriangulationReport dropped;
+    if (surface.n_faces() == plate.n_faces())
+      return dropped;
+    surface = make_mesh(vertex_positions(surface).topRows(plate.n_vertices()), face_indices(plate));
+    dropped.cleaned = true;
+    return dropped;
+  };
+  SurfaceDiffusion flow(with_debris, p, drop_debris);
+  const StepRecord first = flow.step();
+  EXPECT_TRUE(has_event(first.events, StepEventKind::cleaned)) << event_names(first.events);
+  EXPECT_EQ(flow.mesh().n_faces(), plate.n_faces());
+  EXPECT_EQ(flow.operators().areas.size(), static_cast<Eigen::Index>(plate.n_vertices()));
+  flow.step();
+  EXPECT_TRUE(vertex_positions(flow.mesh()).allFinite());
+  EXPECT_EQ(count_topology(flow.mesh()).components, 1);
+}
 } // namespace
 } // namespace sdflow

@@ -11,7 +11,7 @@ namespace {
 
 constexpr StepEventKind kAllKinds[] = {StepEventKind::start,   StepEventKind::rejected, StepEventKind::fallback,
                                        StepEventKind::remeshed, StepEventKind::surgery, StepEventKind::split,
-                                       StepEventKind::merged,  StepEventKind::refused};
+                                       StepEventKind::merged,  StepEventKind::cleaned, StepEventKind::refused};
 
 TEST(StepEvent, every_kind_has_its_own_name_without_the_separator)
 {

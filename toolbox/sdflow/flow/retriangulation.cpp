@@ -443,6 +443,7 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     report.surgery = r.rebuilt;
     report.split = r.components_after > r.components_before - r.merged_components;
     report.merged = r.merged_components > 0;
+    report.cleaned = r.dropped_components > 0;
     report.degraded_left = degraded_elements(r.mesh, schedule).total();
     report.detail = fmt::format("{}: {}{}{}{}; {} degraded elements left", verdict.reason, fallback,
                                 retriangulation_summary(r), topology_note, volume_note, report.degraded_left);

@@ -114,6 +114,8 @@ struct RetriangulationReport {
   bool surgery = false;  //!< self-intersections removed and the surface rebuilt
   bool split = false;    //!< a component broke into several
   bool merged = false;   //!< components were joined
+  //! components below the clean-up's size bounds were dropped as debris (retri/pipeline.h, stage 6)
+  bool cleaned = false;
   //! The re-triangulation was refused and the surface kept as it was, for `refusal`.
   bool refused = false;
   RefusalReason refusal = RefusalReason::none;
@@ -125,7 +127,7 @@ struct RetriangulationReport {
   RetriangulationResult::Seconds pipeline_seconds;
   double volume_seconds = 0; //!< of giving the components back their volume
   RetriangulationMeasures measures; //!< when it ran (also when `refused`)
-  bool changed() const { return remeshed || surgery || split || merged; }
+  bool changed() const { return remeshed || surgery || split || merged || cleaned; }
 };
 
 //! Called between steps; may change the mesh in place (positions and connectivity), returning what

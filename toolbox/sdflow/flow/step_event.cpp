@@ -14,6 +14,7 @@ std::string_view event_name(StepEventKind kind)
   case StepEventKind::surgery: return "surgery";
   case StepEventKind::split: return "split";
   case StepEventKind::merged: return "merged";
+  case StepEventKind::cleaned: return "cleaned";
   case StepEventKind::refused: return "refused";
   }
   return "unknown";

@@ -21,6 +21,7 @@ enum class StepEventKind {
   surgery,  //!< crossings removed and the surface rebuilt around them (a pinch-off, a seal, a contact)
   split,    //!< a component broke into several
   merged,   //!< components were joined
+  cleaned,  //!< components too small to flow were dropped as debris
   refused,  //!< a re-triangulation was refused, the surface kept (StepEvent::refusal says why)
 };
 

@@ -421,7 +421,8 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
   std::vector<StepEvent> these;
   for (const auto& [flag, kind] :
        {std::pair{report.remeshed, StepEventKind::remeshed}, std::pair{report.surgery, StepEventKind::surgery},
-        std::pair{report.split, StepEventKind::split}, std::pair{report.merged, StepEventKind::merged}})
+        std::pair{report.split, StepEventKind::split}, std::pair{report.merged, StepEventKind::merged},
+        std::pair{report.cleaned, StepEventKind::cleaned}})
     if (flag && !has_event(events, kind))
       these.push_back({.kind = kind, .retriangulation = report.measures, .detail = report.detail});
   note(step_, time_, fmt::format("re-triangulated ({}): {}", event_names(these), report.detail));
