@@ -126,33 +126,29 @@ VertexVectors to_vectors(const std::vector<double>& values, const std::filesyste
   return v;
 }
 
-//! A solver's reuse counters and the system of its last factorisation (if it keeps one).
-struct SolverRecord {
-  SolverState state;
-  bool has_anchor = false;
-  VertexVectors anchor_positions;
-  double anchor_tau_beta = 0;
-};
-
 void put_solver(Writer& w, const SolverRecord& s)
 {
-  w.put<std::int64_t>(s.state.solves_since_factorisation);
-  w.put<std::int64_t>(s.state.iterations_since_factorisation);
-  w.put<std::int32_t>(s.state.last_iterations);
-  w.put<std::uint8_t>(s.has_anchor);
-  w.put_doubles(s.anchor_positions.data(), static_cast<std::size_t>(s.anchor_positions.size()));
-  w.put(s.anchor_tau_beta);
+  w.put<std::int64_t>(s.counters.solves_since_factorisation);
+  w.put<std::int64_t>(s.counters.iterations_since_factorisation);
+  w.put<std::int32_t>(s.counters.last_iterations);
+  w.put<std::uint8_t>(s.anchor.has_value());
+  const FactorAnchor none;
+  const FactorAnchor& anchor = s.anchor ? *s.anchor : none;
+  w.put_doubles(anchor.positions.data(), static_cast<std::size_t>(anchor.positions.size()));
+  w.put(anchor.tau_beta);
 }
 
 SolverRecord get_solver(Reader& r, const std::filesystem::path& file)
 {
   SolverRecord s;
-  s.state.solves_since_factorisation = r.get<std::int64_t>();
-  s.state.iterations_since_factorisation = r.get<std::int64_t>();
-  s.state.last_iterations = r.get<std::int32_t>();
-  s.has_anchor = r.get<std::uint8_t>() != 0;
-  s.anchor_positions = to_vectors(r.get_doubles(), file);
-  s.anchor_tau_beta = r.get<double>();
+  s.counters.solves_since_factorisation = r.get<std::int64_t>();
+  s.counters.iterations_since_factorisation = r.get<std::int64_t>();
+  s.counters.last_iterations = r.get<std::int32_t>();
+  const bool has_anchor = r.get<std::uint8_t>() != 0;
+  FactorAnchor anchor{.positions = to_vectors(r.get_doubles(), file)};
+  anchor.tau_beta = r.get<double>();
+  if (has_anchor)
+    s.anchor = std::move(anchor);
   return s;
 }
 
@@ -171,18 +167,18 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file)
   w.put_doubles(c.previous_w.data(), static_cast<std::size_t>(c.previous_w.size()));
   w.put(c.time_step.next_tau);
   w.put<std::int32_t>(c.time_step.rejections);
-  put_solver(w, {c.solver, c.has_anchor, c.anchor_positions, c.anchor_tau_beta});
+  put_solver(w, c.solver);
   w.put<std::uint64_t>(c.snapshots.size());
   for (const auto& s : c.snapshots) {
     w.put(s.time);
     w.put_string(s.file.generic_string());
   }
   w.put<std::int64_t>(c.tolerated_degraded);
-  put_solver(w, {c.half_solver, c.has_half_anchor, c.half_anchor_positions, c.half_anchor_tau_beta});
+  put_solver(w, c.half_solver);
   w.put<std::int64_t>(c.time_step.table_lag);
   w.put(c.time_step.fallback_left);
   w.put_doubles(c.earlier_w.data(), static_cast<std::size_t>(c.earlier_w.size()));
-  for (const SolverState* s : {&c.solver, &c.half_solver}) {
+  for (const SolverState* s : {&c.solver.counters, &c.half_solver.counters}) {
     w.put_ints(s->ordering);
     w.put(s->fresh_fill);
   }
@@ -224,11 +220,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
   c.previous_w = Eigen::Map<const Eigen::VectorXd>(w.data(), static_cast<Eigen::Index>(w.size()));
   c.time_step.next_tau = r.get<double>();
   c.time_step.rejections = r.get<std::int32_t>();
-  const SolverRecord solver = get_solver(r, file);
-  c.solver = solver.state;
-  c.has_anchor = solver.has_anchor;
-  c.anchor_positions = solver.anchor_positions;
-  c.anchor_tau_beta = solver.anchor_tau_beta;
+  c.solver = get_solver(r, file);
   const auto snapshot_count = r.get<std::uint64_t>();
   for (std::uint64_t i = 0; i < snapshot_count; ++i) {
     SeriesEntry s;
@@ -238,13 +230,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
   }
   if (file_version >= 2)
     c.tolerated_degraded = r.get<std::int64_t>();
-  if (file_version >= 3) {
-    const SolverRecord half = get_solver(r, file);
-    c.half_solver = half.state;
-    c.has_half_anchor = half.has_anchor;
-    c.half_anchor_positions = half.anchor_positions;
-    c.half_anchor_tau_beta = half.anchor_tau_beta;
-  }
+  if (file_version >= 3)
+    c.half_solver = get_solver(r, file);
   if (file_version >= 4) {
     c.time_step.table_lag = r.get<std::int64_t>();
     c.time_step.fallback_left = r.get<double>();
@@ -257,7 +244,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
     c.earlier_w = Eigen::Map<const Eigen::VectorXd>(earlier.data(), static_cast<Eigen::Index>(earlier.size()));
   }
   if (file_version >= 6)
-    for (SolverState* s : {&c.solver, &c.half_solver}) {
+    for (SolverState* s : {&c.solver.counters, &c.half_solver.counters}) {
       s->ordering = r.get_ints();
       s->fresh_fill = r.get<double>();
       if (!s->ordering.empty() && s->ordering.size() != static_cast<std::size_t>(c.positions.rows()))

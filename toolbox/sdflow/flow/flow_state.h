@@ -9,7 +9,22 @@
 
 #include <Eigen/Core>
 
+#include <optional>
+
 namespace sdflow {
+
+//! The surface and τβ of the system a solver factorised last: a resumed flow factorises it again,
+//! so that its preconditioner, and every later CG iterate, are the uninterrupted flow's.
+struct FactorAnchor {
+  VertexVectors positions;
+  double tau_beta = 0;
+};
+
+//! A solver's part of the flow's state: its counters, and its anchor while it reuses a factorisation.
+struct SolverRecord {
+  SolverState counters;
+  std::optional<FactorAnchor> anchor;
+};
 
 struct FlowState {
   long step = 0;
@@ -19,17 +34,10 @@ struct FlowState {
   Eigen::VectorXd previous_w;          //!< w of the last accepted step: a warm start (empty if none)
   Eigen::VectorXd earlier_w;           //!< w of the step before it, for the extrapolated warm start
   TimeStepState time_step;
-  SolverState solver;
-  bool has_anchor = false;             //!< a factorisation is being reused
-  VertexVectors anchor_positions;      //!< the surface whose system was factorised
-  double anchor_tau_beta = 0;          //!< and its τβ
+  SolverRecord solver;
   long tolerated_degraded = 0;         //!< RetriangulationContext::tolerated_degraded
   double debris_volume = 0;            //!< FlowMetrics::debris_volume
-  //! The half-step solver of extrapolated steps: its counters and anchor.
-  SolverState half_solver;
-  bool has_half_anchor = false;
-  VertexVectors half_anchor_positions;
-  double half_anchor_tau_beta = 0;
+  SolverRecord half_solver;            //!< of the half steps of extrapolated steps
 };
 
 } // namespace sdflow

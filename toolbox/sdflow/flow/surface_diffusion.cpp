@@ -89,23 +89,10 @@ SurfaceDiffusion::SurfaceDiffusion(const FlowState& state, RunParameters paramet
   debris_volume_ = state.debris_volume;
   // Refactorise the anchors' systems: the preconditioners are then the ones the uninterrupted flow
   // would be using, so the CG iterates (and every later decision) are identical.
-  if (state.has_anchor) {
-    restore_solver(solver_, state.anchor_positions, state.triangles, state.anchor_tau_beta, state.solver);
-    has_anchor_ = true;
-    anchor_positions_ = state.anchor_positions;
-    anchor_tau_beta_ = state.anchor_tau_beta;
-  }
-  if (state.has_half_anchor) {
-    restore_solver(half_solver_, state.half_anchor_positions, state.triangles, state.half_anchor_tau_beta,
-                   state.half_solver);
-    has_half_anchor_ = true;
-    half_anchor_positions_ = state.half_anchor_positions;
-    half_anchor_tau_beta_ = state.half_anchor_tau_beta;
-  }
-  if (!state.has_anchor)
-    solver_.restore(state.solver);
-  if (!state.has_half_anchor)
-    half_solver_.restore(state.half_solver);
+  restore_solver(solver_, state.solver, state.triangles);
+  restore_solver(half_solver_, state.half_solver, state.triangles);
+  anchor_ = state.solver.anchor;
+  half_anchor_ = state.half_solver.anchor;
   op_ = flow_operators(mesh_, p_.scheme, &*cache_);
 }
 
@@ -281,15 +268,7 @@ FlowState SurfaceDiffusion::state() const
   const TrialBookkeeping b = ahead_ ? ahead_->before : bookkeeping();
   s.time_step = b.controller;
   s.solver = b.solver;
-  s.has_anchor = b.has_anchor;
-  if (b.has_anchor)
-    s.anchor_positions = b.anchor_positions;
-  s.anchor_tau_beta = b.anchor_tau_beta;
   s.half_solver = b.half_solver;
-  s.has_half_anchor = b.has_half_anchor;
-  if (b.has_half_anchor)
-    s.half_anchor_positions = b.half_anchor_positions;
-  s.half_anchor_tau_beta = b.half_anchor_tau_beta;
   return s;
 }
 
@@ -339,12 +318,23 @@ void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
   retriangulate_ = make_retriangulation_hook(refined_schedule);
 }
 
-void SurfaceDiffusion::restore_solver(FlowSolver& solver, const VertexVectors& positions,
-                                      const FaceIndices& triangles, double tau_beta, const SolverState& state)
+void SurfaceDiffusion::restore_solver(FlowSolver& solver, const SolverRecord& record, const FaceIndices& triangles)
 {
-  const Mesh anchor = make_mesh(positions, triangles);
+  if (!record.anchor) {
+    solver.restore(record.counters);
+    return;
+  }
+  const Mesh anchor = make_mesh(record.anchor->positions, triangles);
   const FlowOperators anchor_op = flow_operators(anchor, p_.scheme, &*cache_);
-  solver.restore(anchor_op.system(tau_beta), state);
+  solver.restore(anchor_op.system(record.anchor->tau_beta), record.counters);
+}
+
+//! The anchor of a factorisation just made; none for CG, which keeps no factor to make again.
+std::optional<FactorAnchor> SurfaceDiffusion::factor_anchor(const VertexVectors& positions, double tau_beta) const
+{
+  if (p_.solver.kind != SolverKind::cholmod)
+    return std::nullopt;
+  return FactorAnchor{positions, tau_beta};
 }
 
 //! The hook's failure stops the flow like an unstable step: the surface stays the last accepted one.
@@ -414,7 +404,8 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
   solver_.carry_ordering(nearest_old, op_.laplacian);
   half_solver_.carry_ordering(nearest_old, op_.laplacian);
   times.factorisation += watch.seconds();
-  has_anchor_ = has_half_anchor_ = false;
+  anchor_.reset();
+  half_anchor_.reset();
   previous_w_.resize(0);
   earlier_w_.resize(0);
   last_w_ = Eigen::VectorXd::Zero(mesh_.n_vertices());
@@ -456,14 +447,8 @@ SurfaceDiffusion::FirstTrial SurfaceDiffusion::first_trial(long next_step)
 SurfaceDiffusion::TrialBookkeeping SurfaceDiffusion::bookkeeping() const
 {
   return {.controller = controller_.state(),
-          .solver = solver_.state(),
-          .half_solver = half_solver_.state(),
-          .has_anchor = has_anchor_,
-          .has_half_anchor = has_half_anchor_,
-          .anchor_positions = anchor_positions_,
-          .half_anchor_positions = half_anchor_positions_,
-          .anchor_tau_beta = anchor_tau_beta_,
-          .half_anchor_tau_beta = half_anchor_tau_beta_,
+          .solver = {solver_.state(), anchor_},
+          .half_solver = {half_solver_.state(), half_anchor_},
           .rejected_trials = rejected_trials_,
           .factorisations = factorisations_};
 }
@@ -472,14 +457,10 @@ SurfaceDiffusion::TrialBookkeeping SurfaceDiffusion::bookkeeping() const
 void SurfaceDiffusion::rewind(const TrialBookkeeping& before)
 {
   controller_ = TimeStepController(refined_time_step(p_), before.controller);
-  solver_.rewind(before.solver);
-  half_solver_.rewind(before.half_solver);
-  has_anchor_ = before.has_anchor;
-  has_half_anchor_ = before.has_half_anchor;
-  anchor_positions_ = before.anchor_positions;
-  half_anchor_positions_ = before.half_anchor_positions;
-  anchor_tau_beta_ = before.anchor_tau_beta;
-  half_anchor_tau_beta_ = before.half_anchor_tau_beta;
+  solver_.rewind(before.solver.counters);
+  half_solver_.rewind(before.half_solver.counters);
+  anchor_ = before.solver.anchor;
+  half_anchor_ = before.half_solver.anchor;
   rejected_trials_ = before.rejected_trials;
   factorisations_ = before.factorisations;
 }
@@ -610,16 +591,10 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
     times.factorisation += trial.solve.seconds.factorisation;
     times.solve += trial.solve.seconds.solve;
     watch.restart();
-    if (trial.solve.factorised) {
-      has_anchor_ = p_.solver.kind == SolverKind::cholmod;
-      anchor_positions_ = trial.factorised_positions;
-      anchor_tau_beta_ = trial.factorised_tau_beta;
-    }
-    if (trial.half_factorised) {
-      has_half_anchor_ = p_.solver.kind == SolverKind::cholmod;
-      half_anchor_positions_ = trial.half_factorised_positions;
-      half_anchor_tau_beta_ = trial.half_factorised_tau_beta;
-    }
+    if (trial.solve.factorised)
+      anchor_ = factor_anchor(trial.factorised_positions, trial.factorised_tau_beta);
+    if (trial.half_factorised)
+      half_anchor_ = factor_anchor(trial.half_factorised_positions, trial.half_factorised_tau_beta);
     if (trial.factorisations > 0) {
       record.factorised = true;
       logger().debug("step {}: {} factorisations (τ = {})", next_step, trial.factorisations, tau);

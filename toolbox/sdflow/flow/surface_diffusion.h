@@ -154,10 +154,7 @@ private:
   //! What trials change in the flow besides their results.
   struct TrialBookkeeping {
     TimeStepState controller;
-    SolverState solver, half_solver;
-    bool has_anchor = false, has_half_anchor = false;
-    VertexVectors anchor_positions, half_anchor_positions;
-    double anchor_tau_beta = 0, half_anchor_tau_beta = 0;
+    SolverRecord solver, half_solver;
     long rejected_trials = 0, factorisations = 0;
   };
   //! A step's first trial and what came of it: its τ, or the exception it threw; the notes it made,
@@ -195,8 +192,9 @@ private:
   //! topology_ of mesh_: its components, which are closed, the total genus.
   void renew_topology();
   void prepare_retriangulation(RetriangulationHook hook);
-  void restore_solver(FlowSolver& solver, const VertexVectors& positions, const FaceIndices& triangles, double tau_beta,
-                      const SolverState& state);
+  //! `solver` as `record` left it, its anchor's system factorised again (on `triangles`).
+  void restore_solver(FlowSolver& solver, const SolverRecord& record, const FaceIndices& triangles);
+  std::optional<FactorAnchor> factor_anchor(const VertexVectors& positions, double tau_beta) const;
   RetriangulationReport call_retriangulation(Mesh& mesh, bool force, StepTimes& times,
                                              std::function<void()> changing = {});
   //! A refused re-triangulation (RetriangulationReport::refused) becomes an event and a warning.
@@ -226,9 +224,7 @@ private:
   double debris_volume_ = 0;      // FlowMetrics::debris_volume
   bool topology_changed_ = false; // with stop_at_topology_change: finished after this step
   Eigen::VectorXd previous_w_, earlier_w_, last_w_; // w of the last two accepted steps, and the velocity
-  bool has_anchor_ = false, has_half_anchor_ = false;
-  VertexVectors anchor_positions_, half_anchor_positions_;
-  double anchor_tau_beta_ = 0, half_anchor_tau_beta_ = 0;
+  std::optional<FactorAnchor> anchor_, half_anchor_; // of solver_'s and half_solver_'s factorisations
   long rejected_trials_ = 0, factorisations_ = 0;
   std::vector<FlowNote> notes_;
   std::vector<FlowNote>* held_notes_ = nullptr; // set while a first trial holds its notes back
