@@ -114,111 +114,16 @@ StepRecord SurfaceDiffusion::step()
   ahead_.reset();
   for (FlowNote& n : first.notes)
     publish(std::move(n));
-  const TimeStepState controller_before = first.controller_before;
   std::vector<StepEvent> events;
-  const bool table = p_.time_step.mode == TimeStepMode::schedule;
-
-  int rejections = first.rejections;
-  StepRecord record = std::move(first.record);
-  StepResult trial = std::move(first.trial);
-  double tau = first.tau;
-  std::vector<double> volumes = std::move(first.volumes);
-  // A step that no τ makes acceptable (a triangle beside a closing neck that turns over
-  // whatever the step) is retried once after a re-triangulation of the surface it starts from; a
-  // table's step that still fails is then covered by adaptive steps (time_step.h).
-  const auto restart_controller = [&] {
-    TimeStepState s = controller_before;
-    s.rejections = 0;
-    controller_ = TimeStepController(refined_time_step(p_), s);
-  };
-  bool fell_back = false;
-  for (bool forced = false, taken = false;;) {
-    try {
-      if (!std::exchange(taken, true)) {
-        if (first.failure)
-          std::rethrow_exception(first.failure);
-      } else {
-        tau = trial_step(next_step, trial, record, rejections, volumes);
-      }
-      break;
-    } catch (const TimeStepTooLarge&) {
-      throw; // a smaller τ is needed, not a new surface or adaptive steps in its place
-    } catch (const SolverFailure& e) {
-      if (retriangulate_ && !forced) {
-        forced = true;
-        note(next_step, time_, fmt::format("no acceptable step ({}): re-triangulating, then trying again", e.what()));
-        const VertexVectors before = vertex_positions(mesh_);
-        const RetriangulationReport report = call_retriangulation(mesh_, true, record.times);
-        note_refusal(report, events);
-        if (report.changed()) {
-          adopt_retriangulation(report, before, events, record.times);
-          restart_controller();
-          continue;
-        }
-      }
-      if (!table || fell_back || controller_before.fallback_left > 0)
-        throw;
-      fell_back = true;
-      restart_controller();
-      controller_.fall_back_to_adaptive(next_step);
-      std::string reason = fmt::format("the table's step {} cannot be taken ({}): adaptive steps cover its τ = {}",
-                                       controller_.table_step(next_step), e.what(), controller_.state().fallback_left);
-      note(next_step, time_, reason, true);
-      events.push_back({.kind = StepEventKind::fallback, .detail = std::move(reason)});
-    }
-  }
-  if (rejections > 0)
-    events.insert(events.begin(), {.kind = StepEventKind::rejected, .rejections = rejections});
-  if (record.start)
-    events.insert(events.begin(), {.kind = StepEventKind::start});
-
-  VertexVectors accepted; // the last accepted surface, kept while the guard looks at the new one
-  if (guard_)
-    accepted = vertex_positions(mesh_);
-  set_vertex_positions(mesh_, trial.positions);
-  if (p_.conserve_volume || record.start)
-    set_vertex_positions(
-        mesh_, restore_volumes(mesh_, volumes, {triangles_, topology_.face_component, topology_.closed}, *op_.parts.boundary)
-                   .positions);
-  if (guard_) {
-    const Stopwatch check;
-    try {
-      guard_->check(mesh_, next_step, time_ + tau);
-    } catch (const SolverFailure&) {
-      set_vertex_positions(mesh_, accepted);
-      throw;
-    }
-    record.times.retriangulation_check += check.seconds();
-  }
-  step_ = next_step;
-  time_ += tau;
-  if ((fell_back || controller_before.fallback_left > 0) && !controller_.adaptive())
-    note(step_, time_, fmt::format("adaptive steps covered the table up to its step {}: the table resumes",
-                                   controller_.table_step(step_)));
-  earlier_w_ = std::exchange(previous_w_, trial.w);
-  last_w_ = trial.w;
-
-  double left_to_next_step = 0;
-  if (retriangulate_) {
-    const VertexVectors before = vertex_positions(mesh_);
-    if (can_look_ahead()) {
-      left_to_next_step = look_and_try_ahead(before, events, record.times);
-    } else {
-      const RetriangulationReport report = call_retriangulation(mesh_, false, record.times);
-      note_refusal(report, events);
-      if (report.changed())
-        adopt_retriangulation(report, before, events, record.times);
-      else
-        renew_operators(record.times);
-    }
-  } else {
-    renew_operators(record.times);
-  }
+  Accepted accepted = accepted_trial(first, events);
+  take(accepted, next_step, first.controller_before);
+  StepRecord& record = accepted.record;
+  const double left_to_next_step = retriangulate_after_step(events, record.times);
 
   record.step = step_;
   record.time = time_;
-  record.tau = tau;
-  record.rejections = rejections;
+  record.tau = accepted.tau;
+  record.rejections = accepted.rejections;
   record.taken_ahead = taken_ahead;
   for (StepEvent& e : events) {
     e.step = step_;
@@ -233,7 +138,120 @@ StepRecord SurfaceDiffusion::step()
     record.times.side_by_side += first.beside_look_seconds;
   }
   record.times.cpu = process_cpu_seconds() - cpu_start;
-  return record;
+  return std::move(record);
+}
+
+//! Trials of the step after `first` until one is accepted. A step that no τ makes acceptable (a
+//! triangle beside a closing neck that turns over whatever the step) is retried once after a
+//! re-triangulation of the surface it starts from; a table's step that still fails is then
+//! covered by adaptive steps (time_step.h). `events` gets the re-triangulation's and the fallback's.
+SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, std::vector<StepEvent>& events)
+{
+  const long next_step = first.step;
+  const TimeStepState controller_before = first.controller_before;
+  const bool table = p_.time_step.mode == TimeStepMode::schedule;
+  Accepted a{.record = std::move(first.record),
+             .trial = std::move(first.trial),
+             .tau = first.tau,
+             .rejections = first.rejections,
+             .volumes = std::move(first.volumes)};
+  const auto restart_controller = [&] {
+    TimeStepState s = controller_before;
+    s.rejections = 0;
+    controller_ = TimeStepController(refined_time_step(p_), s);
+  };
+  for (bool forced = false, taken = false;;) {
+    try {
+      if (!std::exchange(taken, true)) {
+        if (first.failure)
+          std::rethrow_exception(first.failure);
+      } else {
+        a.tau = trial_step(next_step, a.trial, a.record, a.rejections, a.volumes);
+      }
+      break;
+    } catch (const TimeStepTooLarge&) {
+      throw; // a smaller τ is needed, not a new surface or adaptive steps in its place
+    } catch (const SolverFailure& e) {
+      if (retriangulate_ && !forced) {
+        forced = true;
+        note(next_step, time_, fmt::format("no acceptable step ({}): re-triangulating, then trying again", e.what()));
+        const VertexVectors before = vertex_positions(mesh_);
+        const RetriangulationReport report = call_retriangulation(mesh_, true, a.record.times);
+        note_refusal(report, events);
+        if (report.changed()) {
+          adopt_retriangulation(report, before, events, a.record.times);
+          restart_controller();
+          continue;
+        }
+      }
+      if (!table || a.fell_back || controller_before.fallback_left > 0)
+        throw;
+      a.fell_back = true;
+      restart_controller();
+      controller_.fall_back_to_adaptive(next_step);
+      std::string reason = fmt::format("the table's step {} cannot be taken ({}): adaptive steps cover its τ = {}",
+                                       controller_.table_step(next_step), e.what(), controller_.state().fallback_left);
+      note(next_step, time_, reason, true);
+      events.push_back({.kind = StepEventKind::fallback, .detail = std::move(reason)});
+    }
+  }
+  if (a.rejections > 0)
+    events.insert(events.begin(), {.kind = StepEventKind::rejected, .rejections = a.rejections});
+  if (a.record.start)
+    events.insert(events.begin(), {.kind = StepEventKind::start});
+  return a;
+}
+
+//! The surface moves to the accepted trial's (its volumes restored where asked or after a start
+//! step), unless the guard finds it crossing itself (then it throws and the surface stays).
+void SurfaceDiffusion::take(Accepted& a, long next_step, const TimeStepState& controller_before)
+{
+  VertexVectors accepted; // the last accepted surface, kept while the guard looks at the new one
+  if (guard_)
+    accepted = vertex_positions(mesh_);
+  set_vertex_positions(mesh_, a.trial.positions);
+  if (p_.conserve_volume || a.record.start)
+    set_vertex_positions(
+        mesh_, restore_volumes(mesh_, a.volumes, {triangles_, topology_.face_component, topology_.closed}, *op_.parts.boundary)
+                   .positions);
+  if (guard_) {
+    const Stopwatch check;
+    try {
+      guard_->check(mesh_, next_step, time_ + a.tau);
+    } catch (const SolverFailure&) {
+      set_vertex_positions(mesh_, accepted);
+      throw;
+    }
+    a.record.times.retriangulation_check += check.seconds();
+  }
+  step_ = next_step;
+  time_ += a.tau;
+  if ((a.fell_back || controller_before.fallback_left > 0) && !controller_.adaptive())
+    note(step_, time_, fmt::format("adaptive steps covered the table up to its step {}: the table resumes",
+                                   controller_.table_step(step_)));
+  earlier_w_ = std::exchange(previous_w_, a.trial.w);
+  last_w_ = a.trial.w;
+}
+
+//! The hook's look at the surface just reached (beside the next step's first trial when it may
+//! look ahead), or only the new operators without a hook. Returns the wall seconds of that trial
+//! which ran after the look (the next step counts them), 0 if none.
+double SurfaceDiffusion::retriangulate_after_step(std::vector<StepEvent>& events, StepTimes& times)
+{
+  if (!retriangulate_) {
+    renew_operators(times);
+    return 0;
+  }
+  const VertexVectors before = vertex_positions(mesh_);
+  if (can_look_ahead())
+    return look_and_try_ahead(before, events, times);
+  const RetriangulationReport report = call_retriangulation(mesh_, false, times);
+  note_refusal(report, events);
+  if (report.changed())
+    adopt_retriangulation(report, before, events, times);
+  else
+    renew_operators(times);
+  return 0;
 }
 
 FlowMetrics SurfaceDiffusion::metrics() const

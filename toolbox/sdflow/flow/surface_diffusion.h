@@ -179,6 +179,19 @@ private:
     TrialBookkeeping before;
   };
 
+  //! The step's accepted trial and what it took (accepted_trial).
+  struct Accepted {
+    StepRecord record;
+    StepResult trial;
+    double tau = 0;
+    int rejections = 0;
+    std::vector<double> volumes; //!< of the components before the trial, for their restoration
+    bool fell_back = false;      //!< a table's step was handed to adaptive steps
+  };
+
+  Accepted accepted_trial(FirstTrial& first, std::vector<StepEvent>& events);
+  void take(Accepted& accepted, long next_step, const TimeStepState& controller_before);
+  double retriangulate_after_step(std::vector<StepEvent>& events, StepTimes& times);
   TrialBookkeeping bookkeeping() const;
   void rewind(const TrialBookkeeping& before);
   FirstTrial first_trial(long next_step);
