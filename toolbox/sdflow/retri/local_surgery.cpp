@@ -364,75 +364,52 @@ Reconstruction reconstruct_by_piece(const OrientedPoints& oriented, const Retria
   return reconstruct_apart(oriented.points, oriented.normals, groups, options.reconstruction);
 }
 
-//! One attempt on one patch: rebuild it and put it back, or throw (AttemptFailed or any stage's error).
-//! `remesh_first`: stage 1 on the patch before the rebuild (the seam is remeshed after it either way,
-//! with options.remesh_iterations > 0).
-RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& selection, const RetriangulationOptions& options,
-                                    double ell, int input_boundary_loops, double hole_bound, bool remesh_first = true,
-                                    double between_crossings_reach = std::numeric_limits<double>::infinity())
+//! Stage 3's points: the patch's but those crossed over, then the context's, each with the
+//! surface's own area normal as the reference that signs its jet normal; `outer` marks the cut's
+//! and the context's, which the rebuild borrows but does not keep.
+struct PatchPoints {
+  VertexVectors points, reference;
+  std::vector<char> outer;
+  int crossed = 0; //!< patch vertices left out as crossed over
+};
+
+PatchPoints patch_points(const Mesh& mesh, const Cut& cut, const Mesh& patch, const RemovalResult& removal,
+                         double between_crossings_reach)
 {
-  RetriangulationResult r;
-  r.edge_length = ell;
-  const ComponentOptions debris{.min_faces = options.min_component_faces,
-                                .min_thickness = options.min_component_thickness * ell};
-
-  // Stage 1 on the patch, its cut fixed.
-  auto start = Clock::now();
-  const Cut cut = cut_out(mesh, selection);
-  const SizingField sizing = patch_sizing(cut.patch, ell, options.min_edge_fraction);
-  Mesh patch = cut.patch;
-  if (options.remesh_iterations > 0 && remesh_first) {
-    RemeshResult remeshed = remesh_keeping_cut(cut.patch, sizing, ell, options.remesh_iterations);
-    patch = std::move(remeshed.mesh);
-    r.remesh = remeshed.statistics;
-  }
-  r.seconds.remesh = seconds_since(start);
-
-  // Stage 2.
-  start = Clock::now();
-  const RemovalResult removal = remove_self_intersections(patch);
-  r.intersecting_pairs = static_cast<int>(removal.intersecting_pairs.size());
-  r.removed_faces = static_cast<int>(removal.removed_faces.size());
-  r.seconds.intersections = seconds_since(start);
-
-  // Stage 3: the patch's points but those crossed over, then the context's, normals signed by the
-  // surface's own orientation.
-  start = Clock::now();
   const std::vector<char> crossed = crossed_over_vertices(patch, removal, between_crossings_reach);
-  const auto crossed_count = static_cast<int>(std::count(crossed.begin(), crossed.end(), 1));
-  const auto own = static_cast<Eigen::Index>(removal.mesh.n_vertices()) - crossed_count;
+  PatchPoints p;
+  p.crossed = static_cast<int>(std::count(crossed.begin(), crossed.end(), 1));
+  const auto own = static_cast<Eigen::Index>(removal.mesh.n_vertices()) - p.crossed;
   const auto total = own + static_cast<Eigen::Index>(cut.context.size());
-  VertexVectors points(total, 3), reference(total, 3);
-  std::vector<char> outer(static_cast<std::size_t>(total), 0);
+  p.points.resize(total, 3);
+  p.reference.resize(total, 3);
+  p.outer.assign(static_cast<std::size_t>(total), 0);
   Eigen::Index row = 0;
   for (const auto v : removal.mesh.vertices()) {
     if (crossed[static_cast<std::size_t>(v.idx())])
       continue;
     const auto origin = patch.vertex_handle(removal.vertex_origin[static_cast<std::size_t>(v.idx())]);
-    points.row(row) = to_eigen(patch.point(origin)).transpose();
-    reference.row(row) = area_normal(patch, origin).transpose();
-    outer[static_cast<std::size_t>(row++)] = patch.is_boundary(origin);
+    p.points.row(row) = to_eigen(patch.point(origin)).transpose();
+    p.reference.row(row) = area_normal(patch, origin).transpose();
+    p.outer[static_cast<std::size_t>(row++)] = patch.is_boundary(origin);
   }
   for (const int g : cut.context) {
     const auto v = mesh.vertex_handle(g);
-    points.row(row) = to_eigen(mesh.point(v)).transpose();
-    reference.row(row) = area_normal(mesh, v).transpose();
-    outer[static_cast<std::size_t>(row++)] = 1;
+    p.points.row(row) = to_eigen(mesh.point(v)).transpose();
+    p.reference.row(row) = area_normal(mesh, v).transpose();
+    p.outer[static_cast<std::size_t>(row++)] = 1;
   }
-  const OrientedPoints oriented = normals_oriented_by_reference(points, reference, options.normals);
-  r.removed_points = crossed_count + static_cast<int>(oriented.removed.size());
-  r.seconds.normals = seconds_since(start);
+  return p;
+}
 
-  // Stage 4, then the rebuild trimmed to the triangles that touch neither the cut nor the context.
-  start = Clock::now();
-  const Reconstruction rebuilt = reconstruct_by_piece(oriented, options);
-  r.unused_points = static_cast<int>(rebuilt.unused.size());
+//! The rebuild without the triangles at the cut or at borrowed points, nor those at a vertex where
+//! the rest would meet in more than one fan; throws AttemptFailed when nothing is left.
+Mesh trimmed_to_cut(const Reconstruction& rebuilt, const OrientedPoints& oriented, const std::vector<char>& outer)
+{
   const auto is_outer = [&](Mesh::VertexHandle v) {
     return outer[static_cast<std::size_t>(
         oriented.source[static_cast<std::size_t>(rebuilt.source[static_cast<std::size_t>(v.idx())])])] != 0;
   };
-  // Dropped: the triangles at the cut or the borrowed points, and those at a vertex where the rest
-  // would meet in more than one fan.
   std::vector<char> dropped(rebuilt.mesh.n_faces(), 0);
   for (const auto f : rebuilt.mesh.faces())
     for (const auto v : rebuilt.mesh.fv_range(f))
@@ -458,21 +435,19 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
   }
   if (trimmed_faces.empty())
     throw AttemptFailed("nothing of the rebuild is left inside the cut");
-  VertexVectors tx(static_cast<Eigen::Index>(trimmed_points.size()), 3);
-  for (std::size_t i = 0; i < trimmed_points.size(); ++i)
-    tx.row(static_cast<Eigen::Index>(i)) = trimmed_points[i].transpose();
-  FaceIndices tt(static_cast<Eigen::Index>(trimmed_faces.size()), 3);
-  for (std::size_t i = 0; i < trimmed_faces.size(); ++i)
-    tt.row(static_cast<Eigen::Index>(i)) << trimmed_faces[i][0], trimmed_faces[i][1], trimmed_faces[i][2];
-  ComponentSelection pieces = keep_components(make_mesh(tx, tt), debris);
-  r.dropped_components += static_cast<int>(pieces.dropped.size());
-  const Mesh& trimmed = pieces.mesh;
-  if (trimmed.n_faces() == 0)
-    throw AttemptFailed("only debris of the rebuild is left inside the cut");
-  r.seconds.reconstruction = seconds_since(start);
+  return make_mesh(point_rows(trimmed_points), triangle_rows(trimmed_faces));
+}
 
-  // The strip: the trimmed rebuild's vertices first, then the cut's (numbered after them).
-  start = Clock::now();
+//! The trimmed rebuild zipped to the patch's cut by a strip (zip_loops), and the cut's loops
+//! (in the zipped mesh's numbering) that the strip closed.
+struct Zipped {
+  Mesh mesh;
+  std::vector<std::vector<int>> cuts;
+};
+
+Zipped zipped_to_cut(const Mesh& patch, const Mesh& trimmed)
+{
+  // The trimmed rebuild's vertices first, then the cut's (numbered after them).
   const auto rebuilt_vertices = static_cast<int>(trimmed.n_vertices());
   std::vector<int> zip_index(patch.n_vertices(), -1);
   std::vector<std::vector<int>> cuts;
@@ -506,39 +481,25 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
       zn.row(z) = area_normal(patch, v).transpose();
   for (const auto v : trimmed.vertices())
     zn.row(v.idx()) = area_normal(trimmed, v).transpose();
-  for (const LoopPair& pair : pairs)
+  Zipped zipped;
+  for (const LoopPair& pair : pairs) {
     for (const auto& t : zip_loops(zx, zn, pair.cut, pair.rim))
       faces.push_back(t);
-  FaceIndices zt(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t i = 0; i < faces.size(); ++i)
-    zt.row(static_cast<Eigen::Index>(i)) << faces[i][0], faces[i][1], faces[i][2];
-  Mesh rebuilt_patch = make_mesh(zx, zt);
+    zipped.cuts.push_back(pair.cut);
+  }
+  zipped.mesh = make_mesh(zx, triangle_rows(faces));
+  return zipped;
+}
 
-  // Stage 5 on the inner holes.
-  if (options.fill_holes)
-    rebuilt_patch = fill_inner_holes(rebuilt_patch, [&] {
-      std::vector<std::vector<int>> loops;
-      for (const LoopPair& pair : pairs)
-        loops.push_back(pair.cut);
-      return loops;
-    }(), hole_bound, r.filled_holes);
-  r.seconds.holes = seconds_since(start);
-  // The seam remeshed with the cut fixed; when that leaves the patch intersecting the surface (a
-  // remeshing on a thin gap), the strip as zipped.
-  start = Clock::now();
-  std::vector<RemeshResult> candidates;
-  if (options.remesh_iterations > 0)
-    candidates.push_back(remesh_keeping_cut(rebuilt_patch, sizing, ell, options.remesh_iterations));
-  candidates.push_back({std::move(rebuilt_patch), {}});
-  r.seconds.remesh += seconds_since(start);
-
-  // Stage 6: the kept faces and the rebuilt patch as one soup, checked, validated.
-  start = Clock::now();
+//! The first of `candidates` (rebuilt patches) that, put in place of the patch with the surface's
+//! other faces, crosses none of them; `soup` is then the whole surface. nullptr if none fits.
+const RemeshResult* placed_in_surface(const Mesh& mesh, const SurgeryPatch& selection, const Cut& cut,
+                                      const std::vector<RemeshResult>& candidates, PolygonSoup& soup)
+{
   std::map<PointKey, int> cut_vertex;
   for (const auto v : cut.patch.vertices())
     if (cut.patch.is_boundary(v))
       cut_vertex.emplace(key_of(cut.patch.point(v)), cut.global[static_cast<std::size_t>(v.idx())]);
-  PolygonSoup soup;
   std::vector<long long> kept_index(mesh.n_vertices(), -1);
   for (const auto f : mesh.faces())
     if (!selection.in_patch[static_cast<std::size_t>(f.idx())]) {
@@ -554,7 +515,6 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
       soup.polygons.push_back(std::move(polygon));
     }
   const std::size_t kept_points = soup.points.size(), first_new = soup.polygons.size();
-  const RemeshResult* placed = nullptr;
   for (const RemeshResult& candidate : candidates) {
     soup.points.resize(kept_points);
     soup.polygons.resize(first_new);
@@ -574,11 +534,82 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
         polygon.push_back(new_index[static_cast<std::size_t>(v.idx())]);
       soup.polygons.push_back(std::move(polygon));
     }
-    if (!new_faces_intersect(soup, first_new)) {
-      placed = &candidate;
-      break;
-    }
+    if (!new_faces_intersect(soup, first_new))
+      return &candidate;
   }
+  return nullptr;
+}
+
+//! One attempt on one patch: rebuild it and put it back, or throw (AttemptFailed or any stage's error).
+//! `remesh_first`: stage 1 on the patch before the rebuild (the seam is remeshed after it either way,
+//! with options.remesh_iterations > 0).
+RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& selection, const RetriangulationOptions& options,
+                                    double ell, int input_boundary_loops, double hole_bound, bool remesh_first = true,
+                                    double between_crossings_reach = std::numeric_limits<double>::infinity())
+{
+  RetriangulationResult r;
+  r.edge_length = ell;
+  const ComponentOptions debris{.min_faces = options.min_component_faces,
+                                .min_thickness = options.min_component_thickness * ell};
+
+  // Stage 1 on the patch, its cut fixed.
+  auto start = Clock::now();
+  const Cut cut = cut_out(mesh, selection);
+  const SizingField sizing = patch_sizing(cut.patch, ell, options.min_edge_fraction);
+  Mesh patch = cut.patch;
+  if (options.remesh_iterations > 0 && remesh_first) {
+    RemeshResult remeshed = remesh_keeping_cut(cut.patch, sizing, ell, options.remesh_iterations);
+    patch = std::move(remeshed.mesh);
+    r.remesh = remeshed.statistics;
+  }
+  r.seconds.remesh = seconds_since(start);
+
+  // Stage 2.
+  start = Clock::now();
+  const RemovalResult removal = remove_self_intersections(patch);
+  r.intersecting_pairs = static_cast<int>(removal.intersecting_pairs.size());
+  r.removed_faces = static_cast<int>(removal.removed_faces.size());
+  r.seconds.intersections = seconds_since(start);
+
+  // Stage 3.
+  start = Clock::now();
+  const PatchPoints sampled = patch_points(mesh, cut, patch, removal, between_crossings_reach);
+  const OrientedPoints oriented = normals_oriented_by_reference(sampled.points, sampled.reference, options.normals);
+  r.removed_points = sampled.crossed + static_cast<int>(oriented.removed.size());
+  r.seconds.normals = seconds_since(start);
+
+  // Stage 4, then the rebuild trimmed to the triangles that touch neither the cut nor the context.
+  start = Clock::now();
+  const Reconstruction rebuilt = reconstruct_by_piece(oriented, options);
+  r.unused_points = static_cast<int>(rebuilt.unused.size());
+  ComponentSelection pieces = keep_components(trimmed_to_cut(rebuilt, oriented, sampled.outer), debris);
+  r.dropped_components += static_cast<int>(pieces.dropped.size());
+  const Mesh& trimmed = pieces.mesh;
+  if (trimmed.n_faces() == 0)
+    throw AttemptFailed("only debris of the rebuild is left inside the cut");
+  r.seconds.reconstruction = seconds_since(start);
+
+  start = Clock::now();
+  Zipped zipped = zipped_to_cut(patch, trimmed);
+  Mesh rebuilt_patch = std::move(zipped.mesh);
+
+  // Stage 5 on the inner holes.
+  if (options.fill_holes)
+    rebuilt_patch = fill_inner_holes(rebuilt_patch, zipped.cuts, hole_bound, r.filled_holes);
+  r.seconds.holes = seconds_since(start);
+  // The seam remeshed with the cut fixed; when that leaves the patch intersecting the surface (a
+  // remeshing on a thin gap), the strip as zipped.
+  start = Clock::now();
+  std::vector<RemeshResult> candidates;
+  if (options.remesh_iterations > 0)
+    candidates.push_back(remesh_keeping_cut(rebuilt_patch, sizing, ell, options.remesh_iterations));
+  candidates.push_back({std::move(rebuilt_patch), {}});
+  r.seconds.remesh += seconds_since(start);
+
+  // Stage 6: the kept faces and the rebuilt patch as one soup, checked, validated.
+  start = Clock::now();
+  PolygonSoup soup;
+  const RemeshResult* placed = placed_in_surface(mesh, selection, cut, candidates, soup);
   if (!placed)
     throw AttemptFailed("the rebuilt patch intersects the surface");
   r.remesh.splits += placed->statistics.splits;
