@@ -44,7 +44,7 @@ void scan_metrics(const std::filesystem::path& file, double& area0, double& volu
     throw IoError(fmt::format("{}: cannot open (is this a run directory?)", file.string()));
   std::string line;
   std::getline(in, line);
-  if (line != metrics_header)
+  if (line != metrics_header && line != metrics_header_without_energy)
     throw IoError(fmt::format("{}:1: not an sdflow metrics header", file.string()));
   rows = 0;
   for (int number = 2; std::getline(in, line); ++number) {
@@ -59,7 +59,7 @@ void scan_metrics(const std::filesystem::path& file, double& area0, double& volu
         area0 = std::stod(f[7]);
         volume0 = std::stod(f[8]);
       }
-      if (f.size() == 15 && !f[14].empty() && f[14] != "rejected") {
+      if (f.size() >= 15 && !f[14].empty() && f[14] != "rejected") {
         std::string name = f[14];
         if (name.rfind("rejected+", 0) == 0)
           name = name.substr(9);

@@ -47,7 +47,7 @@ struct SchemaFlag {
   double real = 0;
   bool boolean = false;
   std::string text;
-  std::vector<double> point;
+  std::vector<double> numbers; // a point or reals
   std::vector<std::pair<CLI::Option*, const ParameterEntry::Shorthand*>> shorthands;
 
   bool given() const { return option->count() > 0; }
@@ -61,7 +61,8 @@ struct SchemaFlag {
     case ParameterType::boolean: return boolean;
     case ParameterType::choice: return text;
     case ParameterType::path: return std::filesystem::path(text);
-    case ParameterType::point: return Eigen::Vector3d(point.at(0), point.at(1), point.at(2));
+    case ParameterType::point: return Eigen::Vector3d(numbers.at(0), numbers.at(1), numbers.at(2));
+    case ParameterType::reals: return numbers;
     case ParameterType::schedule: break;
     }
     return ScheduleSetting{std::filesystem::absolute(text), read_schedule(text).entries()};
@@ -377,7 +378,10 @@ void add_schema_flags(CLI::App& verb, RunArguments& args)
         flag.option->check(CLI::ExistingFile);
       break;
     case ParameterType::point:
-      flag.option = verb.add_option(names, flag.point, help)->expected(3)->delimiter(',')->type_name("X,Y,Z");
+      flag.option = verb.add_option(names, flag.numbers, help)->expected(3)->delimiter(',')->type_name("X,Y,Z");
+      break;
+    case ParameterType::reals:
+      flag.option = verb.add_option(names, flag.numbers, help)->delimiter(',')->type_name("A,B,...");
       break;
     }
     const std::string group = e.section().empty() ? "Run parameters" : "[" + e.section() + "] parameters";

@@ -44,6 +44,7 @@ py::dict metrics_dict(long step, double time, double tau, const FlowMetrics& m, 
   d["d2"] = m.d2;
   d["debris_volume"] = m.debris_volume;
   d["event"] = event;
+  d["energy"] = m.energy;
   return d;
 }
 

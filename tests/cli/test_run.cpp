@@ -143,6 +143,33 @@ TEST(RunCommand, scheme_flags_reach_run_toml_and_unknown_values_exit_2)
   EXPECT_NE(bad_mass.output.find("--mass"), std::string::npos) << bad_mass.output;
 }
 
+TEST(RunCommand, energy_flags_and_rows_reach_run_toml_and_bad_g_exits_2_naming_the_key)
+{
+  test::TempDir dir;
+  write_mesh(analytic::icosphere(2), dir / "s.ply", {.encoding = Encoding::binary});
+  const std::string run = "run --input " + (dir / "s.ply").string() + " --tau 1e-4 --steps 2 --quiet --out ";
+  const auto r = analytic::run_sdflow(run + (dir / "e").string() + " --energy ellipsoidal --energy-g 1,1,4");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string toml = test::read_file(dir / "e/run.toml");
+  EXPECT_NE(toml.find("[energy]\nkind = \"ellipsoidal\"\ng = [1, 1, 4]\n"), std::string::npos) << toml;
+  for (const std::string& g : {"1,0,4", "1,nan,4", "-1,1,1", "1,2"}) {
+    SCOPED_TRACE(g);
+    const auto bad = analytic::run_sdflow(run + (dir / ("bad" + g)).string() + " --energy ellipsoidal --energy-g " + g);
+    EXPECT_EQ(bad.exit_code, 2) << bad.output;
+    EXPECT_NE(bad.output.find("energy.g = ["), std::string::npos) << bad.output;
+  }
+  // A scenario gives a sum's terms as rows of six; rows of other lengths are refused with the line.
+  test::write_file(dir / "sum.toml", "[energy]\nkind = \"sum\"\ng = [[1, 1, 4, 0, 0, 0],\n     [1, 1, 4, 90, 0, 0]]\n");
+  const auto sum = analytic::run_sdflow(run + (dir / "sum").string() + " " + (dir / "sum.toml").string());
+  ASSERT_EQ(sum.exit_code, 0) << sum.output;
+  EXPECT_NE(test::read_file(dir / "sum/run.toml").find("g = [1, 1, 4, 0, 0, 0, 1, 1, 4, 90, 0, 0]\n"),
+            std::string::npos);
+  test::write_file(dir / "ragged.toml", "[energy]\nkind = \"sum\"\ng = [[1, 1, 4, 0, 0, 0], [1, 1, 4, 90, 0]]\n");
+  const auto ragged = analytic::run_sdflow(run + (dir / "ragged").string() + " " + (dir / "ragged.toml").string());
+  EXPECT_EQ(ragged.exit_code, 2) << ragged.output;
+  EXPECT_NE(ragged.output.find("ragged.toml:3: energy.g must be"), std::string::npos) << ragged.output;
+}
+
 TEST(RunCommand, killed_run_leaves_complete_files_and_resumes_bit_for_bit)
 {
   test::TempDir dir;

@@ -1,4 +1,6 @@
 target_sources(sdflow_tests PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/test_anisotropic_energy.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_anisotropic_flow.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_blas_threads.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_boundary_condition.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_carried_ordering.cpp

@@ -41,6 +41,7 @@ ParameterValue changed_value(const ParameterEntry& e, const fs::path& dir)
   case ParameterType::path: return dir / "some" / "file.ply";
   case ParameterType::point: return Eigen::Vector3d(1.5, -2, 3.25);
   case ParameterType::schedule: return ScheduleSetting{{}, {{1, 50, 0.01}, {51, 100, 0.02}}};
+  case ParameterType::reals: return std::vector<double>{1.5, 2, 3.25};
   }
   return value;
 }

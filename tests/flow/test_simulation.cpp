@@ -7,6 +7,7 @@
 #include "sdflow/io/io.h"
 #include "support/analytic_meshes.h"
 
+#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,7 +22,7 @@ namespace fs = std::filesystem;
 //! metrics.csv as rows of fields (header excluded).
 //! The rows of a CSV file with `header` (metrics.csv by default) and `columns` fields a row.
 std::vector<std::vector<std::string>> read_metrics(const fs::path& file, const char* header = metrics_header,
-                                                   std::size_t columns = 15)
+                                                   std::size_t columns = 16)
 {
   std::ifstream in(file);
   std::string line;
@@ -42,7 +43,8 @@ std::vector<std::vector<std::string>> read_metrics(const fs::path& file, const c
 }
 
 double column(const std::vector<std::string>& row, int c) { return std::stod(row[c]); }
-constexpr int time_col = 1, area_col = 7, volume_col = 8, deviation_col = 10, debris_col = 13, event_col = 14;
+constexpr int time_col = 1, area_col = 7, volume_col = 8, deviation_col = 10, debris_col = 13, event_col = 14,
+              energy_col = 15;
 
 RunParameters constant_tau(const fs::path& out, double tau, long steps, double beta = 0.5)
 {
@@ -100,6 +102,7 @@ TEST(Simulation, ellipsoid_relaxes_toward_a_sphere_without_area_increase)
   for (std::size_t i = 1; i < rows.size(); ++i) {
     SCOPED_TRACE(i);
     EXPECT_LE(column(rows[i], area_col), column(rows[i - 1], area_col) * (1 + area_round_off));
+    EXPECT_EQ(rows[i][energy_col], rows[i][area_col]) << "the isotropic energy is the area";
   }
   const double drift = std::abs(column(rows.back(), volume_col) / column(rows[0], volume_col) - 1);
   ::testing::Test::RecordProperty("volume_drift", std::to_string(drift));
@@ -203,6 +206,26 @@ TEST(Simulation, resumed_run_reproduces_the_uninterrupted_metrics_bit_for_bit)
     EXPECT_EQ(test::read_file(dir / "killed/metrics.csv"), test::read_file(dir / "whole/metrics.csv"));
     EXPECT_EQ(test::read_file(dir / "killed/series.pvd"), test::read_file(dir / "whole/series.pvd"));
   }
+}
+
+// A run written before metrics.csv had its `energy` column resumes with the column added, empty in
+// the rows written before.
+TEST(Simulation, a_run_without_the_energy_column_resumes_with_it)
+{
+  test::TempDir dir;
+  RunParameters p = constant_tau(dir / "run", 0.05, 4);
+  p.checkpoint_every = 2;
+  run_simulation(analytic::ellipsoid(2, 5, 4, 3), {.parameters = p});
+  std::string legacy = std::string(metrics_header_without_energy) + '\n';
+  for (const auto& row : read_metrics(dir / "run/metrics.csv"))
+    legacy += fmt::format("{}\n", fmt::join(row.begin(), row.end() - 1, ","));
+  test::write_file(dir / "run/metrics.csv", legacy);
+  p.steps = 6;
+  resume_simulation({.parameters = p});
+  const auto rows = read_metrics(dir / "run/metrics.csv");
+  ASSERT_EQ(rows.size(), 7u);
+  EXPECT_EQ(rows[4][energy_col], "") << "written before the column";
+  EXPECT_EQ(rows[5][energy_col], rows[5][area_col]);
 }
 
 TEST(Simulation, corrupt_checkpoint_is_refused)

@@ -30,6 +30,7 @@ std::vector<ParameterEntry> build_schema()
   detail::add_scheme_entries(s);
   detail::add_output_entries(s);
   detail::add_flow_option_entries(s);
+  detail::add_energy_entries(s);
   detail::add_adaptive_entries(s);
   detail::add_retriangulation_entries(s);
   detail::add_reference_sphere_entries(s);
@@ -73,6 +74,7 @@ std::string type_name(ParameterType type)
   case ParameterType::path: return "path";
   case ParameterType::point: return "point";
   case ParameterType::schedule: return "schedule";
+  case ParameterType::reals: return "reals";
   }
   return "?";
 }
@@ -197,6 +199,8 @@ std::string toml_text(const ParameterValue& value)
           return quoted(std::filesystem::absolute(v).lexically_normal().string());
         } else if constexpr (std::is_same_v<T, Eigen::Vector3d>) {
           return fmt::format("[{}, {}, {}]", v.x(), v.y(), v.z());
+        } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+          return fmt::format("[{}]", fmt::join(v, ", "));
         } else {
           std::string s = "[";
           for (const ScheduleEntry& e : v.entries)

@@ -47,9 +47,10 @@ enum class ParameterType {
   path,     //!< a file or folder; relative paths in a scenario are relative to the scenario's folder
   point,    //!< three reals, [x, y, z] (flag: x,y,z)
   schedule, //!< a τ table: a file (CSV or TOML) or, in a scenario, an inline [[first, last, τ], ...]
+  reals,    //!< a list of reals, [a, b, ...] or rows of equal length [[a, b], [c, d]] read in order (flag: a,b,...)
 };
 
-//! "integer", "real", "boolean", "choice", "path", "point", "schedule".
+//! "integer", "real", "boolean", "choice", "path", "point", "schedule", "reals".
 std::string type_name(ParameterType type);
 
 //! The allowed values of a number: min and max, each end open or closed; infinite values only
@@ -75,9 +76,9 @@ struct ScheduleSetting {
 
 //! One parameter's value: the alternative follows the type (integer: long, real: double, boolean:
 //! bool, choice: std::string, path: std::filesystem::path, point: Eigen::Vector3d, schedule:
-//! ScheduleSetting).
-using ParameterValue =
-    std::variant<long, double, bool, std::string, std::filesystem::path, Eigen::Vector3d, ScheduleSetting>;
+//! ScheduleSetting, reals: std::vector<double>).
+using ParameterValue = std::variant<long, double, bool, std::string, std::filesystem::path, Eigen::Vector3d,
+                                    ScheduleSetting, std::vector<double>>;
 
 //! How the MeshLab filter "Surface diffusion N steps" offers a parameter.
 struct MeshlabParameter {

@@ -39,6 +39,7 @@ const char* expected(ParameterType type)
   case ParameterType::path: return "a path in quotes";
   case ParameterType::point: return "[x, y, z]";
   case ParameterType::schedule: return "a file name in quotes or [[first_step, last_step, tau], ...]";
+  case ParameterType::reals: return "[a, b, ...] or rows [[a, b, ...], ...]";
   }
   return "?";
 }
@@ -67,6 +68,32 @@ ScheduleSetting inline_schedule(const std::filesystem::path& file, const toml::a
                                 static_cast<long>(*r->get(1)->value<int64_t>()), *r->get(2)->value<double>()});
   }
   return schedule;
+}
+
+//! The numbers of a `reals` entry: a flat array, or an array of rows of one length read row by row.
+std::vector<double> inline_reals(const std::filesystem::path& file, const toml::array& array, const std::string& key)
+{
+  std::vector<double> numbers;
+  std::size_t row_length = 0;
+  for (const auto& item : array) {
+    if (const auto number = item.value<double>()) {
+      if (row_length > 0)
+        bad(file, item, fmt::format("{} mixes numbers and rows: give [a, b, ...] or [[a, b, ...], ...]", key));
+      numbers.push_back(*number);
+      continue;
+    }
+    const toml::array* row = item.as_array();
+    if (!row || row->empty() || (!numbers.empty() && row_length == 0) || (row_length > 0 && row->size() != row_length))
+      bad(file, item, fmt::format("{} must be numbers [a, b, ...] or rows of numbers of one length [[a, b, ...], ...]", key));
+    row_length = row->size();
+    for (const auto& cell : *row) {
+      const auto number = cell.value<double>();
+      if (!number)
+        bad(file, cell, fmt::format("{} holds {} where a number belongs", key, toml_type(cell)));
+      numbers.push_back(*number);
+    }
+  }
+  return numbers;
 }
 
 //! The value of `entry` a scenario's `node` gives; IoError or InvalidParameter naming the file, line and key.
@@ -113,6 +140,10 @@ ParameterValue toml_value(const std::filesystem::path& file, const toml::node& n
       const std::filesystem::path schedule_file = resolve(file, *node.value<std::string>());
       return ScheduleSetting{schedule_file, read_schedule(schedule_file).entries()};
     }
+    return wrong_type();
+  case ParameterType::reals:
+    if (const toml::array* a = node.as_array())
+      return inline_reals(file, *a, entry.key);
     return wrong_type();
   }
   return wrong_type();
@@ -254,6 +285,14 @@ void validate_flow_parameters(const RunParameters& p)
   for (const ParameterEntry& e : parameter_schema())
     if (!e.in_use || e.in_use(p))
       check_range(e, e.get(p));
+  if (p.scheme.energy.kind != SurfaceEnergyKind::isotropic) {
+    anisotropy_terms(p.scheme.energy); // the count and values of energy.g for the kind
+    if (p.scheme.curvature.method != CurvatureMethod::cotangent)
+      throw InvalidParameter(fmt::format("curvature = \"{}\" chooses how the isotropic energy's H is computed; "
+                                         "energy.kind = \"{}\" has a weighted curvature of its own: leave "
+                                         "curvature at \"cotangent\"",
+                                         curvature_name(p.scheme.curvature), surface_energy_name(p.scheme.energy.kind)));
+  }
   TimeStepController check(p.time_step); // validates the time-step options together (min_tau ≤ max_tau...)
   if (p.time_step.adaptive.tolerance > 0 && !p.scheme.extrapolate)
     throw InvalidParameter(fmt::format("an error tolerance ({}) needs extrapolated steps (extrapolate = true): "

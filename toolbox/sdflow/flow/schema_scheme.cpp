@@ -152,4 +152,29 @@ void add_flow_option_entries(std::vector<ParameterEntry>& s)
   }
 }
 
+//! [energy]: the surface energy ∫ γ(n) dA (surface_energy_options.h).
+void add_energy_entries(std::vector<ParameterEntry>& s)
+{
+  {
+    auto& e = add(s, entry("energy.kind", "--energy", ParameterType::choice,
+                           "Surface energy ∫ γ(n) dA: `isotropic` (γ = 1, the area: the paper's flow), `ellipsoidal` "
+                           "(γ = √(g1 n1² + g2 n2² + g3 n3²), Wulff shape the ellipsoid of semi-axes ∝ √g) or `sum` "
+                           "(of rotated ellipsoidal terms: cubic-like anisotropies)"));
+    e.choices = {"isotropic", "ellipsoidal", "sum"};
+    e.get = [](const RunParameters& p) -> ParameterValue { return surface_energy_name(p.scheme.energy.kind); };
+    e.set = [](RunParameters& p, const ParameterValue& v) {
+      p.scheme.energy.kind = surface_energy_kind(std::get<std::string>(v));
+    };
+    e.paper = std::string("isotropic");
+  }
+  {
+    auto& e = add(s, entry("energy.g", "--energy-g", ParameterType::reals,
+                           "The numbers of γ: `ellipsoidal` [g1, g2, g3], each > 0; `sum` six per term, "
+                           "[[g1, g2, g3, rx, ry, rz], ...], the term √(nᵀ R diag(g) Rᵀ n) with R = Rz·Ry·Rx by the "
+                           "angles in degrees (flag: the numbers in one comma-separated list)"));
+    bind<std::vector<double>>(e, &RunParameters::scheme, &SchemeOptions::energy, &SurfaceEnergyOptions::g);
+    e.in_use = [](const RunParameters& p) { return p.scheme.energy.kind != SurfaceEnergyKind::isotropic; };
+  }
+}
+
 } // namespace sdflow::detail

@@ -1,6 +1,7 @@
 #include "sdflow/flow/scheme.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/flow/anisotropic_energy.h"
 #include "sdflow/flow/isotropic_energy.h"
 #include "sdflow/stopwatch.h"
 
@@ -13,7 +14,12 @@ namespace sdflow {
 
 SchemeParts scheme_parts(const SchemeOptions& options)
 {
-  return {std::make_shared<const IsotropicEnergy>(options.curvature), flow_boundary(options.boundary)};
+  std::shared_ptr<const SurfaceEnergy> energy;
+  if (options.energy.kind == SurfaceEnergyKind::isotropic)
+    energy = std::make_shared<const IsotropicEnergy>(options.curvature);
+  else
+    energy = std::make_shared<const AnisotropicEnergy>(anisotropy_terms(options.energy));
+  return {std::move(energy), flow_boundary(options.boundary)};
 }
 
 FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options, const CotangentCache* cache)

@@ -9,6 +9,7 @@
 #include "sdflow/flow/flow_boundary.h"
 #include "sdflow/flow/solver.h"
 #include "sdflow/flow/surface_energy.h"
+#include "sdflow/flow/surface_energy_options.h"
 #include "sdflow/geometry/cotangent_cache.h"
 #include "sdflow/geometry/curvature.h"
 #include "sdflow/geometry/normals.h"
@@ -43,6 +44,9 @@ struct SchemeOptions {
   VertexMass mass = VertexMass::voronoi;
   //! Local Richardson extrapolation (`extrapolated_step`): second order in τ instead of first.
   bool extrapolate = false;
+  //! The energy ∫ γ(n) dA the flow minimises: the area by default (`curvature` then says how H is
+  //! computed); an anisotropic γ takes the weighted curvature of anisotropic_energy.h instead.
+  SurfaceEnergyOptions energy;
 };
 
 //! The scheme's replaceable parts (docs/design.md §11): a new energy or boundary condition is a
@@ -52,7 +56,8 @@ struct SchemeParts {
   std::shared_ptr<const FlowBoundary> boundary;
 };
 
-//! The parts `options` select: the isotropic energy with its `curvature`, and its `boundary`.
+//! The parts `options` select: the isotropic energy with its `curvature`, or the anisotropic one of
+//! its `energy` (InvalidParameter on bad numbers, anisotropy_terms), and its `boundary`.
 SchemeParts scheme_parts(const SchemeOptions& options);
 
 //! A volume-gradient area below this fraction of the Voronoi area marks a folded star.

@@ -50,6 +50,19 @@ std::string read_truncated(const std::filesystem::path& file, const std::string&
   return text;
 }
 
+//! metrics.csv's text with the `energy` column, added empty to the rows of an earlier version's file.
+std::string with_energy_column(const std::string& metrics)
+{
+  const std::string legacy = std::string(metrics_header_without_energy) + '\n';
+  if (metrics.rfind(legacy, 0) != 0)
+    return metrics;
+  std::string text = std::string(metrics_header) + '\n';
+  std::istringstream rows(metrics.substr(legacy.size()));
+  for (std::string row; std::getline(rows, row);)
+    text += row + ",\n";
+  return text;
+}
+
 //! The stages' wall time summed over the steps of this process, for the line that ends a run.
 class TimingSummary {
 public:
@@ -149,7 +162,7 @@ public:
   void resume(const SurfaceDiffusion& flow, const Checkpoint& checkpoint)
   {
     snapshots_ = checkpoint.snapshots;
-    metrics_ = read_truncated(dir_ / "metrics.csv", "", flow.steps(), true);
+    metrics_ = with_energy_column(read_truncated(dir_ / "metrics.csv", "", flow.steps(), true));
     timings_ = std::filesystem::exists(dir_ / "timings.csv") ? read_truncated(dir_ / "timings.csv", "", flow.steps(), true)
                                                               : std::string(timings_header) + '\n';
     events_ = read_truncated(dir_ / "events.log", "step ", flow.steps(), false);
@@ -319,9 +332,9 @@ SimulationResult run(SurfaceDiffusion& flow, RunRecorder& recorder, const Simula
 
 std::string metrics_row(long step, double time, double tau, const FlowMetrics& m, const std::string& event)
 {
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", step, time, tau, m.vertices, m.faces,
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", step, time, tau, m.vertices, m.faces,
                      m.components, m.genus, m.area, m.volume, m.mean_curvature, m.curvature_deviation_pct, m.d1, m.d2,
-                     m.debris_volume, event);
+                     m.debris_volume, event, m.energy);
 }
 
 std::string timings_row(long step, const StepTimes& t, double output)

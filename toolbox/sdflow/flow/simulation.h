@@ -25,8 +25,15 @@
 
 namespace sdflow {
 
-//! The columns of metrics.csv, in order.
+//! The columns of metrics.csv, in order; `energy` is ∫ γ dA (SurfaceEnergy::value: the area for the
+//! isotropic energy), appended after the columns of earlier versions.
 inline constexpr const char* metrics_header =
+    "step,time,tau,vertices,faces,components,genus,area,volume,mean_curvature,curvature_deviation_pct,d1,d2,"
+    "debris_volume,event,energy";
+
+//! The header of metrics.csv before the `energy` column: a run it heads resumes with the column
+//! added (empty in its earlier rows), and `sdflow plot` reads it.
+inline constexpr const char* metrics_header_without_energy =
     "step,time,tau,vertices,faces,components,genus,area,volume,mean_curvature,curvature_deviation_pct,d1,d2,"
     "debris_volume,event";
 

@@ -1,4 +1,5 @@
 target_sources(sdflow_toolbox PRIVATE
+  sdflow/flow/anisotropic_energy.cpp
   sdflow/flow/blas_threads.cpp
   sdflow/flow/boundary_condition.cpp
   sdflow/flow/carried_ordering.cpp
@@ -25,6 +26,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/supernodal_cholesky.cpp
   sdflow/flow/suitesparse_output.cpp
   sdflow/flow/surface_diffusion.cpp
+  sdflow/flow/surface_energy_options.cpp
   sdflow/flow/time_step.cpp
   sdflow/flow/topology_guard.cpp
   sdflow/flow/volume.cpp)

@@ -268,7 +268,8 @@ FlowMetrics SurfaceDiffusion::metrics() const
           .mean_curvature = h.mean,
           .curvature_deviation_pct = h.deviation_pct,
           .d1 = d.d1,
-          .d2 = d.d2};
+          .d2 = d.d2,
+          .energy = op_.parts.energy->value(mesh_)};
 }
 
 FlowState SurfaceDiffusion::state() const

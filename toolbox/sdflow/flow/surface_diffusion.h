@@ -94,6 +94,7 @@ struct FlowMetrics {
   double debris_volume = 0;
   double mean_curvature = 0, curvature_deviation_pct = 0; //!< H̃ and δH (measures.h)
   double d1 = 0, d2 = 0;                                  //!< from the reference sphere
+  double energy = 0; //!< ∫ γ dA, the value of the flow's surface energy (the area for the isotropic one)
 };
 
 class SurfaceDiffusion {

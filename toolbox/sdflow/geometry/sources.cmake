@@ -8,4 +8,5 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/geometry/measures.cpp
   sdflow/geometry/material_volume.cpp
   sdflow/geometry/quality.cpp
-  sdflow/geometry/topology.cpp)
+  sdflow/geometry/topology.cpp
+  sdflow/geometry/anisotropy.cpp)

@@ -49,6 +49,7 @@ void add_time_step_entries(std::vector<ParameterEntry>& schema);       //!< the 
 void add_scheme_entries(std::vector<ParameterEntry>& schema);          //!< the scheme and its solver (schema_scheme.cpp)
 void add_output_entries(std::vector<ParameterEntry>& schema);          //!< snapshots, checkpoints (schema_run.cpp)
 void add_flow_option_entries(std::vector<ParameterEntry>& schema);     //!< volume, refinement, boundary (schema_scheme.cpp)
+void add_energy_entries(std::vector<ParameterEntry>& schema);          //!< [energy] (schema_scheme.cpp)
 void add_adaptive_entries(std::vector<ParameterEntry>& schema);        //!< [adaptive] (schema_time_step.cpp)
 void add_retriangulation_entries(std::vector<ParameterEntry>& schema); //!< [retriangulation] (schema_retriangulation.cpp)
 void add_reference_sphere_entries(std::vector<ParameterEntry>& schema); //!< [reference_sphere] (schema_run.cpp)

@@ -1,0 +1,39 @@
+#pragma once
+//! \file anisotropic_energy.h
+//! \brief The anisotropic surface energy E = ∫ γ(n) dA for γ = Σ_l √(nᵀ G_l n) (anisotropy.h,
+//! Barrett, Garcke, Nürnberg 2008): μ is the weighted mean curvature, the exact derivative of the
+//! discrete energy; the implicit system is the isotropic one with τβ scaled by the stiffness s of
+//! γ, which keeps every linear mode stable for β ≥ ½ (docs/method.md, "Anisotropic surface energy").
+
+#include "sdflow/flow/surface_energy.h"
+#include "sdflow/geometry/anisotropy.h"
+
+namespace sdflow {
+
+class AnisotropicEnergy final : public SurfaceEnergy {
+public:
+  //! Throws InvalidParameter on a term that is not a positive definite form (Anisotropy).
+  explicit AnisotropicEnergy(std::span<const AnisotropyTerm> terms);
+
+  //! E_h = Σ_f γ(a_f) with a_f = ½ (x_j − x_i) × (x_k − x_i) the area vector of face f = (i, j, k),
+  //! which is γ(n_f) |f| since γ is 1-homogeneous.
+  double value(const Mesh& mesh) const override;
+
+  //! μ_i = −(∂E_h/∂x_i · N_i) / (2 M_i) with ∂E_h/∂x_i = Σ_{f∋i} ½ (x_j − x_k) × ξ(n_f), so that
+  //! δE = −2 Σ μ_i M_i N_i·δx_i for normal motions; 0 on boundary vertices, before the boundary
+  //! condition. For γ = |n| this is the cotangent H = ½ N·M⁻¹LX exactly (−1/R on a sphere).
+  Eigen::VectorXd first_variation(const SurfaceGeometry& geometry) const override;
+
+  //! M + τβ s L M⁻¹ L with s = max_tangent_stiffness() of γ: symmetric positive definite like the
+  //! isotropic system, on the same L, so its analysis and factor reuse are the isotropic ones.
+  FlowSystem implicit_system(const FlowOperators& operators, double tau_beta) const override;
+
+  const Anisotropy& anisotropy() const { return gamma_; }
+  double stiffness() const { return stiffness_; } //!< s
+
+private:
+  Anisotropy gamma_;
+  double stiffness_;
+};
+
+} // namespace sdflow
