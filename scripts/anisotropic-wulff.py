@@ -1,0 +1,146 @@
+#!/usr/bin/env python3
+"""Issue 35's targets for the anisotropic flow, measured with the command line.
+
+A sphere of radius 1 (`sdflow shape sphere --vertices N`) flows under γ = √(nᵀ diag(g) n) without
+re-triangulation and with its volume conserved until END_TIME; its Wulff shape is the ellipsoid of
+semi-axes ∝ √g of the sphere's volume. For each g and resolution the table gives the semi-axes of
+the ellipsoid fitted to the last surface against the Wulff shape's (largest relative error), the
+volume drift over the run, whether ∫ γ dA (metrics.csv's `energy`) ever increased, and the steps.
+Then the cost of a step: the same ellipsoid-shaped start stepped N_COST times with one constant τ
+under the isotropic and the anisotropic energy; the mean wall time per step (timings.csv's
+`total`, the first step with its analysis left out) and their ratio.
+
+    scripts/anisotropic-wulff.py [--sdflow build/release/cli/sdflow] [--out runs/wulff]
+                                 [--vertices 640,2500,10000] [--end-time 2]
+"""
+import argparse
+import array
+import csv
+import math
+import os
+import subprocess
+import sys
+
+
+def read_ply_vertices(path):
+    """x, y, z of a binary little-endian PLY whose vertex properties are all doubles (sdflow's)."""
+    with open(path, "rb") as f:
+        count, properties, line = 0, 0, b""
+        in_vertex = False
+        while line != b"end_header":
+            line = f.readline().strip()
+            words = line.split()
+            if words[:2] == [b"element", b"vertex"]:
+                count, in_vertex = int(words[2]), True
+            elif words[:1] == [b"element"]:
+                in_vertex = False
+            elif words[:1] == [b"property"] and in_vertex:
+                if words[1] != b"double":
+                    sys.exit(f"{path}: vertex property {words[-1].decode()} is not a double")
+                properties += 1
+        data = array.array("d")
+        data.frombytes(f.read(8 * properties * count))
+    if sys.byteorder != "little":
+        data.byteswap()
+    return [data[i * properties:i * properties + 3] for i in range(count)]
+
+
+def solve3(a, b):
+    """x with a x = b for a 3×3 matrix (Cramer's rule; a is the normal matrix of a fit, well conditioned)."""
+    det = lambda m: (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+                     + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]))
+    d = det(a)
+    return [det([[b[r] if c == k else a[r][c] for c in range(3)] for r in range(3)]) / d for k in range(3)]
+
+
+def fitted_semi_axes(points):
+    """The axis-aligned ellipsoid x²/a² + y²/b² + z²/c² = 1 through the points about their centroid,
+    by least squares (normal equations in 1/a², 1/b², 1/c²)."""
+    centroid = [sum(p[k] for p in points) / len(points) for k in range(3)]
+    squares = [[(p[k] - centroid[k]) ** 2 for k in range(3)] for p in points]
+    normal = [[sum(s[i] * s[j] for s in squares) for j in range(3)] for i in range(3)]
+    inverse_squares = solve3(normal, [sum(s[i] for s in squares) for i in range(3)])
+    return [1 / math.sqrt(v) for v in inverse_squares]
+
+
+def rows_of(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def run(sdflow, *arguments):
+    subprocess.run([sdflow, *map(str, arguments)], check=True, stdout=subprocess.DEVNULL)
+
+
+def sphere(sdflow, out, vertices):
+    path = os.path.join(out, f"sphere_{vertices}.ply")
+    if not os.path.exists(path):
+        run(sdflow, "shape", "sphere", "--vertices", vertices, "-o", path)
+    return path
+
+
+def wulff_row(sdflow, out, mesh, g, end_time):
+    name = os.path.join(out, f"wulff_{'-'.join(map(str, g))}_{os.path.basename(mesh)[:-4]}")
+    if not os.path.exists(os.path.join(name, "metrics.csv")):
+        run(sdflow, "run", "--input", mesh, "--out", name, "--end-time", end_time, "--no-retriangulate",
+            "--conserve-volume", "--energy", "ellipsoidal", "--energy-g", ",".join(map(str, g)),
+            "--snapshot-every", 0, "--quiet")
+    metrics = rows_of(os.path.join(name, "metrics.csv"))
+    last = sorted(f for f in os.listdir(os.path.join(name, "snapshots")) if f.endswith(".ply"))[-1]
+    axes = fitted_semi_axes(read_ply_vertices(os.path.join(name, "snapshots", last)))
+    volume = float(metrics[0]["volume"])
+    root_g = [math.sqrt(v) for v in g]
+    scale = (volume / (4 * math.pi / 3 * math.prod(root_g))) ** (1 / 3)
+    wulff = [scale * v for v in root_g]
+    energies = [float(r["energy"]) for r in metrics]
+    increases = sum(b > a * (1 + 1e-12) for a, b in zip(energies, energies[1:]))
+    return {"g": g, "vertices": int(metrics[0]["vertices"]), "steps": int(metrics[-1]["step"]),
+            "axes_error": max(abs(a / w - 1) for a, w in zip(axes, wulff)),
+            "drift": abs(float(metrics[-1]["volume"]) / volume - 1),
+            "energy_increases": increases, "energy_drop": 1 - energies[-1] / energies[0]}
+
+
+def cost_rows(sdflow, out, vertices, steps):
+    start = os.path.join(out, f"ellipsoid_{vertices}.ply")
+    if not os.path.exists(start):
+        run(sdflow, "shape", "ellipsoid", "--a", 1.2, "--b", 1, "--c", 0.8, "--vertices", vertices, "-o", start)
+    means = {}
+    for label, flags in (("isotropic", []), ("ellipsoidal", ["--energy", "ellipsoidal", "--energy-g", "1,2,3"]),
+                         ("sum", ["--energy", "sum", "--energy-g", "1,1,4,0,0,0,1,1,4,90,0,0,1,1,4,0,90,0"])):
+        name = os.path.join(out, f"cost_{label}_{vertices}")
+        if not os.path.exists(os.path.join(name, "timings.csv")):
+            run(sdflow, "run", "--input", start, "--out", name, "--tau", 1e-5, "--steps", steps,
+                "--no-retriangulate", "--snapshot-every", 0, "--no-look-ahead", "--quiet", *flags)
+        totals = [float(r["total"]) for r in rows_of(os.path.join(name, "timings.csv"))[1:]]
+        means[label] = sum(totals) / len(totals)
+    return means
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--sdflow", default="build/release/cli/sdflow")
+    parser.add_argument("--out", default="runs/wulff")
+    parser.add_argument("--vertices", default="640,2500,10000")
+    parser.add_argument("--end-time", type=float, default=2.0)
+    parser.add_argument("--cost-steps", type=int, default=100)
+    a = parser.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    resolutions = [int(v) for v in a.vertices.split(",")]
+    rows = [wulff_row(a.sdflow, a.out, sphere(a.sdflow, a.out, n), g, a.end_time)
+            for g in ((1, 1, 4), (1, 2, 3)) for n in resolutions]
+    print("| g | vertices | steps | semi-axes error | volume drift | ∫γ dA increases | ∫γ dA decrease |")
+    print("|---|---|---|---|---|---|---|")
+    for r in rows:
+        print(f"| ({', '.join(map(str, r['g']))}) | {r['vertices']} | {r['steps']} | {100 * r['axes_error']:.3f}% | "
+              f"{r['drift']:.1e} | {r['energy_increases']} | {100 * r['energy_drop']:.2f}% |")
+    print()
+    print("| vertices | isotropic step | ellipsoidal step (ratio) | sum of 3 terms step (ratio) |")
+    print("|---|---|---|---|")
+    for n in resolutions:
+        m = cost_rows(a.sdflow, a.out, n, a.cost_steps)
+        print(f"| {n} | {1e3 * m['isotropic']:.2f} ms | {1e3 * m['ellipsoidal']:.2f} ms "
+              f"({m['ellipsoidal'] / m['isotropic']:.2f}×) | {1e3 * m['sum']:.2f} ms ({m['sum'] / m['isotropic']:.2f}×) |")
+
+
+if __name__ == "__main__":
+    main()
