@@ -3,11 +3,10 @@
 # UndefinedBehaviorSanitizer on the whole toolbox) and runs each for a short time on a copy of the
 # seed corpus in fuzz/corpus/. A crash, a leak of a non-sdflow exception or a sanitizer report
 # stops the script with the reproducer (crash-*, in build/fuzz/findings/NAME/).
-#   scripts/fuzz.sh                  every harness but fuzz_run for 10 s (CI: about 2 minutes in all)
-#   scripts/fuzz.sh --only run       fuzz_run, two steps of a run: not in CI yet, because it still finds
-#                                    failures inside the re-triangulation on overlapping bodies (issue 33's
-#                                    note), which would stop CI until they are fixed
-#   scripts/fuzz.sh --seconds 600    longer runs (README: "Fuzzing")
+#   scripts/fuzz.sh                  every harness for 10 s, fuzz_run (two steps of a run per input,
+#                                    a hundred times a reader's work) for 60 s (CI: about 3 minutes in all)
+#   scripts/fuzz.sh --seconds 600    longer runs (README: "Fuzzing"), fuzz_run too
+#   scripts/fuzz.sh --run-seconds N  fuzz_run's time when longer than --seconds (default 60)
 #   scripts/fuzz.sh --only ply       one harness (fuzz_read_ply); --jobs N builds with N jobs
 #   scripts/fuzz.sh --no-build       run what build/fuzz already holds
 #   scripts/fuzz.sh --build-dir DIR  build and run the harnesses in DIR (default build/fuzz); a DIR
@@ -18,6 +17,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=10
+run_seconds=60
 only=""
 jobs=$(nproc)
 build=1
@@ -26,6 +26,7 @@ dir=build/fuzz
 while (($#)); do
   case "$1" in
     --seconds) seconds=$2; shift 2 ;;
+    --run-seconds) run_seconds=$2; shift 2 ;;
     --only) only=$2; shift 2 ;;
     --jobs) jobs=$2; shift 2 ;;
     --no-build) build=0; shift ;;
@@ -36,7 +37,10 @@ while (($#)); do
 done
 
 [[ $seed =~ ^[0-9]+$ ]] || { echo "fuzz.sh: --seed takes a non-negative integer, got '$seed'" >&2; exit 2; }
-harnesses=(read_off read_obj read_ply read_stl read_vtp validate repair scenario schedule checkpoint)
+for n in "$seconds" "$run_seconds"; do
+  [[ $n =~ ^[0-9]+$ ]] || { echo "fuzz.sh: --seconds and --run-seconds take a whole number, got '$n'" >&2; exit 2; }
+done
+harnesses=(read_off read_obj read_ply read_stl read_vtp validate repair scenario schedule checkpoint run)
 if [[ -n $only ]]; then harnesses=("$only"); fi
 if ((build)); then
   scripts/install-deps.sh --fuzz
@@ -55,19 +59,21 @@ for h in "${harnesses[@]}"; do
   work=$dir/corpus/$h findings=$dir/findings/$h
   mkdir -p "$work" "$findings"
   cp -n "$seeds"/* "$work"/ 2>/dev/null || true
+  # fuzz_run starts from its findings too (the regression meshes): the bugs were near them.
+  [[ $h == run ]] && cp -n tests/data/fuzz_run/*.off "$work"/
   log=$dir/fuzz_$h.log
   # fuzz_run's inputs are OFF files of up to a few hundred vertices; two steps of a run take well
   # under a second each, so 10 s (its -timeout) is a slow failure.
-  max_len=4096
-  [[ $h == run ]] && max_len=20000
-  if "$dir/fuzz/fuzz_$h" -seed="$seed" -max_total_time="$seconds" -max_len="$max_len" -rss_limit_mb=2048 -timeout=10 \
+  max_len=4096 time=$seconds
+  [[ $h == run ]] && max_len=20000 time=$((run_seconds > seconds ? run_seconds : seconds))
+  if "$dir/fuzz/fuzz_$h" -seed="$seed" -max_total_time="$time" -max_len="$max_len" -rss_limit_mb=2048 -timeout=10 \
        -artifact_prefix="$findings/" -print_final_stats=1 "$work" > "$log" 2>&1; then
     runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo '?')
-    echo "fuzz.sh: fuzz_$h: $runs executions in ${seconds} s, no finding"
+    echo "fuzz.sh: fuzz_$h: $runs executions in ${time} s, no finding"
   else
     status=1
     echo "fuzz.sh: fuzz_$h FOUND A PROBLEM (reproducer in $findings/):" >&2
-    grep -E 'ERROR|SUMMARY|terminate|what\(\)' "$log" | head -5 >&2 || tail -20 "$log" >&2
+    grep -E 'ERROR|SUMMARY|terminate|what\(\)|^fuzz_run:' "$log" | head -5 >&2 || tail -20 "$log" >&2
   fi
 done
 exit $status

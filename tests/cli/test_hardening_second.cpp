@@ -295,5 +295,26 @@ TEST_F(HardeningSecond, fuzzed_meshes_are_refused_up_front_or_take_their_steps)
   EXPECT_GT(files, 0);
 }
 
+// fuzz_run's finding: two coarse unit spheres 0.8 apart. The first one's extreme vertex lies inside
+// the second, so validation took it for a cavity of the second (its faces flipped, the pair's volume
+// ≈ 0); the re-triangulation after step 1 cut the body by that "cavity", the volume restoration
+// then blew up what was left, and after step 2 nothing was left (exit 3). Both are bodies: `stats`
+// says so, and `run` joins them.
+TEST_F(HardeningSecond, overlapping_bodies_are_read_as_bodies_and_joined)
+{
+  const std::string file =
+      (fs::path(SDFLOW_SOURCE_DIR) / "tests/data/fuzz_run/two_overlapping_spheres_read_as_body_and_cavity.off").string();
+  const auto stats = run_sdflow_streams("stats --json " + file);
+  EXPECT_EQ(stats.exit_code, 0) << stats.err;
+  EXPECT_EQ(json_query(stats.out, "' '.join(str(c['volume'] > 3.6) for c in d['components'])"), "True True")
+      << stats.out;
+  const auto r = run_sdflow_streams("run --steps 2 --json -q --input " + file + " --out " + path("joined"));
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_EQ(json_query(r.out, "' '.join(f\"{e['kind']} {e['components_before']}->{e['components_after']}\" "
+                              "for e in d['events'] if e['step'] == 1)"),
+            "merged 2->1")
+      << r.out;
+}
+
 } // namespace
 } // namespace sdflow

@@ -429,6 +429,32 @@ TEST(Validate, cavity_inside_a_body_is_oriented_out_of_the_material)
   }
 }
 
+TEST(Validate, bodies_that_cross_each_other_are_both_bodies)
+{
+  // Two unit spheres 0.8 apart: the first one's extreme vertex in +x lies inside the second, which
+  // once made the first a cavity of the second (its faces flipped, the pair's volume ≈ 0), and
+  // fuzz_run's re-triangulation then left nothing (tests/data/fuzz_run/README.md). Either way round
+  // in the file, both come out bodies.
+  const Mesh first = analytic::icosphere(2, 1.0);
+  const Mesh second = analytic::icosphere(2, 1.0, Eigen::Vector3d(0.8, 0, 0));
+  const auto rightmost = std::max_element(first.vertices().begin(), first.vertices().end(), [&](auto a, auto b) {
+    return first.point(a)[0] < first.point(b)[0];
+  });
+  ASSERT_LT((to_eigen(first.point(*rightmost)) - Eigen::Vector3d(0.8, 0, 0)).norm(), 1.0) << "not inside the second";
+  for (const bool first_inside_out : {false, true}) {
+    PolygonSoup soup = soup_of(analytic::disjoint_union(first, second));
+    if (first_inside_out)
+      for (std::size_t f = 0; f < first.n_faces(); ++f)
+        std::swap(soup.polygons[f][1], soup.polygons[f][2]);
+    const BuiltMesh built = build_mesh(soup, "overlapping");
+    const std::vector<double> volumes = component_volumes(built.mesh);
+    ASSERT_EQ(volumes.size(), 2u);
+    EXPECT_NEAR(volumes[0], enclosed_volume(first), exact_tolerance) << first_inside_out;
+    EXPECT_NEAR(volumes[1], enclosed_volume(second), exact_tolerance) << first_inside_out;
+    EXPECT_EQ(built.findings.empty(), !first_inside_out) << "flipped only when given inside out";
+  }
+}
+
 TEST(Validate, a_bubble_under_a_surface_with_a_rim_is_a_cavity_of_its_material)
 {
   // A dome (the upper half of a sphere of radius 2, open at z ≈ 0, facing out) bounds, with the cap

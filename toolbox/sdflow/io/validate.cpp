@@ -486,11 +486,12 @@ std::vector<double> signed_volumes(const std::vector<Eigen::Vector3d>& points, c
 //! closed for this by a cone over its boundary edges from their vertices' centroid, which bounds
 //! the material its material volume counts (geometry/material_volume.h closes each loop by such a
 //! fan): a bubble sealed off under the spheres of a surface with a rim is a cavity of that material. The point asked is the
-//! component's lexicographically largest vertex, so the answer does not depend on the order of
-//! vertices or faces. Where that point lies on the other surface (on one of its triangles, where
-//! the solid angle jumps by 4π, as where repaired components touch), its extreme vertices in the
-//! other five directions (lexicographic in the coordinates' rotations, either sign) are asked in
-//! turn, and the first off that surface decides.
+//! component's extreme vertices in six directions (lexicographic in the coordinates' rotations,
+//! either sign), so the answer does not depend on the order of vertices or faces. A probe on the
+//! other surface (on one of its triangles, where the solid angle jumps by 4π, as where repaired
+//! components touch) abstains. The other encloses the component when a probe is inside it and
+//! none outside: components that cross each other (probes on both sides) are bodies that overlap,
+//! neither a cavity of the other.
 std::vector<int> nesting_depths(const std::vector<Eigen::Vector3d>& points, const std::vector<Triangle>& triangles,
                                 const Components& components)
 {
@@ -571,14 +572,14 @@ std::vector<int> nesting_depths(const std::vector<Eigen::Vector3d>& points, cons
     for (int d = 0; d < components.count; ++d) {
       if (d == c)
         continue;
-      for (int k = 0; k < probes; ++k) {
+      bool inside = false, outside = false;
+      for (int k = 0; k < probes && !outside; ++k) {
         const Eigen::Vector3d& p = points[probe[c][k]];
         const double angle = box[d].contains(p) ? winding_angle(p, d) : 0.0;
-        if (angle < pi || angle > 3 * pi) { // NaN (on the surface) abstains
-          depth[c] += angle > 3 * pi;
-          break;
-        }
+        inside = inside || angle > 3 * pi; // NaN (on the surface) abstains
+        outside = angle < pi;
       }
+      depth[c] += inside && !outside;
     }
   }
   return depth;

@@ -11,7 +11,8 @@
 //! that bounds no body: flat, folded onto itself). Warnings (the mesh is repaired): `polygon-triangulated`,
 //! `isolated-vertex` (removed). Information: `orientation-flipped` (a closed component had inward
 //! normals: normals point out of the material, so a cavity, enclosed by an odd number of other
-//! components, an open one closed by the cap over its boundary, has a negative signed volume), `duplicate-vertices-merged` (STL), `has-boundary`.
+//! components, an open one closed by the cap over its boundary, has a negative signed volume;
+//! components that cross each other are bodies that overlap), `duplicate-vertices-merged` (STL), `has-boundary`.
 //!
 //! Messages name the source, the element (vertex or face index, 0-based in the file's order, a
 //! face being one polygon of the file) and its line when known, e.g.

@@ -32,8 +32,8 @@ void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions&
 //! Refuse (InvalidMesh naming `source`) a surface with a component that crosses itself, as TetGen
 //! refuses it for `stats`: which side is inside is not defined there, and the re-triangulation
 //! would have to guess a surgery the flow did not bring. Components that cross each other are
-//! bodies that overlap (validation reads the one it finds inside the other as a cavity), which the
-//! re-triangulation joins (pipeline.h, stage 0): they are taken.
+//! bodies that overlap (validation orients both as bodies, validate.h), which the re-triangulation
+//! joins (pipeline.h, stage 0): they are taken.
 void check_crossings(const Mesh& mesh, std::string_view source);
 
 } // namespace sdflow
