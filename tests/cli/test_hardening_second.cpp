@@ -192,8 +192,8 @@ TEST_F(HardeningSecond, a_far_away_vertex_is_refused_by_every_verb_that_meshes_w
 }
 
 // A component that crosses itself (stats refuses it, TetGen) made the re-triangulation fail at step
-// 1 ("surface union: removing the overlap left 1 boundary loop(s) ... cannot be paired"); bodies
-// that overlap each other are still taken, and joined.
+// 1 ("surface union: removing the overlap left 1 boundary loop(s) ... cannot be paired"). Bodies
+// that overlap each other are refused too, with the command that joins them, which works.
 TEST_F(HardeningSecond, a_component_that_crosses_itself_is_refused_before_step_1)
 {
   Mesh folded = analytic::icosphere(2);
@@ -207,7 +207,14 @@ TEST_F(HardeningSecond, a_component_that_crosses_itself_is_refused_before_step_1
   EXPECT_FALSE(fs::exists(dir / "folded" / "metrics.csv"));
   write_mesh(analytic::disjoint_union(analytic::icosphere(3), analytic::icosphere(3, 1.0, Eigen::Vector3d(1.2, 0, 0))),
              dir / "overlap.ply", {.encoding = Encoding::binary});
-  const auto joined = run_sdflow_streams("run --input " + path("overlap.ply") + " --out " + path("joined") +
+  const auto overlap = run_sdflow("run --input " + path("overlap.ply") + " --out " + path("overlap") + " --steps 2");
+  EXPECT_EQ(overlap.exit_code, 2) << overlap.output;
+  expect_mentions(overlap.output, "components 0 and 1 cross each other");
+  expect_mentions(overlap.output, "sdflow retriangulate " + path("overlap.ply"));
+  EXPECT_FALSE(fs::exists(dir / "overlap" / "metrics.csv"));
+  const auto retriangulated = run_sdflow("retriangulate " + path("overlap.ply") + " -o " + path("joined.ply"));
+  ASSERT_EQ(retriangulated.exit_code, 0) << retriangulated.output;
+  const auto joined = run_sdflow_streams("run --input " + path("joined.ply") + " --out " + path("joined") +
                                          " --steps 2 -q --json");
   EXPECT_EQ(joined.exit_code, 0) << joined.err;
 }
@@ -297,10 +304,10 @@ TEST_F(HardeningSecond, fuzzed_meshes_are_refused_up_front_or_take_their_steps)
 
 // fuzz_run's finding: two coarse unit spheres 0.8 apart. The first one's extreme vertex lies inside
 // the second, so validation took it for a cavity of the second (its faces flipped, the pair's volume
-// ≈ 0); the re-triangulation after step 1 cut the body by that "cavity", the volume restoration
-// then blew up what was left, and after step 2 nothing was left (exit 3). Both are bodies: `stats`
-// says so, and `run` joins them.
-TEST_F(HardeningSecond, overlapping_bodies_are_read_as_bodies_and_joined)
+// ≈ 0); the coarse spheres at rest let step 1 reach t = 98, the re-triangulation after it cut the
+// body by that "cavity", the volume restoration blew up what was left, and after step 2 nothing was
+// left (exit 3). Both are bodies, `stats` says so, and `run` refuses bodies that overlap up front.
+TEST_F(HardeningSecond, overlapping_bodies_are_read_as_bodies_and_refused_before_step_1)
 {
   const std::string file =
       (fs::path(SDFLOW_SOURCE_DIR) / "tests/data/fuzz_run/two_overlapping_spheres_read_as_body_and_cavity.off").string();
@@ -309,11 +316,11 @@ TEST_F(HardeningSecond, overlapping_bodies_are_read_as_bodies_and_joined)
   EXPECT_EQ(json_query(stats.out, "' '.join(str(c['volume'] > 3.6) for c in d['components'])"), "True True")
       << stats.out;
   const auto r = run_sdflow_streams("run --steps 2 --json -q --input " + file + " --out " + path("joined"));
-  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
-  EXPECT_EQ(json_query(r.out, "' '.join(f\"{e['kind']} {e['components_before']}->{e['components_after']}\" "
-                              "for e in d['events'] if e['step'] == 1)"),
-            "merged 2->1")
-      << r.out;
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  const auto message = json_query(r.out, "d['message']");
+  ASSERT_TRUE(message) << r.out;
+  expect_mentions(*message, "components 0 and 1 cross each other");
+  EXPECT_FALSE(fs::exists(dir / "joined" / "metrics.csv"));
 }
 
 } // namespace

@@ -69,11 +69,22 @@ void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions&
 void check_crossings(const Mesh& mesh, std::string_view source)
 {
   const std::vector<int> component = face_component_ids(mesh);
-  int crossing_itself = 0, first = -1;
-  for (const FacePair& pair : self_intersections(mesh))
-    if (component[static_cast<std::size_t>(pair.first)] == component[static_cast<std::size_t>(pair.second)] &&
-        crossing_itself++ == 0)
+  int crossing_itself = 0, first = -1, crossing_others = 0;
+  FacePair first_between{-1, -1};
+  for (const FacePair& pair : self_intersections(mesh)) {
+    const int a = component[static_cast<std::size_t>(pair.first)], b = component[static_cast<std::size_t>(pair.second)];
+    if (a == b && crossing_itself++ == 0)
       first = pair.first;
+    if (a != b && crossing_others++ == 0)
+      first_between = {std::min(a, b), std::max(a, b)};
+  }
+  if (crossing_itself == 0 && crossing_others > 0)
+    throw InvalidMesh(fmt::format(
+        "{}: components {} and {} cross each other ({} pair(s) of faces intersect): the bodies overlap, so the "
+        "surface is not the boundary of their material. The run would move each on its own for a first step as "
+        "long as their shapes allow, then join them and keep both volumes, the overlap counted twice. Join them "
+        "first with `sdflow retriangulate {} -o joined.ply` and run that, or move them apart",
+        source, first_between.first, first_between.second, crossing_others, source));
   if (crossing_itself == 0)
     return;
   throw InvalidMesh(fmt::format("{}: the surface crosses itself: {} pair(s) of faces of one component intersect (face "

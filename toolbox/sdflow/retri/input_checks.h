@@ -31,9 +31,10 @@ void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions&
 
 //! Refuse (InvalidMesh naming `source`) a surface with a component that crosses itself, as TetGen
 //! refuses it for `stats`: which side is inside is not defined there, and the re-triangulation
-//! would have to guess a surgery the flow did not bring. Components that cross each other are
-//! bodies that overlap (validation orients both as bodies, validate.h), which the re-triangulation
-//! joins (pipeline.h, stage 0): they are taken.
+//! would have to guess a surgery the flow did not bring. Components that cross each other (bodies
+//! that overlap, validate.h) are refused too, with `sdflow retriangulate`, which joins them: the
+//! flow would move them apart for one step, of the τ their separate shapes allow (unbounded for a
+//! body at rest), before the re-triangulation joined them and gave the union both volumes.
 void check_crossings(const Mesh& mesh, std::string_view source);
 
 } // namespace sdflow
