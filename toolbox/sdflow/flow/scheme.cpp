@@ -9,28 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 
 namespace sdflow {
-
-namespace {
-
-//! The anisotropic energy of `options`, made again only when they change: a flow asks for its parts
-//! at every new surface, and an energy's stiffness s is a search over the sphere (about 0.3 ms a term).
-std::shared_ptr<const SurfaceEnergy> anisotropic_energy(const SurfaceEnergyOptions& options)
-{
-  static std::mutex mutex;
-  static SurfaceEnergyOptions made_for;
-  static std::shared_ptr<const SurfaceEnergy> made;
-  const std::lock_guard lock(mutex);
-  if (!made || options.kind != made_for.kind || options.g != made_for.g) {
-    made = std::make_shared<const AnisotropicEnergy>(anisotropy_terms(options));
-    made_for = options;
-  }
-  return made;
-}
-
-} // namespace
 
 SchemeParts scheme_parts(const SchemeOptions& options)
 {
@@ -38,7 +18,7 @@ SchemeParts scheme_parts(const SchemeOptions& options)
   if (options.energy.kind == SurfaceEnergyKind::isotropic)
     energy = std::make_shared<const IsotropicEnergy>(options.curvature);
   else
-    energy = anisotropic_energy(options.energy);
+    energy = std::make_shared<const AnisotropicEnergy>(anisotropy_terms(options.energy));
   return {std::move(energy), flow_boundary(options.boundary)};
 }
 

@@ -62,11 +62,12 @@ SurfaceDiffusion::SurfaceDiffusion(const Mesh& initial, RunParameters parameters
       controller_(refined_time_step(p_))
 {
   validate_flow_parameters(p_);
+  parts_ = scheme_parts(p_.scheme);
   mesh_ = canonical(initial);
   renew_connectivity();
   prepare_retriangulation(std::move(retriangulate));
   last_w_ = Eigen::VectorXd::Zero(mesh_.n_vertices());
-  op_ = flow_operators(mesh_, p_.scheme, &*cache_);
+  op_ = flow_operators(mesh_, p_.scheme, parts_, &*cache_);
 }
 
 SurfaceDiffusion::SurfaceDiffusion(const FlowState& state, RunParameters parameters,
@@ -75,6 +76,7 @@ SurfaceDiffusion::SurfaceDiffusion(const FlowState& state, RunParameters paramet
       half_solver_(p_.solver), controller_(refined_time_step(p_), state.time_step)
 {
   validate_flow_parameters(p_);
+  parts_ = scheme_parts(p_.scheme);
   step_ = state.step;
   time_ = state.time;
   mesh_ = make_mesh(state.positions, state.triangles);
@@ -93,7 +95,7 @@ SurfaceDiffusion::SurfaceDiffusion(const FlowState& state, RunParameters paramet
   restore_solver(half_solver_, state.half_solver, state.triangles);
   anchor_ = state.solver.anchor;
   half_anchor_ = state.half_solver.anchor;
-  op_ = flow_operators(mesh_, p_.scheme, &*cache_);
+  op_ = flow_operators(mesh_, p_.scheme, parts_, &*cache_);
 }
 
 bool SurfaceDiffusion::finished() const
@@ -344,7 +346,7 @@ void SurfaceDiffusion::restore_solver(FlowSolver& solver, const SolverRecord& re
     return;
   }
   const Mesh anchor = make_mesh(record.anchor->positions, triangles);
-  const FlowOperators anchor_op = flow_operators(anchor, p_.scheme, &*cache_);
+  const FlowOperators anchor_op = flow_operators(anchor, p_.scheme, parts_, &*cache_);
   solver.restore(anchor_op.system(record.anchor->tau_beta), record.counters);
 }
 
@@ -673,7 +675,7 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
 void SurfaceDiffusion::renew_operators(StepTimes& times)
 {
   const Stopwatch watch;
-  op_ = flow_operators(mesh_, p_.scheme, &*cache_);
+  op_ = flow_operators(mesh_, p_.scheme, parts_, &*cache_);
   times.operators += watch.seconds();
 }
 

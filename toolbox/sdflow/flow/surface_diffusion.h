@@ -230,6 +230,7 @@ private:
   FaceIndices triangles_;
   Topology topology_;
   std::optional<CotangentCache> cache_;
+  SchemeParts parts_; // made once: an anisotropic energy's stiffness is a search over the sphere
   FlowOperators op_;
   long step_ = 0;
   double time_ = 0;
