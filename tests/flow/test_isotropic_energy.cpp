@@ -7,6 +7,7 @@
 #include "sdflow/geometry/normals.h"
 #include "support/analytic_meshes.h"
 #include "support/convergence.h"
+#include "support/energy_checks.h"
 
 #include <gtest/gtest.h>
 
@@ -72,19 +73,7 @@ TEST(IsotropicEnergy, first_variation_is_the_derivative_of_the_value)
   const SparseMatrix laplacian = cotangent_laplacian(mesh);
   const Eigen::VectorXd areas = mixed_voronoi_areas(mesh);
   const Eigen::VectorXd mu = energy.first_variation({mesh, normals, laplacian, areas});
-  const VertexVectors x = vertex_positions(mesh);
-  Eigen::VectorXd phi(x.rows());
-  for (Eigen::Index i = 0; i < x.rows(); ++i)
-    phi[i] = 1 + 0.5 * std::sin(x(i, 0)) * std::cos(2 * x(i, 2));
-  const auto value_at = [&](double epsilon) {
-    Mesh moved = mesh;
-    set_vertex_positions(moved, x + (epsilon * phi).asDiagonal() * normals);
-    return energy.value(moved);
-  };
-  constexpr double epsilon = 1e-5;
-  const double derivative = (value_at(epsilon) - value_at(-epsilon)) / (2 * epsilon);
-  const double predicted = -2 * (mu.array() * phi.array() * areas.array()).sum();
-  EXPECT_NEAR(derivative, predicted, 1e-7 * std::abs(predicted));
+  test::expect_first_variation_is_the_derivative(energy, mesh, mu, normals, areas);
 }
 
 TEST(IsotropicEnergy, implicit_system_is_the_schemes_spd_form)
