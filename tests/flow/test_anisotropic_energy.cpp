@@ -37,21 +37,13 @@ Mesh irregular_mesh()
   return mesh;
 }
 
-Eigen::VectorXd first_variation(const SurfaceEnergy& energy, const Mesh& mesh)
-{
-  const VertexVectors normals = vertex_normals(mesh);
-  const SparseMatrix laplacian = cotangent_laplacian(mesh);
-  const Eigen::VectorXd areas = mixed_voronoi_areas(mesh);
-  return energy.first_variation({mesh, normals, laplacian, areas});
-}
-
 TEST(AnisotropicEnergy, unit_g_is_the_area_and_the_cotangent_mean_curvature)
 {
   const Mesh mesh = irregular_mesh();
   const AnisotropicEnergy unit(kUnit);
   const IsotropicEnergy area({.method = CurvatureMethod::cotangent});
   EXPECT_NEAR(unit.value(mesh), surface_area(mesh), 1e-13 * surface_area(mesh));
-  const Eigen::VectorXd mu = first_variation(unit, mesh), h = first_variation(area, mesh);
+  const Eigen::VectorXd mu = test::first_variation(unit, mesh), h = test::first_variation(area, mesh);
   EXPECT_LT((mu - h).lpNorm<Eigen::Infinity>(), 1e-12 * h.lpNorm<Eigen::Infinity>());
   EXPECT_NEAR(unit.stiffness(), 1, 1e-14);
 }
@@ -65,7 +57,8 @@ TEST(AnisotropicEnergy, first_variation_is_the_derivative_of_the_value)
   for (const auto* terms : {&kEllipsoidal, &kCubicLike}) {
     SCOPED_TRACE(terms->size());
     const AnisotropicEnergy energy(*terms);
-    test::expect_first_variation_is_the_derivative(energy, mesh, first_variation(energy, mesh), normals, areas);
+    test::expect_first_variation_is_the_derivative(energy, mesh, test::first_variation(energy, mesh), normals,
+                                                   areas);
   }
 }
 
@@ -86,8 +79,8 @@ TEST(AnisotropicEnergy, weighted_curvature_is_constant_on_the_wulff_shape_under_
     SCOPED_TRACE(testing::Message() << "level " << level);
     const Mesh mesh = analytic::ellipsoid(level, axes[0], axes[1], axes[2]);
     const Eigen::VectorXd areas = mixed_voronoi_areas(mesh);
-    const Eigen::ArrayXd mu_error = (first_variation(energy, mesh).array() + 1 / r).abs() * r;
-    const Eigen::VectorXd H = first_variation(area, mesh);
+    const Eigen::ArrayXd mu_error = (test::first_variation(energy, mesh).array() + 1 / r).abs() * r;
+    const Eigen::VectorXd H = test::first_variation(area, mesh);
     double largest_h_error = 0;
     for (auto v : mesh.vertices()) {
       const double exact = analytic::ellipsoid_mean_curvature(axes[0], axes[1], axes[2], to_eigen(mesh.point(v)));

@@ -21,15 +21,6 @@ namespace {
 
 constexpr double kMajor = 6, kMinor = 3;
 
-//! μ of `energy` on `mesh` from the operators flow_operators would give it.
-Eigen::VectorXd first_variation(const SurfaceEnergy& energy, const Mesh& mesh)
-{
-  const VertexVectors normals = vertex_normals(mesh);
-  const SparseMatrix laplacian = cotangent_laplacian(mesh);
-  const Eigen::VectorXd areas = mixed_voronoi_areas(mesh);
-  return energy.first_variation({mesh, normals, laplacian, areas});
-}
-
 TEST(IsotropicEnergy, value_and_first_variation_converge_to_the_torus_area_and_mean_curvature)
 {
   const IsotropicEnergy energy({.method = CurvatureMethod::cotangent});
@@ -37,7 +28,7 @@ TEST(IsotropicEnergy, value_and_first_variation_converge_to_the_torus_area_and_m
   std::vector<double> h, area_errors, curvature_errors;
   for (const int rows : {16, 32, 64}) {
     const Mesh mesh = analytic::conformal_torus(rows, kMajor, kMinor);
-    const Eigen::VectorXd mu = first_variation(energy, mesh);
+    const Eigen::VectorXd mu = test::first_variation(energy, mesh);
     double worst = 0;
     for (auto v : mesh.vertices()) {
       const Eigen::Vector3d p = to_eigen(mesh.point(v));
@@ -58,8 +49,8 @@ TEST(IsotropicEnergy, the_curvature_option_selects_eq_9)
   const Mesh mesh = analytic::ellipsoid(3, 5, 4, 3);
   const CurvatureOptions paper{.method = CurvatureMethod::normal_curvature_integral};
   const Eigen::VectorXd expected = mean_curvature(mesh, vertex_normals(mesh), paper);
-  EXPECT_EQ(first_variation(IsotropicEnergy(paper), mesh), expected);
-  EXPECT_NE(first_variation(IsotropicEnergy({.method = CurvatureMethod::cotangent}), mesh), expected);
+  EXPECT_EQ(test::first_variation(IsotropicEnergy(paper), mesh), expected);
+  EXPECT_NE(test::first_variation(IsotropicEnergy({.method = CurvatureMethod::cotangent}), mesh), expected);
 }
 
 // δE = -2 ∫ μ N·δX dA (surface_energy.h): with the cotangent H the gradient of the area is -(L X)
@@ -69,11 +60,8 @@ TEST(IsotropicEnergy, first_variation_is_the_derivative_of_the_value)
 {
   const IsotropicEnergy energy({.method = CurvatureMethod::cotangent});
   const Mesh mesh = analytic::ellipsoid(3, 5, 4, 3);
-  const VertexVectors normals = vertex_normals(mesh);
-  const SparseMatrix laplacian = cotangent_laplacian(mesh);
-  const Eigen::VectorXd areas = mixed_voronoi_areas(mesh);
-  const Eigen::VectorXd mu = energy.first_variation({mesh, normals, laplacian, areas});
-  test::expect_first_variation_is_the_derivative(energy, mesh, mu, normals, areas);
+  test::expect_first_variation_is_the_derivative(energy, mesh, test::first_variation(energy, mesh),
+                                                 vertex_normals(mesh), mixed_voronoi_areas(mesh));
 }
 
 TEST(IsotropicEnergy, implicit_system_is_the_schemes_spd_form)

@@ -2,6 +2,8 @@
 //! Checks shared by the tests of surface energies (flow/surface_energy.h).
 
 #include "sdflow/flow/surface_energy.h"
+#include "sdflow/geometry/laplacian.h"
+#include "sdflow/geometry/normals.h"
 #include "sdflow/mesh.h"
 
 #include <Eigen/Core>
@@ -10,6 +12,16 @@
 #include <cmath>
 
 namespace sdflow::test {
+
+//! μ of `energy` on `mesh` from the operators flow_operators would give it (N, cotangent L, mixed
+//! Voronoi M).
+inline Eigen::VectorXd first_variation(const SurfaceEnergy& energy, const Mesh& mesh)
+{
+  const VertexVectors normals = vertex_normals(mesh);
+  const SparseMatrix laplacian = cotangent_laplacian(mesh);
+  const Eigen::VectorXd areas = mixed_voronoi_areas(mesh);
+  return energy.first_variation({mesh, normals, laplacian, areas});
+}
 
 //! δE = -2 ∫ μ N·δX dA: a central difference of `energy`'s value along δX = φ N, with
 //! φ = 1 + ½ sin x cos 2z, against -2 Σ μ φ M. It holds exactly on the mesh when μ comes from the
