@@ -13,14 +13,13 @@
 #include "repair_hint.h"
 #include "verbs.h"
 
-#include "sdflow/check/span.h"
 #include "sdflow/errors.h"
 #include "sdflow/flow/parameter_schema.h"
+#include "sdflow/flow/run_input.h"
 #include "sdflow/flow/simulation.h"
 #include "sdflow/io/io.h"
 #include "sdflow/limits.h"
 #include "sdflow/log.h"
-#include "sdflow/retri/input_checks.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -253,8 +252,9 @@ void run(const RunArguments& a)
   if (p.output_dir.empty())
     throw InvalidParameter("no run directory: give --out DIR or `out` in the scenario file");
   validate_run_parameters(p);
-  const SizeLimits limits{.force = a.force};
-  check_count(p.steps, limits.max_steps, "--steps", limits);
+  const SizeLimits limits = run_input_limits(FrontEnd::command_line, a.force);
+  if (resuming)
+    check_count(p.steps, limits.max_steps, "--steps", limits);
 
   Progress progress(p);
   install_stop_handlers();
@@ -268,19 +268,7 @@ void run(const RunArguments& a)
       BuiltMesh built = p.repair ? read_mesh_or_repair(p.input) : read_mesh_or_suggest_repair(p.input);
       for (const auto& f : built.findings)
         logger().warn("{}: {}", p.input.string(), f.message);
-      // What the flow and its re-triangulation cannot take is refused now, as stats refuses it,
-      // rather than failing inside a step.
-      check_span(built.mesh, p.input.string());
-      check_crossings(built.mesh, p.input.string());
-      if (p.retriangulation.enabled)
-        check_remeshed_size(built.mesh, p.retriangulation.pipeline.edge_length,
-                            fmt::format("run --retriangulate --edge-length {}",
-                                        p.retriangulation.pipeline.edge_length),
-                            limits);
-      if (p.retriangulation.enabled)
-        check_retriangulation_input(built.mesh, p.retriangulation.pipeline, p.input.string());
-      check_end_time(built.mesh, p.end_time,
-                     p.time_step.mode == TimeStepMode::constant ? p.time_step.tau : 0.0, limits);
+      check_run_input(built.mesh, p, p.input.string(), FrontEnd::command_line, limits);
       result = run_simulation(built.mesh, options);
     }
   } catch (...) {

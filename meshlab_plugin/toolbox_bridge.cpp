@@ -3,6 +3,7 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/parameter_schema.h"
 #include "sdflow/flow/parameters.h"
+#include "sdflow/flow/run_input.h"
 #include "sdflow/flow/scheme.h"
 #include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/geometry/curvature.h"
@@ -235,6 +236,7 @@ ShadedSurface surface_diffusion(const Surface& input, const std::string& name, c
   // The same flow as `sdflow run` with the same options, in memory.
   const RunParameters p = run_parameters(settings);
   const Mesh initial = checked_mesh(input, name);
+  check_run_input(initial, p, name, FrontEnd::meshlab, run_input_limits(FrontEnd::meshlab, false));
   SurfaceDiffusion flow(initial, p);
   while (!flow.finished()) {
     const StepRecord record = flow.step();

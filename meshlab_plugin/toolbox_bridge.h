@@ -82,7 +82,9 @@ double natural_time_step(double mean_edge_length);
 //! parameter on a value out of its range or an unknown name), and return the final surface with its normals and mean
 //! curvature (the H the run steps with). All connected components evolve together, each stepped on
 //! its own (Appendix A of the paper); with `settings.retriangulate` the run re-triangulates as
-//! `sdflow run --retriangulate` does.
+//! `sdflow run --retriangulate` does. The surface gets the checks of `sdflow run` first
+//! (check_run_input, sdflow/flow/run_input.h), named in the dialog's terms: InvalidMesh for bodies
+//! that overlap or a surface too coarse to re-triangulate, before any step.
 ShadedSurface surface_diffusion(const Surface& input, const std::string& name, const DiffusionSettings& settings,
                                 const Reporter& reporter = {});
 

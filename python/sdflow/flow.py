@@ -144,16 +144,20 @@ class Flow:
     ``retriangulation={...}``, ``preset``, ... Re-triangulation is **on** by default
     (``retriangulation=False`` turns it off); its ℓ defaults to the initial mean edge length.
     ``scenario=`` reads a TOML scenario first (keyword arguments override it).
+
+    The surface and parameters get the checks of `sdflow run` before step 1 (InvalidMesh,
+    InvalidParameter): bodies that overlap, a vertex far from the others, a surface too coarse to
+    re-triangulate, an absurd end time. force=True skips the plausibility limits (as --force).
     """
 
-    def __init__(self, V, F, *, scenario=None, **parameters):
+    def __init__(self, V, F, *, scenario=None, force=False, **parameters):
         for key in ("input", "out"):
             if key in parameters:
                 raise _sdflow.InvalidParameter(
                     f"keyword argument {key}: a Flow holds its surface in memory; sdflow.run() reads "
                     "`input` and writes `out`")
         p = _parameters.read(parameters, scenario=scenario)
-        self._core = _sdflow.FlowCore(V, F, p)
+        self._core = _sdflow.FlowCore(V, F, p, bool(force))
         self._limits = (self._core.steps_limit, self._core.t_end)
         self.events = []
         """Every event so far, in order."""

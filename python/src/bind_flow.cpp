@@ -6,6 +6,7 @@
 #include "bindings.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/flow/run_input.h"
 #include "sdflow/flow/simulation.h"
 #include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/io/io.h"
@@ -25,6 +26,9 @@
 
 namespace sdflow::python {
 namespace {
+
+//! How the checks' messages name a surface given as arrays, as validation names it (arrays.h).
+constexpr const char* surface_source = "arrays";
 
 py::dict metrics_dict(long step, double time, double tau, const FlowMetrics& m, const std::string& event)
 {
@@ -102,11 +106,13 @@ py::tuple step_tuple(const StepRecord& r, const std::vector<FlowNote>& notes)
 //! side reports, and the limits that advance() moves.
 class FlowCore {
 public:
-  FlowCore(const py::handle& V, const py::handle& F, RunParameters parameters)
+  FlowCore(const py::handle& V, const py::handle& F, RunParameters parameters, bool force)
+      : limits_(run_input_limits(FrontEnd::python, force))
   {
     BuiltMesh built = built_from_arrays(V, F);
     findings_ = std::move(built.findings);
     ToolboxLock lock;
+    check_run_input(built.mesh, parameters, surface_source, FrontEnd::python, limits_);
     flow_ = std::make_unique<SurfaceDiffusion>(built.mesh, std::move(parameters));
   }
 
@@ -143,6 +149,8 @@ public:
     p.end_time = end_time;
     ToolboxLock lock;
     validate_flow_parameters(p);
+    check_end_time(flow_->mesh(), p.end_time, p.time_step.mode == TimeStepMode::constant ? p.time_step.tau : 0.0,
+                   limits_, run_input_terms(FrontEnd::python));
     const FlowState state = flow_->state();
     rejected_before_ += flow_->rejected_trials();
     factorisations_before_ += flow_->factorisations();
@@ -172,6 +180,7 @@ private:
     std::atomic<bool>& flag_;
   };
 
+  SizeLimits limits_;
   std::unique_ptr<SurfaceDiffusion> flow_;
   std::vector<Finding> findings_;
   std::vector<FlowNote> pending_notes_;
@@ -271,8 +280,8 @@ void bind_flow(py::module_& m)
   m.def("validate_flow_parameters", &validate_flow_parameters, py::arg("parameters"));
 
   py::class_<FlowCore>(m, "FlowCore")
-      .def(py::init<const py::handle&, const py::handle&, RunParameters>(), py::arg("V"), py::arg("F"),
-           py::arg("parameters"))
+      .def(py::init<const py::handle&, const py::handle&, RunParameters, bool>(), py::arg("V"), py::arg("F"),
+           py::arg("parameters"), py::arg("force"))
       .def("step", &FlowCore::step)
       .def("set_limits", &FlowCore::set_limits, py::arg("steps"), py::arg("t_end"))
       .def("failure_notes", &FlowCore::failure_notes)
@@ -308,8 +317,7 @@ void bind_flow(py::module_& m)
   m.def(
       "run_simulation",
       [](const py::object& V, const py::object& F, RunParameters p, const py::object& progress, bool force) {
-        const SizeLimits limits{.force = force};
-        check_count(p.steps, limits.max_steps, "steps", limits);
+        const SizeLimits limits = run_input_limits(FrontEnd::python, force);
         BuiltMesh built;
         if (V.is_none()) {
           ToolboxLock lock;
@@ -319,11 +327,11 @@ void bind_flow(py::module_& m)
         } else {
           built = built_from_arrays(V, F);
         }
-        if (p.retriangulation.enabled)
-          check_remeshed_size(built.mesh, p.retriangulation.pipeline.edge_length,
-                              fmt::format("run with retriangulation.edge_length = {}",
-                                          p.retriangulation.pipeline.edge_length),
-                              limits);
+        const std::string source = V.is_none() ? p.input.string() : std::string(surface_source);
+        {
+          ToolboxLock lock;
+          check_run_input(built.mesh, p, source, FrontEnd::python, limits);
+        }
         RunCallbacks callbacks{.progress = progress};
         const std::filesystem::path dir = p.output_dir;
         SimulationResult result;
@@ -340,7 +348,7 @@ void bind_flow(py::module_& m)
   m.def(
       "resume_simulation",
       [](RunParameters p, const py::object& progress, bool force) {
-        const SizeLimits limits{.force = force};
+        const SizeLimits limits = run_input_limits(FrontEnd::python, force);
         check_count(p.steps, limits.max_steps, "steps", limits);
         RunCallbacks callbacks{.progress = progress};
         const std::filesystem::path dir = p.output_dir;

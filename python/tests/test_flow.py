@@ -4,12 +4,17 @@ checks and messages; numerical failures; the GIL released while stepping."""
 
 import _thread
 import os
+import sys
 import threading
 
 import numpy as np
 import pytest
 
 import sdflow
+
+
+FUZZ_RUN = os.path.join(os.environ.get("SDFLOW_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", "..")),
+                        "tests", "data", "fuzz_run")
 
 
 def cli_rows(cli, mesh, out, *flags):
@@ -150,23 +155,47 @@ def test_keyboard_interrupt_stops_advance_cleanly(meshes):
 
 
 def test_the_gil_is_released_while_stepping(meshes):
+    """Another Python thread runs while advance steps. With a switch interval far longer than the
+    test, a thread keeps the GIL until it lets go of it itself, so the main thread can mark a step
+    between two callbacks only if the step let go of the GIL: no speed enters."""
     V, F = sdflow.remesh(*sdflow.read(meshes["ellipsoid"]), edge_length=0.25, iterations=1)
     flow = sdflow.Flow(V, F, retriangulation=False)
-    started = threading.Event()
+    main_may_run, marked = threading.Event(), threading.Event()
+    seen = []  # per step: whether the main thread ran during it
+    done = False
 
-    def step():
-        started.set()
-        flow.advance(steps=20)
-    worker = threading.Thread(target=step)
-    worker.start()
-    started.wait()  # returns once the worker lets go of the GIL: inside advance, if it releases it
-    counted = 0
-    while worker.is_alive():  # runs only while the worker does not hold the GIL
-        counted += 1
-    worker.join()
-    assert flow.step_index == 20
-    # Holding the GIL through the call, the worker would let this loop run only after advance returned.
-    assert counted >= 1000, counted
+    def callback(step):
+        seen.append(marked.is_set())
+        marked.clear()
+        main_may_run.set()
+        return seen[-1]  # stop once seen
+
+    def work():
+        nonlocal done
+        main_may_run.set()
+        try:
+            flow.advance(steps=100, callback=callback)
+        finally:
+            done = True
+            main_may_run.set()
+
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(100.0)
+    try:
+        worker = threading.Thread(target=work)
+        worker.start()
+        while True:
+            main_may_run.wait()  # lets go of the GIL; takes it back only when the worker lets go
+            main_may_run.clear()
+            if done:
+                break
+            marked.set()
+        worker.join()
+    finally:
+        sys.setswitchinterval(interval)
+    # Holding the GIL through its steps, the worker would see no mark until advance returned.
+    assert seen and seen[-1], seen
+    assert flow.step_index == len(seen)
 
 
 def test_numerical_failure_is_a_numerical_error_with_the_command_lines_message(cli, meshes, tmp_path):
@@ -218,3 +247,47 @@ def test_parameter_names_and_defaults(torus, tmp_path):
     assert r["beta"] == 1.0 and r["curvature"] == "normal_integral" and r["retriangulation"]["enabled"] is False
     with pytest.raises(sdflow.InvalidParameter, match="in memory"):
         sdflow.Flow(V, F, out="somewhere")
+
+
+def test_run_and_flow_refuse_overlapping_bodies_before_step_1_and_say_what_joins_them(cli, tmp_path):
+    """The checks of `sdflow run` (flow/run_input.h) in Python's words: two spheres that overlap
+    are refused before step 1 instead of failing inside the re-triangulation, and what the
+    message advises runs."""
+    path = os.path.join(FUZZ_RUN, "two_overlapping_spheres_read_as_body_and_cavity.off")
+    refused = cli("run", "--input", path, "--out", tmp_path / "cli", "--steps", 2, "--quiet", check=False)
+    assert refused.returncode == 2 and "the bodies overlap" in refused.stderr
+    with pytest.raises(sdflow.InvalidMesh, match="components 0 and 1 cross each other") as from_file:
+        sdflow.run(path, out=tmp_path / "file", steps=2)
+    assert "the bodies overlap" in str(from_file.value) and "sdflow.retriangulate(V, F)" in str(from_file.value)
+    assert from_file.value.exit_code == 2
+    assert not os.path.exists(tmp_path / "file" / "metrics.csv")
+    V, F = sdflow.read(path)
+    with pytest.raises(sdflow.InvalidMesh, match="^arrays: components 0 and 1 cross each other"):
+        sdflow.run(V, F, out=tmp_path / "arrays", steps=2)
+    with pytest.raises(sdflow.InvalidMesh, match="the bodies overlap"):
+        sdflow.Flow(V, F)
+    joined = sdflow.Flow(*sdflow.retriangulate(V, F))
+    assert len(joined.advance(steps=2)) == 2
+
+
+def test_run_and_flow_refuse_a_vertex_far_from_the_others_and_absurd_end_times():
+    """An octahedron with a vertex at 10⁹, which `stats` refuses, is refused by run and Flow with
+    the finding and Python's remedy; an end time beyond the plausibility limit names `end_time`
+    and `force=True`, in the constructor and in advance."""
+    V = np.array([[1e9, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], dtype=float)
+    F = np.array([[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]])
+    for call in (lambda: sdflow.Flow(V, F, retriangulation=False),
+                 lambda: sdflow.run(V, F, out="unused", steps=2, retriangulation=False)):
+        with pytest.raises(sdflow.InvalidMesh, match="a vertex far from the others") as e:
+            call()
+        assert "sdflow.repair(V, F, merge_tolerance=" in str(e.value)
+    V, F = sdflow.shape("sphere", vertices=200)
+    with pytest.raises(sdflow.InvalidParameter, match="^end_time=1e\\+308 is more than") as e:
+        sdflow.Flow(V, F, t_end=1e308)
+    assert "or force=True" in str(e.value)
+    flow = sdflow.Flow(V, F, retriangulation=False)
+    with pytest.raises(sdflow.InvalidParameter, match="^end_time=1e\\+308 is more than"):
+        flow.advance(t_end=1e308)
+    assert flow.step_index == 0
+    forced = sdflow.Flow(V, F, retriangulation=False, t_end=1e308, steps=2, force=True)
+    assert len(forced.advance()) == 2

@@ -14,6 +14,7 @@ target_sources(sdflow_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/test_resolution_check.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_retriangulation.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_run_control.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_run_input.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_samples.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_scheme.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_scheme_parts.cpp

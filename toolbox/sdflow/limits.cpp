@@ -45,16 +45,16 @@ void check_surface_size(double vertices, std::string_view what, const SizeLimits
   const double memory = physical_memory();
   if (!(vertices <= limits.max_vertices))
     throw InvalidParameter(fmt::format("{}: the surface would have about {:.3g} vertices (some {} of memory), more "
-                                       "than the limit of {:.3g}; choose a coarser resolution, or --force",
-                                       what, vertices, gigabytes(bytes), limits.max_vertices));
+                                       "than the limit of {:.3g}; choose a coarser resolution{}",
+                                       what, vertices, gigabytes(bytes), limits.max_vertices, or_force(limits)));
   if (memory > 0 && bytes > memory / 2)
     throw InvalidParameter(fmt::format("{}: the surface would have about {:.3g} vertices and need some {}, more "
-                                       "than half of this machine's {}; choose a coarser resolution, or --force",
-                                       what, vertices, gigabytes(bytes), gigabytes(memory)));
+                                       "than half of this machine's {}; choose a coarser resolution{}",
+                                       what, vertices, gigabytes(bytes), gigabytes(memory), or_force(limits)));
   if (check_minimum && vertices < limits.min_vertices)
     throw InvalidParameter(fmt::format("{}: the surface would have about {:.3g} vertices, fewer than the {:g} it "
                                        "needs to keep its shape: the edge length is too long for the surface; "
-                                       "choose a shorter one, or --force", what, vertices, limits.min_vertices));
+                                       "choose a shorter one{}", what, vertices, limits.min_vertices, or_force(limits)));
 }
 
 void check_remeshed_size(const Mesh& mesh, double edge_length, std::string_view what, const SizeLimits& limits)
@@ -64,7 +64,13 @@ void check_remeshed_size(const Mesh& mesh, double edge_length, std::string_view 
   check_surface_size(estimated_vertices(surface_area(mesh), edge_length), what, limits);
 }
 
-void check_end_time(const Mesh& mesh, double end_time, double constant_tau, const SizeLimits& limits)
+std::string or_force(const SizeLimits& limits)
+{
+  return limits.force_option.empty() ? std::string() : ", or " + limits.force_option;
+}
+
+void check_end_time(const Mesh& mesh, double end_time, double constant_tau, const SizeLimits& limits,
+                    const UserTerms& terms)
 {
   if (limits.force || !std::isfinite(end_time))
     return;
@@ -74,24 +80,28 @@ void check_end_time(const Mesh& mesh, double end_time, double constant_tau, cons
   const double diagonal = box.isEmpty() ? 0.0 : box.diagonal().norm();
   const double latest = limits.max_end_time_scales * std::pow(diagonal, 4);
   if (std::isfinite(diagonal) && end_time > latest)
-    throw InvalidParameter(fmt::format("--end-time {:g} is more than {:g} times D⁴ = {:.3g} for the surface's "
+    throw InvalidParameter(fmt::format("{} is more than {:g} times D⁴ = {:.3g} for the surface's "
                                        "bounding-box diagonal D = {:.3g}: surface diffusion brings a body of that "
                                        "size to rest long before (its slowest shape mode decays within about D⁴ / "
                                        "3500), so the run would step through its equilibrium to no purpose; give an "
-                                       "end time up to {:.3g}, or --force",
-                                       end_time, limits.max_end_time_scales, std::pow(diagonal, 4), diagonal, latest));
+                                       "end time up to {:.3g}{}",
+                                       terms.setting("end_time", fmt::format("{:g}", end_time)),
+                                       limits.max_end_time_scales, std::pow(diagonal, 4), diagonal, latest,
+                                       or_force(limits)));
   if (constant_tau > 0 && end_time / constant_tau > static_cast<double>(limits.max_steps))
-    throw InvalidParameter(fmt::format("--end-time {:g} with --tau {:g} takes {:.3g} steps, more than the limit of {} "
-                                       "(it would run for a very long time); use a larger τ, adaptive time steps "
-                                       "(--adaptive), an earlier end, or --force",
-                                       end_time, constant_tau, end_time / constant_tau, limits.max_steps));
+    throw InvalidParameter(fmt::format("{} with {} takes {:.3g} steps, more than the limit of {} (it would run for "
+                                       "a very long time); use a larger τ, adaptive time steps ({}), an earlier "
+                                       "end{}",
+                                       terms.setting("end_time", fmt::format("{:g}", end_time)),
+                                       terms.setting("tau", fmt::format("{:g}", constant_tau)),
+                                       end_time / constant_tau, limits.max_steps, terms.adaptive, or_force(limits)));
 }
 
 void check_count(long count, long limit, std::string_view what, const SizeLimits& limits)
 {
   if (!limits.force && count > limit)
     throw InvalidParameter(fmt::format("{} {} is more than the limit of {} (it would run for a very long time to "
-                                       "no purpose); use fewer, or --force", what, count, limit));
+                                       "no purpose); use fewer{}", what, count, limit, or_force(limits)));
 }
 
 } // namespace sdflow

@@ -5,9 +5,11 @@
 //! cannot be meshed, or would run for no purpose. Every check can be overridden (`force`).
 
 #include "sdflow/mesh.h"
+#include "sdflow/user_terms.h"
 
 #include <Eigen/Geometry>
 
+#include <string>
 #include <string_view>
 
 namespace sdflow {
@@ -32,6 +34,8 @@ struct SizeLimits {
   double bytes_per_vertex = 2048;
   //! Skip every check (`--force`).
   bool force = false;
+  //! How the user asks for that, in messages ("force=True" in Python); empty: they cannot.
+  std::string force_option = "--force";
 };
 
 //! Vertices of a triangulation of `area` with edges of about `edge_length`: equilateral triangles
@@ -53,8 +57,13 @@ void check_surface_size(double vertices, std::string_view what, const SizeLimits
 void check_remeshed_size(const Mesh& mesh, double edge_length, std::string_view what, const SizeLimits& limits = {});
 
 //! Refuse a run of `mesh` to `end_time` (finite) later than max_end_time_scales · D⁴, or, with a
-//! constant τ (`constant_tau` > 0), one that needs more than max_steps steps to get there.
-void check_end_time(const Mesh& mesh, double end_time, double constant_tau, const SizeLimits& limits = {});
+//! constant τ (`constant_tau` > 0), one that needs more than max_steps steps to get there; the
+//! message names the parameters in `terms`.
+void check_end_time(const Mesh& mesh, double end_time, double constant_tau, const SizeLimits& limits = {},
+                    const UserTerms& terms = {});
+
+//! ", or --force" in the limits' terms (empty when they cannot be skipped), to end a refusal.
+std::string or_force(const SizeLimits& limits);
 
 //! Refuse more than `limit` iterations or steps (`what` names the option).
 void check_count(long count, long limit, std::string_view what, const SizeLimits& limits = {});

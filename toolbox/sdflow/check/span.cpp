@@ -36,18 +36,16 @@ ComponentSpan widest_span(const Mesh& mesh)
   return widest;
 }
 
-void check_span(const Mesh& mesh, std::string_view source)
+void check_span(const Mesh& mesh, std::string_view source, const UserTerms& terms)
 {
   const ComponentSpan span = widest_span(mesh);
   if (span.component < 0 || span.ratio() <= max_span_ratio)
     return;
   throw InvalidMesh(fmt::format("{}: component {} spans {:.3g} with edges as short as {:.3g} (ratio {:.2g}, above "
                                 "{:g}): a vertex far from the others, or two almost at one point? No edge length "
-                                "resolves such a surface; move or remove that vertex (`sdflow repair "
-                                "--merge-tolerance` merges vertices closer than a fraction of the size; `sdflow "
-                                "stats` shows the same finding)",
+                                "resolves such a surface; move or remove that vertex ({})",
                                 source, span.component, span.extent, span.shortest_edge, span.ratio(),
-                                max_span_ratio));
+                                max_span_ratio, terms.merge));
 }
 
 } // namespace sdflow

@@ -6,6 +6,7 @@
 //! `remesh` and `retriangulate` refuse such a surface with the same finding.
 
 #include "sdflow/mesh.h"
+#include "sdflow/user_terms.h"
 
 #include <string_view>
 
@@ -29,7 +30,7 @@ struct ComponentSpan {
 ComponentSpan widest_span(const Mesh& mesh);
 
 //! Throws InvalidMesh, naming `source` (the file), when a component's ratio is above
-//! max_span_ratio (or not a number), with what to do.
-void check_span(const Mesh& mesh, std::string_view source);
+//! max_span_ratio (or not a number), with what to do in `terms`.
+void check_span(const Mesh& mesh, std::string_view source, const UserTerms& terms = {});
 
 } // namespace sdflow

@@ -13,6 +13,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/refinement.cpp
   sdflow/flow/resolution_check.cpp
   sdflow/flow/retriangulation.cpp
+  sdflow/flow/run_input.cpp
   sdflow/flow/run_lock.cpp
   sdflow/flow/schema_retriangulation.cpp
   sdflow/flow/schema_run.cpp

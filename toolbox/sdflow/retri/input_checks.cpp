@@ -21,9 +21,10 @@ double edge_length_for_vertices(double area, double vertices)
   return std::sqrt(area / (vertices * std::sqrt(3.0) / 2.0));
 }
 
-void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions& options, std::string_view source)
+void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions& options, std::string_view source,
+                                 const UserTerms& terms)
 {
-  check_span(mesh, source);
+  check_span(mesh, source, terms);
   int count = 0;
   const std::vector<int> component = face_component_ids(mesh, &count);
   if (count == 0)
@@ -44,10 +45,12 @@ void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions&
     throw InvalidMesh(fmt::format(
         "{}: {} is too thin for the edge length ℓ = {:.3g}{}: it encloses {:.3g} for an area of {:.3g} (a mean "
         "thickness of {:.3g}, below {:g} ℓ), which the re-triangulation drops as a collapsed sheet. Give "
-        "--edge-length {:.3g} or shorter, or check the file's scale along each axis",
+        "{} or shorter, or check the file's scale along each axis",
         source, count > 1 ? fmt::format("component {}", k) : std::string("the surface"), ell,
         options.edge_length > 0 ? "" : " (its mean edge length)", std::abs(volumes[i]), areas[i], thickness,
-        options.min_component_thickness, thickness / options.min_component_thickness / 2));
+        options.min_component_thickness,
+        terms.setting("retriangulation.edge_length",
+                      fmt::format("{:.3g}", thickness / options.min_component_thickness / 2))));
   }
   const double needed = std::max(min_retriangulated_vertices, options.normals.neighbours + 2.0);
   const auto smallest = std::min_element(areas.begin(), areas.end());
@@ -59,14 +62,14 @@ void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions&
   throw InvalidMesh(fmt::format(
       "{}: {} (area {:.3g}) is too coarse to re-triangulate at the edge length ℓ = {:.3g}{}: it would have about "
       "{:.0f} vertices, fewer than the {:.0f} the re-triangulation needs (coarser, a body loses its shape and is "
-      "dropped as debris). Give --edge-length {:.3g} or shorter, or refine the file first with `sdflow remesh "
-      "--edge-length {:.3g}`",
+      "dropped as debris). Give {} or shorter, or {}",
       source, count > 1 ? fmt::format("component {}", smallest - areas.begin()) : std::string("the surface"),
-      *smallest, ell, options.edge_length > 0 ? "" : " (its mean edge length)", vertices, needed, suggested,
-      suggested));
+      *smallest, ell, options.edge_length > 0 ? "" : " (its mean edge length)", vertices, needed,
+      terms.setting("retriangulation.edge_length", fmt::format("{:.3g}", suggested)),
+      fmt::format(fmt::runtime(terms.refine), fmt::arg("edge_length", fmt::format("{:.3g}", suggested)))));
 }
 
-void check_crossings(const Mesh& mesh, std::string_view source)
+void check_crossings(const Mesh& mesh, std::string_view source, const UserTerms& terms)
 {
   const std::vector<int> component = face_component_ids(mesh);
   int crossing_itself = 0, first = -1, crossing_others = 0;
@@ -83,15 +86,14 @@ void check_crossings(const Mesh& mesh, std::string_view source)
         "{}: components {} and {} cross each other ({} pair(s) of faces intersect): the bodies overlap, so the "
         "surface is not the boundary of their material. The run would move each on its own for a first step as "
         "long as their shapes allow, then join them and keep both volumes, the overlap counted twice. Join them "
-        "first with `sdflow retriangulate {} -o joined.ply` and run that, or move them apart",
-        source, first_between.first, first_between.second, crossing_others, source));
+        "first with {}, or move them apart",
+        source, first_between.first, first_between.second, crossing_others,
+        fmt::format(fmt::runtime(terms.join), fmt::arg("source", source))));
   if (crossing_itself == 0)
     return;
   throw InvalidMesh(fmt::format("{}: the surface crosses itself: {} pair(s) of faces of one component intersect (face "
-                                "{} and others), so which side is inside is not defined there (`sdflow intersections` "
-                                "lists them). `sdflow repair --remove-self-intersections` cuts them out and closes the "
-                                "surface again",
-                                source, crossing_itself, first));
+                                "{} and others), so which side is inside is not defined there. {}",
+                                source, crossing_itself, first, terms.uncross));
 }
 
 } // namespace sdflow

@@ -7,6 +7,7 @@
 
 #include "sdflow/mesh.h"
 #include "sdflow/retri/pipeline.h"
+#include "sdflow/user_terms.h"
 
 #include <string_view>
 
@@ -26,15 +27,17 @@ double edge_length_for_vertices(double area, double vertices);
 //! (options.min_component_thickness · ℓ) for the target edge length ℓ (options.edge_length, or the
 //! mean edge length when 0), or a component that ℓ leaves with fewer than
 //! max(min_retriangulated_vertices, options.normals.neighbours + 2) vertices. The message gives the
-//! `--edge-length` that would do, and the `sdflow remesh` command that refines the file.
-void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions& options, std::string_view source);
+//! edge length that would do, and what refines the surface, in `terms`.
+void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions& options, std::string_view source,
+                                 const UserTerms& terms = {});
 
 //! Refuse (InvalidMesh naming `source`) a surface with a component that crosses itself, as TetGen
 //! refuses it for `stats`: which side is inside is not defined there, and the re-triangulation
 //! would have to guess a surgery the flow did not bring. Components that cross each other (bodies
-//! that overlap, validate.h) are refused too, with `sdflow retriangulate`, which joins them: the
-//! flow would move them apart for one step, of the τ their separate shapes allow (unbounded for a
-//! body at rest), before the re-triangulation joined them and gave the union both volumes.
-void check_crossings(const Mesh& mesh, std::string_view source);
+//! that overlap, validate.h) are refused too, with what joins them (`sdflow retriangulate`, in
+//! `terms`): the flow would move them apart for one step, of the τ their separate shapes allow
+//! (unbounded for a body at rest), before the re-triangulation joined them and gave the union both
+//! volumes.
+void check_crossings(const Mesh& mesh, std::string_view source, const UserTerms& terms = {});
 
 } // namespace sdflow

@@ -1,0 +1,107 @@
+#include "sdflow/flow/run_input.h"
+
+#include "sdflow/check/span.h"
+#include "sdflow/flow/parameter_schema.h"
+#include "sdflow/retri/input_checks.h"
+
+#include <fmt/format.h>
+
+#include <string>
+
+namespace sdflow {
+namespace {
+
+//! `key`'s entry: every key the checks name is one of the schema's.
+const ParameterEntry& entry(std::string_view key)
+{
+  const ParameterEntry* e = find_parameter(std::string(key));
+  if (!e)
+    throw std::logic_error(fmt::format("run_input: {} is not a run parameter", key));
+  return *e;
+}
+
+std::string flag_setting(std::string_view key, std::string_view value)
+{
+  const std::string& flag = entry(key).flag;
+  return value.empty() ? flag : fmt::format("{} {}", flag, value);
+}
+
+//! A keyword argument: `end_time=10`, or in a section `retriangulation={"edge_length": 0.1}`.
+std::string keyword_setting(std::string_view key, std::string_view value)
+{
+  const ParameterEntry& e = entry(key);
+  const std::string section = e.section();
+  if (section.empty())
+    return value.empty() ? e.key : fmt::format("{}={}", e.key, value);
+  return value.empty() ? fmt::format("{}[\"{}\"]", section, e.name())
+                       : fmt::format("{}={{\"{}\": {}}}", section, e.name(), value);
+}
+
+//! A dialog parameter: `Time step τ (Tau) = 0.01`; the scenario key for one the dialog lacks.
+std::string dialog_setting(std::string_view key, std::string_view value)
+{
+  const ParameterEntry& e = entry(key);
+  const std::string name = e.meshlab.name.empty() ? e.key : fmt::format("{} ({})", e.meshlab.label, e.meshlab.name);
+  return value.empty() ? name : fmt::format("{} = {}", name, value);
+}
+
+} // namespace
+
+UserTerms run_input_terms(FrontEnd front_end)
+{
+  UserTerms terms;
+  switch (front_end) {
+  case FrontEnd::command_line:
+    terms.setting = flag_setting;
+    break;
+  case FrontEnd::python:
+    terms.setting = keyword_setting;
+    terms.adaptive = "time_step=\"adaptive\"";
+    terms.join = "sdflow.retriangulate(V, F) and run what it returns";
+    terms.refine = "refine the surface first with sdflow.remesh(V, F, edge_length={edge_length})";
+    terms.uncross = "sdflow.repair(V, F, remove_self_intersections=True) cuts them out and closes the surface "
+                    "again (sdflow.intersections(V, F) lists them)";
+    terms.merge = "sdflow.repair(V, F, merge_tolerance=...) merges vertices closer than a fraction of the size; "
+                  "sdflow.stats(V, F) shows the same finding";
+    break;
+  case FrontEnd::meshlab:
+    terms.setting = dialog_setting;
+    terms.adaptive = dialog_setting("time_step", "");
+    terms.join = "the filter \"Surface diffusion: re-triangulate\" and run on its result";
+    terms.refine = "refine the mesh first with the filter \"Remeshing: Isotropic Explicit Remeshing\" (target "
+                   "length {edge_length})";
+    terms.uncross = "The filter \"Select Self Intersecting Faces\" shows them; `sdflow repair "
+                    "--remove-self-intersections` cuts them out and closes the surface again";
+    terms.merge = "the filter \"Merge Close Vertices\" merges vertices closer than a threshold";
+    break;
+  }
+  return terms;
+}
+
+SizeLimits run_input_limits(FrontEnd front_end, bool force)
+{
+  SizeLimits limits{.force = force};
+  limits.force_option = front_end == FrontEnd::command_line ? "--force"
+                        : front_end == FrontEnd::python     ? "force=True"
+                                                            : "";
+  return limits;
+}
+
+void check_run_input(const Mesh& mesh, const RunParameters& p, std::string_view source, FrontEnd front_end,
+                     const SizeLimits& limits)
+{
+  const UserTerms terms = run_input_terms(front_end);
+  check_count(p.steps, limits.max_steps, terms.name("steps"), limits);
+  check_span(mesh, source, terms);
+  check_crossings(mesh, source, terms);
+  if (p.retriangulation.enabled) {
+    const double ell = p.retriangulation.pipeline.edge_length;
+    check_remeshed_size(mesh, ell,
+                        fmt::format("run with {}", terms.setting("retriangulation.edge_length", fmt::format("{}", ell))),
+                        limits);
+    check_retriangulation_input(mesh, p.retriangulation.pipeline, source, terms);
+  }
+  check_end_time(mesh, p.end_time, p.time_step.mode == TimeStepMode::constant ? p.time_step.tau : 0.0, limits, terms);
+}
+
+} // namespace sdflow
