@@ -209,6 +209,53 @@ TEST(SurfaceUnion, cavity_reaching_the_wall_of_its_body_opens_through_it)
   }
 }
 
+// Bodies that overlap deeply are joined into their union by the re-triangulation's merge too. It
+// took a unit sphere lying 90% inside another for a cavity of it, and removed every face within an
+// edge of the other surface, which was all of them: "the two bodies overlap so much that no face of
+// either lies outside the other ... the same body twice" (issue 33).
+TEST(SurfaceUnion, bodies_that_overlap_deeply_merge_into_their_union)
+{
+  for (double d : {0.2, 0.5}) {
+    SCOPED_TRACE(d);
+    const Mesh a = analytic::icosphere(3, 1.0), b = analytic::icosphere(3, 1.0, Eigen::Vector3d(d, 0.013, 0.007));
+    for (const bool touching : {false, true}) {
+      SCOPED_TRACE(touching ? "merge_touching_surfaces" : "surface_union");
+      const UnionResult u = touching ? merge_touching_surfaces(a, b) : surface_union(a, b);
+      const auto topo = component_topology(u.mesh);
+      ASSERT_EQ(topo.size(), 1u);
+      EXPECT_TRUE(topo[0].closed());
+      EXPECT_EQ(topo[0].genus, 0);
+      EXPECT_TRUE(self_intersections(u.mesh).empty());
+      // Inscribed polyhedra: the balls' union volume scaled as the sphere's; 2% covers the coarser
+      // mesh's zipper strip along the crossing curve.
+      const double expected =
+          two_ball_union_volume(1.0, std::hypot(d, 0.013, 0.007)) * enclosed_volume(a) / (4.0 / 3 * pi);
+      EXPECT_NEAR(enclosed_volume(u.mesh), expected, 0.02 * expected);
+    }
+  }
+}
+
+// Bodies too coarse for their overlap get a message that says they overlap, not that they coincide.
+TEST(SurfaceUnion, bodies_too_coarse_for_their_overlap_are_refused_saying_they_overlap)
+{
+  // Two icosahedra 0.05 apart, one turned by 0.3 rad about z: every face crosses the other or lies inside it.
+  const Mesh a = analytic::icosphere(0, 1.0);
+  Mesh b = a;
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  for (const auto v : b.vertices())
+    b.set_point(v, to_point(turn * to_eigen(b.point(v)) + Eigen::Vector3d(0.05, 0.013, 0.007)));
+  for (const auto& merge : {surface_union, merge_touching_surfaces}) {
+    try {
+      merge(a, b);
+      ADD_FAILURE() << "the union was accepted";
+    } catch (const InvalidMesh& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("the two bodies overlap so much"), std::string::npos) << message;
+      EXPECT_EQ(message.find("coincide"), std::string::npos) << message;
+    }
+  }
+}
+
 TEST(SurfaceUnion, overlap_reaching_a_sheet_boundary_is_refused)
 {
   // The bubble sits on the sheet's edge: the sheet's boundary would have to be cut.

@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <tuple>
 #include <vector>
 
 namespace sdflow {
@@ -316,6 +317,16 @@ std::vector<bool> faces_to_remove(const FacesAgainst& faces, bool other_reversed
   return remove;
 }
 
+//! True when every face on the other's inside (its complement when `other_reversed`) lies within
+//! an edge of it (FacesAgainst::near): the surfaces have just moved through each other.
+bool fresh_contact(const FacesAgainst& faces, bool other_reversed)
+{
+  for (std::size_t f = 0; f < faces.crossing.size(); ++f)
+    if (!faces.crossing[f] && faces.inside[f] != other_reversed && !faces.near[f])
+      return false;
+  return true;
+}
+
 //! The mesh with every triangle's orientation reversed.
 Mesh reversed(const Mesh& mesh)
 {
@@ -353,10 +364,22 @@ UnionResult join(const Mesh& a, const Mesh& b, const std::vector<bool>& remove_a
 
   const std::vector<Loop> loops_a = opened_loops(kept_a, boundary_a, 0, "first"),
                           loops_b = opened_loops(kept_b, boundary_b, offset, "second");
-  if (loops_a.size() != loops_b.size())
-    throw InvalidMesh(fmt::format("surface union: removing the overlap left {} boundary loop(s) on the first surface "
-                                  "and {} on the second; they cannot be paired (refine the meshes near the contact)",
+  if (loops_a.size() != loops_b.size()) {
+    // One surface wholly inside or across the other, while the other opened: no band can join them.
+    for (const auto& [kept, input, removed, name, other] :
+         {std::tuple{&kept_a, &a, result.removed_faces_a, "first", "second"},
+          std::tuple{&kept_b, &b, result.removed_faces_b, "second", "first"}})
+      if (kept->n_faces() == 0 && input->n_faces() > 0)
+        throw InvalidMesh(fmt::format("surface union: the bodies overlap so much that no face of the {} surface lies "
+                                      "outside the {} (all {} inside it or crossing it): it is meshed too coarsely "
+                                      "for their overlap (refine it, `sdflow remesh`), or lies almost wholly inside",
+                                      name, other, removed));
+    throw InvalidMesh(fmt::format("surface union: the bodies overlap, but removing the overlap left {} boundary "
+                                  "loop(s) on the first surface and {} on the second, which cannot be paired: the "
+                                  "meshes are too coarse for the curve along which they cross (or the surfaces "
+                                  "nearly coincide there); refine them near the contact (`sdflow remesh`)",
                                   loops_a.size(), loops_b.size()));
+  }
   std::vector<bool> used(loops_b.size(), false);
   for (const Loop& loop : loops_a) {
     int partner = -1;
@@ -379,7 +402,10 @@ UnionResult join(const Mesh& a, const Mesh& b, const std::vector<bool>& remove_a
   try {
     result.mesh = compact(x, faces);
   } catch (const InvalidMesh& e) {
-    throw InvalidMesh(fmt::format("surface union: joining the boundary loops did not give a manifold surface ({})", e.what()));
+    throw InvalidMesh(fmt::format("surface union: the bodies overlap, but joining the boundary loops their overlap "
+                                  "left did not give a manifold surface ({}); refine them near the contact (`sdflow "
+                                  "remesh`)",
+                                  e.what()));
   }
   logger().debug("surface union: removed {} + {} faces, joined {} loop pair(s)", result.removed_faces_a,
                  result.removed_faces_b, result.joined_loops);
@@ -416,9 +442,24 @@ UnionResult merge_touching_surfaces(const Mesh& a, const Mesh& b)
   const bool reverse_b = mostly_inside(a, o.a);
   // Where surfaces that just touched close in on each other the two sides of the joint would meet
   // at a cusp, whose faces the next steps push through each other: the faces within an edge of
-  // the other surface go too, so that the joint starts about an edge wide.
-  UnionResult result = join(reverse_a ? reversed(a) : a, reverse_b ? reversed(b) : b,
-                            faces_to_remove(o.a, reverse_b, true), faces_to_remove(o.b, reverse_a, true));
+  // the other surface go too, so that the joint starts about an edge wide. Only at a fresh contact,
+  // where no face lies deeper inside the other than that, and only if something is left to join:
+  // bodies that overlap deeply, or whose surfaces run within an edge of each other all over, get
+  // their plain union, as surface_union forms it (the widening removed every face of two spheres
+  // 0.2 apart: "no face of either lies outside the other", issue 33).
+  const auto merged = [&](bool widen) {
+    return join(reverse_a ? reversed(a) : a, reverse_b ? reversed(b) : b, faces_to_remove(o.a, reverse_b, widen),
+                faces_to_remove(o.b, reverse_a, widen));
+  };
+  UnionResult result;
+  const bool fresh = fresh_contact(o.a, reverse_b) && fresh_contact(o.b, reverse_a);
+  try {
+    result = merged(fresh);
+  } catch (const InvalidMesh&) {
+    if (!fresh)
+      throw;
+    result = merged(false);
+  }
   if (reverse_a)
     result.mesh = reversed(result.mesh);
   return result;

@@ -20,10 +20,11 @@ struct UnionResult {
 //! Union of two oriented surfaces (each may have several components, and a boundary), each one's
 //! inside being the side its normals point away from. Without intersections the result is the
 //! disjoint union, or the outer surface when one encloses the other; a surface united with itself
-//! (the same triangles) gives itself back. Throws InvalidMesh when nothing would be left (the
-//! surfaces coincide over large parts), when the loops left by the removal cannot be paired one to
-//! one (the surfaces touch along a curve too short for the mesh resolution), or when the overlap
-//! reaches a surface's own boundary.
+//! (the same triangles) gives itself back. Throws InvalidMesh, saying that the bodies overlap, when
+//! no face of one lies outside the other (meshed too coarsely for their overlap, or the same body
+//! twice), when the loops left by the removal cannot be paired one to one (the surfaces cross along
+//! a curve too short for the mesh resolution, or nearly coincide), or when the overlap reaches a
+//! surface's own boundary.
 UnionResult surface_union(const Mesh& a, const Mesh& b);
 
 //! The surface after two interfaces that touch have merged (Appendix B, whatever the surfaces'
@@ -35,7 +36,8 @@ UnionResult surface_union(const Mesh& a, const Mesh& b);
 //! bubble that reaches a sheet with a boundary, opens through it (the wall or sheet dimpled into
 //! the bubble, the sheet's boundary unchanged). Where the surfaces come closer than a triangle's
 //! longest edge its faces are removed too, so the joint starts about an edge wide instead of as a
-//! cusp narrower than the mesh resolves. The result keeps the first surface's orientation.
+//! cusp narrower than the mesh resolves; not when a face lies deeper inside the other than that
+//! (bodies that overlap deeply, not a fresh contact). The result keeps the first surface's orientation.
 //! Throws InvalidMesh as surface_union does.
 UnionResult merge_touching_surfaces(const Mesh& a, const Mesh& b);
 
