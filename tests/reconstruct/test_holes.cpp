@@ -1,6 +1,8 @@
 #include "sdflow/errors.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
+#include "sdflow/io/io.h"
+#include "sdflow/io/validate.h"
 #include "sdflow/reconstruct/holes.h"
 #include "support/analytic_meshes.h"
 #include "support/mesh_checks.h"
@@ -8,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -223,6 +226,32 @@ TEST(Holes, figure_eight_loop_is_reported_not_filled)
   for (auto e : result.mesh.edges())
     boundary_edges += e.is_boundary();
   EXPECT_EQ(boundary_edges, 6);
+}
+
+// A hole whose corner lies 2e-12 off the line through its neighbours: the minimum-weight
+// triangulation took that corner and its neighbours for a triangle (area 5e-13 times its longest
+// edge squared), which validation refuses as zero-area, so the re-triangulation failed with "face
+// N has zero area" (issue 33). Every triangle the filling adds passes validation's test.
+TEST(Holes, a_nearly_straight_corner_gets_no_zero_area_triangle)
+{
+  const Mesh ring =
+      read_mesh(std::filesystem::path(SDFLOW_SOURCE_DIR) / "tests/data/hole_with_a_nearly_straight_corner.off").mesh;
+  for (const HoleFillingStages stages : {HoleFillingStages::triangulate, HoleFillingStages::refine_and_fair}) {
+    HoleFillingOptions options;
+    options.stages = stages;
+    const FilledHoles result = fill_holes(ring, options);
+    for (const auto& loop : result.loops)
+      EXPECT_EQ(loop.outcome, LoopOutcome::filled);
+    EXPECT_TRUE(component_topology(result.mesh).front().closed());
+    for (const auto f : result.mesh.faces()) {
+      std::vector<Eigen::Vector3d> corners;
+      for (const auto v : result.mesh.fv_range(f))
+        corners.push_back(to_eigen(result.mesh.point(v)));
+      EXPECT_FALSE(has_zero_area(corners[0], corners[1], corners[2], BuildOptions{}.zero_area_tolerance))
+          << "face " << f.idx();
+    }
+    EXPECT_NO_THROW(check_geometry(result.mesh, "filled"));
+  }
 }
 
 TEST(Holes, closed_mesh_is_left_unchanged)

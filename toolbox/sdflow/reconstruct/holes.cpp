@@ -4,6 +4,7 @@
 #include "sdflow/geometry/angle.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
+#include "sdflow/io/validate.h"
 #include "sdflow/log.h"
 
 #include <Eigen/SparseCholesky>
@@ -82,10 +83,9 @@ std::vector<std::array<int, 3>> minimum_weight_triangulation(const Mesh& mesh, c
   std::vector<Eigen::Vector3d> outside(n);
   for (int j = 0; j < n; ++j)
     outside[j] = to_eigen(mesh.calc_face_normal(mesh.face_handle(mesh.opposite_halfedge_handle(loop.halfedges[j]))));
-  double scale = 0;
-  for (int j = 0; j < n; ++j)
-    scale = std::max(scale, (p[(j + 1) % n] - p[j]).squaredNorm());
-  const double min_area = 1e-14 * scale;
+  // Validation's zero-area test (io/validate.h), not a looser one of the hole's own: a sliver between
+  // the two would pass here and make the re-triangulated surface invalid.
+  const double zero_area = BuildOptions{}.zero_area_tolerance;
 
   auto at = [n](int i, int k) { return static_cast<std::size_t>(i) * n + k; };
   // Weight and normal of the best triangle on (i, k), stored twice: at (i, k) and at (k, i), so
@@ -109,10 +109,10 @@ std::vector<std::array<int, 3>> minimum_weight_triangulation(const Mesh& mesh, c
         const Weight& right = weight[at(k, m)];
         if (left.fold == infinity || right.fold == infinity)
           continue;
+        if (has_zero_area(p[i], p[m], p[k], zero_area))
+          continue;
         const Eigen::Vector3d cross = (p[m] - p[i]).cross(p[k] - p[i]);
         const double area = 0.5 * cross.norm();
-        if (!(area > min_area))
-          continue;
         const Eigen::Vector3d normal = cross / (2 * area);
         double worst = std::max(left.fold, right.fold);
         worst = std::max(worst, fold(normal, m == i + 1 ? outside[i] : normal_of[at(i, m)]));
