@@ -40,6 +40,7 @@ TEST_F(ShapeCommand, list_names_every_shape_and_parameter)
   const auto r = analytic::run_sdflow("shape --list");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* s : {"sphere", "ellipsoid", "torus", "dumbbell", "sintering", "spheres-on-plane", "packing",
+                        "cuboid-island",
                         "--min-distance", "--spheres", "--major", "--minor",
                         "--neck-width", "--neck-radius", "--disk-radius", "--blend", "--expr"})
     EXPECT_NE(r.output.find(s), std::string::npos) << s;
@@ -54,6 +55,30 @@ TEST_F(ShapeCommand, torus_is_written_with_genus_one)
   const auto components = component_topology(read_mesh(out).mesh);
   ASSERT_EQ(components.size(), 1u);
   EXPECT_EQ(components[0].genus, 1);
+}
+
+TEST_F(ShapeCommand, cuboid_island_stands_on_the_plane_with_one_boundary_loop)
+{
+  const fs::path out = dir / "island.ply";
+  const auto r = analytic::run_sdflow("shape cuboid-island --a 2 --b 1 --c 0.5 --radius 0.2 --edge-length 0.12 -o " +
+                                      out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Mesh island = read_mesh(out).mesh;
+  const auto components = component_topology(island);
+  ASSERT_EQ(components.size(), 1u);
+  EXPECT_EQ(components[0].genus, 0);
+  EXPECT_EQ(components[0].boundary_loops, 1);
+  double lowest = 0, rim_off = 0;
+  for (auto v : island.vertices()) {
+    lowest = std::min(lowest, static_cast<double>(island.point(v)[2]));
+    if (island.is_boundary(v))
+      rim_off = std::max(rim_off, std::abs(static_cast<double>(island.point(v)[2])));
+  }
+  EXPECT_LE(rim_off, 1e-9) << "the contact line lies on z = 0 (the mesher's projection tolerance)";
+  EXPECT_GE(lowest, -1e-9);
+  const auto bad = analytic::run_sdflow("shape cuboid-island --a 2 --b 1 --c 0.5 --radius 0.6 -o " + out.string());
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("rounding radius"), std::string::npos) << bad.output;
 }
 
 TEST_F(ShapeCommand, vertex_count_and_expression_are_honoured)

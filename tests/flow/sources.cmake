@@ -21,6 +21,7 @@ target_sources(sdflow_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/test_simulation.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_single_precision_factor.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_step_event.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_substrate_boundary.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_surface_diffusion.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_time_step.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_topology_guard.cpp

@@ -3,6 +3,7 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/fixed_boundary.h"
 #include "sdflow/flow/paper_boundary.h"
+#include "sdflow/flow/substrate_boundary.h"
 
 #include <fmt/format.h>
 
@@ -10,7 +11,15 @@ namespace sdflow {
 
 const char* boundary_condition_name(BoundaryCondition condition)
 {
-  return condition == BoundaryCondition::paper ? "paper" : "fixed";
+  switch (condition) {
+  case BoundaryCondition::paper:
+    return "paper";
+  case BoundaryCondition::substrate:
+    return "substrate";
+  case BoundaryCondition::fixed:
+    break;
+  }
+  return "fixed";
 }
 
 BoundaryCondition boundary_condition(const std::string& name)
@@ -19,13 +28,21 @@ BoundaryCondition boundary_condition(const std::string& name)
     return BoundaryCondition::fixed;
   if (name == "paper")
     return BoundaryCondition::paper;
-  throw InvalidParameter(fmt::format("boundary must be \"fixed\" or \"paper\", got \"{}\"", name));
+  if (name == "substrate")
+    return BoundaryCondition::substrate;
+  throw InvalidParameter(fmt::format("boundary must be \"fixed\", \"paper\" or \"substrate\", got \"{}\"", name));
 }
 
-std::shared_ptr<const FlowBoundary> flow_boundary(BoundaryCondition condition)
+std::shared_ptr<const FlowBoundary> flow_boundary(BoundaryCondition condition, const SubstrateOptions& substrate)
 {
-  if (condition == BoundaryCondition::paper)
+  switch (condition) {
+  case BoundaryCondition::paper:
     return std::make_shared<const PaperBoundary>();
+  case BoundaryCondition::substrate:
+    return std::make_shared<const SubstrateBoundary>(substrate);
+  case BoundaryCondition::fixed:
+    break;
+  }
   return std::make_shared<const FixedBoundary>();
 }
 

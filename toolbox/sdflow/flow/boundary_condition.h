@@ -1,8 +1,9 @@
 #pragma once
 //! \file boundary_condition.h
 //! \brief The boundary conditions a run can choose by name (`boundary` in the parameter schema) and
-//! the implementation each selects (flow_boundary.h): `fixed` (fixed_boundary.h) and `paper`
-//! (paper_boundary.h). The equations are in docs/method.md, "Boundary conditions".
+//! the implementation each selects (flow_boundary.h): `fixed` (fixed_boundary.h), `paper`
+//! (paper_boundary.h) and `substrate` (substrate_boundary.h). The equations are in docs/method.md,
+//! "Boundary conditions" and "Substrate".
 
 #include "sdflow/flow/flow_boundary.h"
 
@@ -12,16 +13,25 @@
 namespace sdflow {
 
 enum class BoundaryCondition {
-  fixed, //!< pinned rim, zero flux through it (default)
-  paper  //!< the paper's §4.3: the rim moves, H = 0 there
+  fixed,    //!< pinned rim, zero flux through it (default)
+  paper,    //!< the paper's §4.3: the rim moves, H = 0 there
+  substrate //!< the rim is a contact line on the plane z = z₀ that moves in it (substrate_boundary.h)
 };
 
-//! "fixed" or "paper".
+//! The flat rigid substrate of `substrate` (the scenario's [substrate] keys).
+struct SubstrateOptions {
+  double z = 0;                //!< the plane z = z₀ the film stands on
+  double contact_angle = 90;   //!< Young's angle θ_Y in degrees, in (0, 180): cos θ_Y = (γ_VS − γ_FS)/γ_FV
+  //! η of the contact line's law v = η (cos θ_Y − cos θ_d), > 0; +∞ holds θ_Y at every step
+  double mobility = 1;
+};
+
+//! "fixed", "paper" or "substrate".
 const char* boundary_condition_name(BoundaryCondition condition);
 //! The condition of that name; throws InvalidParameter for another name.
 BoundaryCondition boundary_condition(const std::string& name);
 
-//! The implementation of `condition`.
-std::shared_ptr<const FlowBoundary> flow_boundary(BoundaryCondition condition);
+//! The implementation of `condition`; `substrate` is used by `substrate` only.
+std::shared_ptr<const FlowBoundary> flow_boundary(BoundaryCondition condition, const SubstrateOptions& substrate = {});
 
 } // namespace sdflow

@@ -12,9 +12,12 @@
 
 #include <Eigen/Core>
 
+#include <limits>
 #include <vector>
 
 namespace sdflow {
+
+struct FlowOperators;
 
 class FlowBoundary {
 public:
@@ -34,6 +37,25 @@ public:
   //! The direction along which the volume restoration (volume.h) may offset rim vertex `v`, whose
   //! unit normal (eq. 8) is `normal`; zero holds it where the step left it.
   virtual Eigen::Vector3d rim_restoration_direction(const Mesh& mesh, int v, const Eigen::Vector3d& normal) const = 0;
+
+  //! Throw InvalidParameter, naming the loop and the key, when `mesh` cannot start a flow under this
+  //! condition (a contact line off its substrate). The fixed and paper conditions take any surface.
+  virtual void check_surface(const Mesh& /*mesh*/) const {}
+
+  //! A rim with a motion of its own (a contact line in its plane): move it in `positions`, the
+  //! step's X − τ w N from `mesh` with `operators`, and give back the material volume its motion
+  //! sweeps. The fixed and paper conditions leave it, and `positions` bit for bit.
+  virtual void move_rim(const Mesh& /*mesh*/, const FlowOperators& /*operators*/, double /*tau*/,
+                        VertexVectors& /*positions*/) const
+  {
+  }
+
+  //! The largest τ an adaptive step may take on `mesh` for the rim's own motion to stay accurate
+  //! (FlowOperators::tau_limit); ∞ for a rim without one.
+  virtual double tau_limit(const Mesh& /*mesh*/, const FlowOperators& /*operators*/) const
+  {
+    return std::numeric_limits<double>::infinity();
+  }
 };
 
 } // namespace sdflow

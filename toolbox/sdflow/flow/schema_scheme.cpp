@@ -132,8 +132,10 @@ void add_flow_option_entries(std::vector<ParameterEntry>& s)
   {
     auto& e = add(s, entry("boundary", "--boundary", ParameterType::choice,
                            "At the boundary of an open surface: `fixed` (the rim stays put and no material crosses "
-                           "it; the default) or `paper` (the rim moves, with H = 0 there: the paper's §4.3)"));
-    e.choices = {"fixed", "paper"};
+                           "it; the default), `paper` (the rim moves, with H = 0 there: the paper's §4.3) or "
+                           "`substrate` (the rim is a contact line on the plane z = substrate.z, moving in it toward "
+                           "Young's angle substrate.contact_angle; no material crosses it)"));
+    e.choices = {"fixed", "paper", "substrate"};
     e.key_aliases = {"fixed_boundary"}; // its older boolean key: true is `fixed`, false `paper`
     e.shorthands = {{"--fixed-boundary", "fixed", "A fixed boundary (the default): --boundary fixed"}};
     e.get = [](const RunParameters& p) -> ParameterValue {
@@ -149,6 +151,30 @@ void add_flow_option_entries(std::vector<ParameterEntry>& s)
                          "mean curvature there (the paper's rule; the volume is not conserved).",
                  .boolean_choices = std::pair<std::string, std::string>{"paper", "fixed"}};
     e.paper = std::string("paper");
+  }
+  const auto on_substrate = [](const RunParameters& p) { return p.scheme.boundary == BoundaryCondition::substrate; };
+  {
+    auto& e = add(s, entry("substrate.z", "--substrate-z", ParameterType::real,
+                           "The substrate's plane z = z₀ (boundary = \"substrate\"): every boundary loop of the "
+                           "surface must lie on it"));
+    bind<double>(e, &RunParameters::scheme, &SchemeOptions::substrate, &SubstrateOptions::z);
+    e.in_use = e.written = on_substrate;
+  }
+  {
+    auto& e = add(s, entry("substrate.contact_angle", "--contact-angle", ParameterType::real,
+                           "Young's angle θ_Y in degrees (boundary = \"substrate\"), cos θ_Y = (γ_VS − γ_FS)/γ_FV: "
+                           "the angle of the film with the substrate at equilibrium"));
+    e.range = {.min = 0, .max = 180, .min_open = true, .max_open = true};
+    bind<double>(e, &RunParameters::scheme, &SchemeOptions::substrate, &SubstrateOptions::contact_angle);
+    e.in_use = e.written = on_substrate;
+  }
+  {
+    auto& e = add(s, entry("substrate.mobility", "--contact-line-mobility", ParameterType::real,
+                           "η of the contact line (boundary = \"substrate\"): it moves in the plane at "
+                           "η (cos θ_Y − cos θ) along its outward normal; inf holds the angle at θ_Y"));
+    e.range = {.min = 0, .min_open = true, .infinite_allowed = true};
+    bind<double>(e, &RunParameters::scheme, &SchemeOptions::substrate, &SubstrateOptions::mobility);
+    e.in_use = e.written = on_substrate;
   }
 }
 

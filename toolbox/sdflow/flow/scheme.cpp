@@ -19,7 +19,7 @@ SchemeParts scheme_parts(const SchemeOptions& options)
     energy = std::make_shared<const IsotropicEnergy>(options.curvature);
   else
     energy = std::make_shared<const AnisotropicEnergy>(anisotropy_terms(options.energy));
-  return {std::move(energy), flow_boundary(options.boundary)};
+  return {std::move(energy), flow_boundary(options.boundary, options.substrate)};
 }
 
 FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options, const CotangentCache* cache)
@@ -61,6 +61,7 @@ FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options, con
   op.curvature = parts.energy->first_variation({mesh, op.normals, op.laplacian, op.areas});
   parts.boundary->impose(mesh, op.laplacian, op.curvature, op.held);
   op.rhs = op.laplacian * op.curvature;
+  op.tau_limit = parts.boundary->tau_limit(mesh, op);
   return op;
 }
 
@@ -85,6 +86,7 @@ StepResult solve_step(const Mesh& mesh, const FlowOperators& op, double tau, dou
     result.factorised_tau_beta = tau * beta;
   }
   result.positions -= (tau * result.w).asDiagonal() * op.normals;
+  op.parts.boundary->move_rim(mesh, op, tau, result.positions);
   return result;
 }
 

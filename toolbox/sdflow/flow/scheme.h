@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
@@ -36,6 +37,7 @@ struct SchemeOptions {
   //! At the boundary of an open surface (boundary_condition.h): a pinned rim with zero flux by
   //! default; `paper` in the paper's preset.
   BoundaryCondition boundary = BoundaryCondition::fixed;
+  SubstrateOptions substrate;  //!< the plane and contact line of the `substrate` condition
   NormalOptions normals;       //!< eq. (8); `equal_weights` is the paper's §4.3 boundary variant
   //! The cotangent H = ½ N·ΔX by default: it converges under refinement on every smooth surface.
   //! The paper's eq. (9) (`normal_curvature_integral`) does not off spheres (docs/validation.md):
@@ -79,6 +81,8 @@ struct FlowOperators {
   long mass_fallbacks = 0;
   Eigen::VectorXd rhs;         //!< L μ
   std::vector<bool> held;      //!< vertices with w = 0: a fixed boundary (empty if none)
+  //! The boundary condition's bound on an adaptive τ (FlowBoundary::tau_limit): ∞ but on a substrate
+  double tau_limit = std::numeric_limits<double>::infinity();
 
   //! The step's linear system for τβ, as the energy forms it (M + τβ L M⁻¹ L for the isotropic one).
   FlowSystem system(double tau_beta) const { return parts.energy->implicit_system(*this, tau_beta); }
@@ -121,6 +125,7 @@ struct StepResult {
 std::array<Eigen::VectorXd, 2> warm_starts(const Eigen::VectorXd& last_w, const Eigen::VectorXd& earlier_w);
 
 //! Solve the step for `tau` (> 0) with `solver`; `guesses` warm-start iterative solves (FlowSolver::solve).
+//! The boundary condition then moves a rim that has a motion of its own (FlowBoundary::move_rim).
 //! Each connected component is stepped on its own: L couples only vertices joined by an edge, so
 //! the system is block diagonal by component and one solve steps every component independently.
 StepResult solve_step(const Mesh& mesh, const FlowOperators& operators, double tau, double beta,

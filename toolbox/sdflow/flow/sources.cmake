@@ -23,6 +23,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/simulation.cpp
   sdflow/flow/single_precision_factor.cpp
   sdflow/flow/step_event.cpp
+  sdflow/flow/substrate_boundary.cpp
   sdflow/flow/solver.cpp
   sdflow/flow/supernodal_cholesky.cpp
   sdflow/flow/suitesparse_output.cpp

@@ -64,6 +64,7 @@ SurfaceDiffusion::SurfaceDiffusion(const Mesh& initial, RunParameters parameters
   validate_flow_parameters(p_);
   parts_ = scheme_parts(p_.scheme);
   mesh_ = canonical(initial);
+  parts_.boundary->check_surface(mesh_);
   renew_connectivity();
   prepare_retriangulation(std::move(retriangulate));
   last_w_ = Eigen::VectorXd::Zero(mesh_.n_vertices());
@@ -333,7 +334,7 @@ void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
   }
   if (!(schedule.pipeline.edge_length > 0))
     schedule.pipeline.edge_length = start_length_;
-  schedule.pipeline.keep_boundary = flow_boundary(p_.scheme.boundary)->keeps_rim();
+  schedule.pipeline.keep_boundary = parts_.boundary->keeps_rim();
   RetriangulationSchedule refined_schedule = schedule;
   refined_schedule.pipeline = refined(schedule.pipeline, p_.refinement);
   retriangulate_ = make_retriangulation_hook(refined_schedule);
@@ -599,7 +600,10 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
   for (;;) {
     if (cancel_trials_ && cancel_trials_->load())
       throw TrialsCancelled();
-    const double tau = start ? std::min(start_trial_tau, time_left) : controller_.propose(next_step, automatic, time_left);
+    // An adaptive τ stays within the boundary condition's bound (a contact line's, substrate_boundary.h).
+    const double tau = start ? std::min(start_trial_tau, time_left)
+                             : controller_.propose(next_step, automatic,
+                                                   controller_.adaptive() ? std::min(time_left, op_.tau_limit) : time_left);
     // A start step is backward Euler: with the scheme's β = ½ a mode far shorter than its time
     // scale would come out flipped, not damped (its factor (1 − τk⁴/2)/(1 + τk⁴/2) tends to −1).
     trial = start                   ? solve_step(mesh_, op_, tau, kStartBeta, solver_, guesses)

@@ -241,6 +241,42 @@ ImplicitSurface spheres_on_plane_shape(const SpheresOnPlaneParameters& parameter
   return s;
 }
 
+ImplicitSurface cuboid_island_shape(const CuboidIslandParameters& parameters)
+{
+  const auto [a, b, c, r] = parameters;
+  const std::string_view name = "cuboid-island";
+  require_positive(name, "length a", a);
+  require_positive(name, "length b", b);
+  require_positive(name, "height c", c);
+  require_positive(name, "rounding radius", r);
+  if (!(r < std::min({a / 2, b / 2, c})))
+    throw InvalidParameter(fmt::format("{}: rounding radius {} must be less than min(a/2, b/2, c) = {}", name, r,
+                                       std::min({a / 2, b / 2, c})));
+  // The rounded box's signed distance: q = |p| − (h − r), f = |max(q, 0)| + min(max_i q_i, 0) − r.
+  const Eigen::Vector3d inner = Eigen::Vector3d(a / 2, b / 2, c) - Eigen::Vector3d::Constant(r);
+  const auto excess = [inner](const Eigen::Vector3d& p) { return Eigen::Vector3d(p.cwiseAbs() - inner); };
+  ImplicitSurface s;
+  s.name = std::string(name);
+  s.value = [excess, r](const Eigen::Vector3d& p) {
+    const Eigen::Vector3d q = excess(p);
+    return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0) - r;
+  };
+  s.gradient = [excess](const Eigen::Vector3d& p) {
+    const Eigen::Vector3d q = excess(p), outside = q.cwiseMax(0.0);
+    const Eigen::Vector3d sign(p.x() < 0 ? -1 : 1, p.y() < 0 ? -1 : 1, p.z() < 0 ? -1 : 1);
+    if (outside.norm() > 0)
+      return Eigen::Vector3d(sign.cwiseProduct(outside) / outside.norm());
+    Eigen::Index axis = 0;
+    q.maxCoeff(&axis);
+    return Eigen::Vector3d(sign[axis] * Eigen::Vector3d::Unit(axis));
+  };
+  s.clip = [](const Eigen::Vector3d& p) { return -p.z(); };
+  s.clip_gradient = [](const Eigen::Vector3d&) { return Eigen::Vector3d(-Eigen::Vector3d::UnitZ()); };
+  s.box = padded_box(Eigen::Vector3d(-a / 2, -b / 2, 0), Eigen::Vector3d(a / 2, b / 2, c), 0.1 * std::min({a, b, c}));
+  s.feature_size = std::min({a, b, c});
+  return s;
+}
+
 namespace {
 
 struct Entry {
@@ -293,6 +329,17 @@ const std::vector<Entry>& entries()
                  [](const auto& get) {
                    return spheres_on_plane_shape({get("radius"), get("plane-neck-radius"), get("sphere-neck-radius"),
                                             get("disk-radius"), get("blend")});
+                 }});
+    const CuboidIslandParameters island;
+    e.push_back({{"cuboid-island",
+                  "a rounded box standing on the substrate z = 0, open at the bottom, its boundary loop on the plane "
+                  "(for boundary = \"substrate\")",
+                  {{"a", island.a, "length along x"},
+                   {"b", island.b, "length along y"},
+                   {"c", island.c, "height above z = 0"},
+                   {"radius", island.radius, "rounding radius of the edges and corners"}}},
+                 [](const auto& get) {
+                   return cuboid_island_shape({get("a"), get("b"), get("c"), get("radius")});
                  }});
     const LatticePacking lattice;
     const RandomPacking random;

@@ -69,6 +69,16 @@ struct SpheresOnPlaneParameters {
 //! a disk: one surface with one boundary loop, genus 3 (a clipped implicit surface).
 ImplicitSurface spheres_on_plane_shape(const SpheresOnPlaneParameters& parameters = {});
 
+struct CuboidIslandParameters {
+  double a = 4, b = 2; //!< the island's lengths along x and y
+  double c = 1;        //!< its height above z = 0
+  double radius = 0.3; //!< the rounding of its edges and corners, < min(a/2, b/2, c)
+};
+//! A rounded box [−a/2, a/2] × [−b/2, b/2] × [−c, c] (edges and corners rounded by `radius`) clipped
+//! to z ≥ 0: an island standing on the substrate z = 0, open at the bottom, its one boundary loop
+//! on the plane (a rounded rectangle), its sides meeting the plane at 90°.
+ImplicitSurface cuboid_island_shape(const CuboidIslandParameters& parameters = {});
+
 //! A named parameter of a catalogue shape, for `sdflow shape --list` and the registry.
 struct ShapeParameter {
   std::string name;

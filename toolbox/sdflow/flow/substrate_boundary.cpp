@@ -1,0 +1,203 @@
+#include "sdflow/flow/substrate_boundary.h"
+
+#include "sdflow/errors.h"
+#include "sdflow/flow/scheme.h"
+#include "sdflow/geometry/material_volume.h"
+#include "sdflow/geometry/measures.h"
+#include "sdflow/geometry/topology.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace sdflow {
+namespace {
+
+//! A rim vertex b's contact-line geometry: its outward in-plane normal n̂_b, ℓ_b, cos θ_d and k_b.
+struct ContactPoint {
+  int vertex = 0;
+  Eigen::Vector3d outward = Eigen::Vector3d::Zero();
+  double half_chord = 0; //!< ℓ_b = |∂A_base/∂x_b|
+  double cos_angle = 0;  //!< ((∂A/∂x_b + 2 μ_b M_b N_b) · n̂_b) / ℓ_b
+  double stiffness = 0;  //!< k_b = n̂ᵀ ∂²A/∂x_b² n̂ / ℓ_b
+};
+
+//! The contact points of every boundary loop, loop by loop. A boundary loop runs against its faces,
+//! so with the film's normals outward it turns clockwise seen from above and e_z × (x_{b+1} − x_{b−1})
+//! points out of the film: it is 2 ∂A_base/∂x_b, the base polygon's area gradient.
+std::vector<ContactPoint> contact_points(const Mesh& mesh, const VertexVectors& x, const FlowOperators& op)
+{
+  std::vector<ContactPoint> points;
+  for (const auto& loop : boundary_loops(mesh)) {
+    const std::size_t n = loop.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Mesh::VertexHandle b = mesh.from_vertex_handle(loop[i]);
+      const int prev = mesh.from_vertex_handle(loop[(i + n - 1) % n]).idx(), next = mesh.to_vertex_handle(loop[i]).idx();
+      const Eigen::Vector3d chord(x(next, 0) - x(prev, 0), x(next, 1) - x(prev, 1), 0.0);
+      ContactPoint p;
+      p.vertex = b.idx();
+      p.half_chord = 0.5 * chord.norm();
+      if (!(p.half_chord > 0))
+        throw InvalidMesh(fmt::format("substrate: the contact line folds back on itself at vertex {}", p.vertex));
+      p.outward = Eigen::Vector3d(-chord.y(), chord.x(), 0.0) / chord.norm();
+      Eigen::Vector3d area_gradient = Eigen::Vector3d::Zero();
+      double curvature = 0;
+      const Eigen::Vector3d xb = x.row(p.vertex);
+      for (const auto h : mesh.voh_range(b)) {
+        if (mesh.is_boundary(h))
+          continue;
+        const Eigen::Vector3d xp = x.row(mesh.to_vertex_handle(h).idx());
+        const Eigen::Vector3d xq = x.row(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)).idx());
+        const Eigen::Vector3d edge = xq - xp, doubled_normal = (xp - xb).cross(xq - xb);
+        const double doubled_area = doubled_normal.norm();
+        if (!(doubled_area > 0))
+          throw InvalidMesh(fmt::format("substrate: a degenerate triangle at contact-line vertex {}", p.vertex));
+        const Eigen::Vector3d normal = doubled_normal / doubled_area;
+        area_gradient += 0.5 * normal.cross(edge);
+        const double along = normal.dot(p.outward);
+        curvature += edge.squaredNorm() * along * along / (2 * doubled_area);
+      }
+      // Less the part of ∂A/∂x_b that the surface's curvature makes, −2 μ_b M_b N_b: it is balanced by
+      // the pressure, not by the contact line (an exact cap then has cos θ_d = cos θ to O(h²)).
+      area_gradient += 2 * op.curvature[p.vertex] * op.areas[p.vertex] * op.normals.row(p.vertex).transpose();
+      p.cos_angle = area_gradient.dot(p.outward) / p.half_chord;
+      p.stiffness = curvature / p.half_chord;
+      points.push_back(p);
+    }
+  }
+  return points;
+}
+
+} // namespace
+
+SubstrateBoundary::SubstrateBoundary(const SubstrateOptions& options) : options_(options)
+{
+  if (!(options.contact_angle > 0 && options.contact_angle < 180))
+    throw InvalidParameter(fmt::format("substrate.contact_angle must be in (0, 180) degrees, got {}",
+                                       options.contact_angle));
+  if (!(options.mobility > 0))
+    throw InvalidParameter(fmt::format("substrate.mobility must be > 0 (inf holds the contact angle), got {}",
+                                       options.mobility));
+  if (!std::isfinite(options.z))
+    throw InvalidParameter(fmt::format("substrate.z must be finite, got {}", options.z));
+  cos_young_ = std::cos(options.contact_angle * std::numbers::pi / 180);
+}
+
+void SubstrateBoundary::check_surface(const Mesh& mesh) const
+{
+  const VertexVectors x = vertex_positions(mesh);
+  if (x.rows() == 0)
+    return;
+  const double size = (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
+  const double tolerance = 1e-9 * std::max(size, std::abs(options_.z));
+  const auto loops = boundary_loops(mesh);
+  for (std::size_t l = 0; l < loops.size(); ++l)
+    for (const auto h : loops[l]) {
+      const int v = mesh.from_vertex_handle(h).idx();
+      if (std::abs(x(v, 2) - options_.z) > tolerance)
+        throw InvalidParameter(fmt::format(
+          "boundary = \"substrate\": boundary loop {} ({} vertices) is not on the plane substrate.z = {}: its vertex "
+          "{} has z = {}; every boundary loop must be a contact line on the substrate",
+          l, loops[l].size(), options_.z, v, x(v, 2)));
+    }
+  for (Eigen::Index v = 0; v < x.rows(); ++v)
+    if (x(v, 2) < options_.z - tolerance)
+      throw InvalidParameter(fmt::format("boundary = \"substrate\": vertex {} has z = {}, below the substrate "
+                                         "substrate.z = {}; the film must lie above the plane",
+                                         v, x(v, 2), options_.z));
+  int count = 0;
+  const std::vector<int> component = face_component_ids(mesh, &count);
+  const std::vector<BoundaryLoop> rims = boundary_loop_vertices(mesh, component);
+  const std::vector<double> volumes = material_volumes(x, face_indices(mesh), component, count, rims);
+  for (std::size_t l = 0; l < rims.size(); ++l) {
+    const double volume = volumes[static_cast<std::size_t>(rims[l].component)];
+    if (!(volume > 0))
+      throw InvalidParameter(fmt::format("boundary = \"substrate\": the component of boundary loop {} bounds the "
+                                         "material volume {} with the substrate, not a positive one: its normals "
+                                         "must point out of the film",
+                                         l, volume));
+  }
+}
+
+VertexVectors contact_line_displacements(const Mesh& mesh, const VertexVectors& positions,
+                                         const FlowOperators& operators, double cos_young, double mobility, double tau)
+{
+  VertexVectors displacement = VertexVectors::Zero(positions.rows(), 3);
+  for (const ContactPoint& p : contact_points(mesh, positions, operators)) {
+    const double drive = cos_young - p.cos_angle;
+    double delta = 0;
+    if (std::isinf(mobility))
+      delta = p.stiffness > 0 ? drive / p.stiffness : 0.0;
+    else
+      delta = tau * mobility * drive / (1 + tau * mobility * p.stiffness);
+    displacement.row(p.vertex) = delta * p.outward.transpose();
+  }
+  return displacement;
+}
+
+std::vector<double> contact_angle_cosines(const Mesh& mesh, const VertexVectors& positions,
+                                          const FlowOperators& operators)
+{
+  std::vector<double> cosines;
+  for (const ContactPoint& p : contact_points(mesh, positions, operators))
+    cosines.push_back(p.cos_angle);
+  return cosines;
+}
+
+double SubstrateBoundary::tau_limit(const Mesh& mesh, const FlowOperators& operators) const
+{
+  double stiffest = 0;
+  if (!std::isinf(options_.mobility))
+    for (const ContactPoint& p : contact_points(mesh, vertex_positions(mesh), operators))
+      stiffest = std::max(stiffest, p.stiffness);
+  return stiffest > 0 ? 1 / (options_.mobility * stiffest) : std::numeric_limits<double>::infinity();
+}
+
+void SubstrateBoundary::move_rim(const Mesh& mesh, const FlowOperators& operators, double tau,
+                                 VertexVectors& positions) const
+{
+  if (!positions.allFinite())
+    return; // the trial is rejected as it stands
+  const VertexVectors displacement = contact_line_displacements(mesh, positions, operators, cos_young_, options_.mobility, tau);
+  int count = 0;
+  const std::vector<int> component = face_component_ids(mesh, &count);
+  const FaceIndices faces = face_indices(mesh);
+  const std::vector<BoundaryLoop> loops = boundary_loop_vertices(mesh, component);
+  if (loops.empty())
+    return;
+  const std::vector<double> before = material_volumes(positions, faces, component, count, loops);
+  for (const BoundaryLoop& loop : loops)
+    for (const int v : loop.vertices) { // x and y only: the contact line's z stays bit for bit
+      positions(v, 0) += displacement(v, 0);
+      positions(v, 1) += displacement(v, 1);
+    }
+  const std::vector<double> after = material_volumes(positions, faces, component, count, loops);
+  // The volume the rim swept, given back by one normal offset c of each component's interior: its
+  // volume's rate along the normals is Σ_f of the volume gradient at the face's interior corners.
+  std::vector<double> rate(static_cast<std::size_t>(count), 0.0);
+  std::vector<int> vertex_component(static_cast<std::size_t>(positions.rows()), -1);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const int k = component[static_cast<std::size_t>(f)];
+    for (int c = 0; c < 3; ++c) {
+      const int v = faces(f, c);
+      if (mesh.is_boundary(Mesh::VertexHandle(v)))
+        continue;
+      vertex_component[static_cast<std::size_t>(v)] = k;
+      const Eigen::Vector3d a = positions.row(faces(f, (c + 1) % 3)), b = positions.row(faces(f, (c + 2) % 3));
+      rate[static_cast<std::size_t>(k)] += a.cross(b).dot(operators.normals.row(v).transpose()) / 6.0;
+    }
+  }
+  for (Eigen::Index v = 0; v < positions.rows(); ++v) {
+    const int k = vertex_component[static_cast<std::size_t>(v)];
+    if (k < 0 || !(std::abs(rate[static_cast<std::size_t>(k)]) > 0))
+      continue;
+    const double offset = (before[static_cast<std::size_t>(k)] - after[static_cast<std::size_t>(k)]) /
+                          rate[static_cast<std::size_t>(k)];
+    positions.row(v) += offset * operators.normals.row(v);
+  }
+}
+
+} // namespace sdflow
