@@ -170,6 +170,26 @@ TEST(RunCommand, energy_flags_and_rows_reach_run_toml_and_bad_g_exits_2_naming_t
   EXPECT_NE(ragged.output.find("ragged.toml:3: energy.g must be"), std::string::npos) << ragged.output;
 }
 
+TEST(RunCommand, substrate_flags_reach_run_toml_and_bad_values_exit_2_naming_the_key)
+{
+  test::TempDir dir;
+  write_mesh(analytic::spherical_cap(4, 1, 90), dir / "cap.ply", {.encoding = Encoding::binary});
+  const std::string run = "run --input " + (dir / "cap.ply").string() + " --steps 2 --quiet --boundary substrate --out ";
+  const auto r = analytic::run_sdflow(run + (dir / "s").string() + " --contact-angle 60 --contact-line-mobility 5");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string toml = test::read_file(dir / "s/run.toml");
+  EXPECT_NE(toml.find("[substrate]\nz = 0\ncontact_angle = 60\nmobility = 5\n"), std::string::npos) << toml;
+  for (const auto& [flags, key] : std::vector<std::pair<std::string, std::string>>{
+         {" --contact-angle 180", "contact_angle"}, {" --contact-angle 0", "contact_angle"},
+         {" --contact-line-mobility 0", "mobility"}, {" --contact-line-mobility -2", "mobility"},
+         {" --substrate-z 0.25", "substrate.z"}}) {
+    SCOPED_TRACE(flags);
+    const auto bad = analytic::run_sdflow(run + (dir / "bad").string() + flags);
+    EXPECT_EQ(bad.exit_code, 2) << bad.output;
+    EXPECT_NE(bad.output.find(key), std::string::npos) << bad.output;
+  }
+}
+
 TEST(RunCommand, killed_run_leaves_complete_files_and_resumes_bit_for_bit)
 {
   test::TempDir dir;

@@ -32,23 +32,6 @@ constexpr double kRestoredVolume = 1e-12;  //!< relative: the restoration's Newt
 
 double radians(double degrees) { return degrees * std::numbers::pi / 180; }
 
-//! The spherical cap of sphere radius `radius` and contact angle `degrees` standing on z = 0, open
-//! at its base: the unit disk of `rings` rings mapped by polar angle ψ = r θ about the sphere's
-//! centre (0, 0, −R cos θ). Its rim lies on z = 0 exactly; its normals point out of the cap.
-Mesh spherical_cap(int rings, double radius, double degrees)
-{
-  const double angle = radians(degrees);
-  Mesh cap = analytic::disk(rings);
-  for (auto v : cap.vertices()) {
-    auto p = cap.point(v);
-    const double r = std::hypot(p[0], p[1]), phi = std::atan2(p[1], p[0]), psi = r * angle;
-    p = Mesh::Point(radius * std::sin(psi) * std::cos(phi), radius * std::sin(psi) * std::sin(phi),
-                    cap.is_boundary(v) ? 0.0 : radius * (std::cos(psi) - std::cos(angle)));
-    cap.set_point(v, p);
-  }
-  return cap;
-}
-
 //! The cap of volume V and contact angle θ: R = (3V / (π (2 − 3cos θ + cos³θ)))^⅓, its height
 //! R(1 − cos θ) and base radius R sin θ.
 struct Cap {
@@ -130,7 +113,7 @@ TEST(SubstrateBoundary, refuses_bad_parameters_naming_the_key)
 
 TEST(SubstrateBoundary, refuses_a_surface_whose_rim_is_off_the_plane_or_that_lies_below_it)
 {
-  const Mesh cap = spherical_cap(4, 1, 90);
+  const Mesh cap = analytic::spherical_cap(4, 1, 90);
   const auto message = [&](const Mesh& mesh, double z) -> std::string {
     try {
       SubstrateBoundary({.z = z}).check_surface(mesh);
@@ -166,7 +149,7 @@ TEST(SubstrateBoundary, refuses_a_surface_whose_rim_is_off_the_plane_or_that_lie
 //! The largest vertex displacement of one step of τ from a cap at Young's angle, over its radius.
 double equilibrium_drift(int rings, double degrees, double tau)
 {
-  const Mesh cap = spherical_cap(rings, 1, degrees);
+  const Mesh cap = analytic::spherical_cap(rings, 1, degrees);
   SchemeOptions options{.boundary = BoundaryCondition::substrate};
   options.substrate = {.contact_angle = degrees, .mobility = 10};
   const StepResult step = flow_step(cap, tau, options);
@@ -176,7 +159,7 @@ double equilibrium_drift(int rings, double degrees, double tau)
 //! max_b |cos θ_d − cos θ| over the contact line of the exact cap of angle θ.
 double contact_angle_error(int rings, double degrees)
 {
-  const Mesh cap = spherical_cap(rings, 1, degrees);
+  const Mesh cap = analytic::spherical_cap(rings, 1, degrees);
   const FlowOperators op = flow_operators(cap, SchemeOptions{.boundary = BoundaryCondition::substrate});
   double error = 0;
   for (const double c : contact_angle_cosines(cap, vertex_positions(cap), op))
@@ -224,7 +207,7 @@ Relaxation relax(int rings, double young, double end_time, bool conserve)
   RunParameters p = substrate_run(young, 10);
   p.end_time = end_time;
   p.conserve_volume = conserve;
-  SurfaceDiffusion flow(spherical_cap(rings, 1, 90), p);
+  SurfaceDiffusion flow(analytic::spherical_cap(rings, 1, 90), p);
   const double volume = material_volume(flow.mesh());
   Relaxation r;
   double energy = substrate_energy(flow.mesh(), young);
@@ -297,7 +280,7 @@ double substrate_volume_error(double end_time, int steps)
   p.time_step.mode = TimeStepMode::constant;
   p.time_step.tau = end_time / steps;
   p.scheme.mass = VertexMass::volume_gradient; // 1ᵀ M w is then the volume's own rate (as in FixedBoundary's test)
-  SurfaceDiffusion flow(spherical_cap(8, 1, 90), p);
+  SurfaceDiffusion flow(analytic::spherical_cap(8, 1, 90), p);
   const double before = material_volume(flow.mesh());
   while (!flow.finished())
     flow.step();

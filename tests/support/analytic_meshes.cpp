@@ -131,6 +131,20 @@ Mesh conformal_torus(int rows, double major, double minor)
   return mesh_from(points, faces);
 }
 
+Mesh spherical_cap(int rings, double radius, double degrees)
+{
+  const double angle = degrees * std::numbers::pi / 180;
+  Mesh cap = disk(rings);
+  for (auto v : cap.vertices()) {
+    auto p = cap.point(v);
+    const double r = std::hypot(p[0], p[1]), phi = std::atan2(p[1], p[0]), psi = r * angle;
+    p = Mesh::Point(radius * std::sin(psi) * std::cos(phi), radius * std::sin(psi) * std::sin(phi),
+                    cap.is_boundary(v) ? 0.0 : radius * (std::cos(psi) - std::cos(angle)));
+    cap.set_point(v, p);
+  }
+  return cap;
+}
+
 Mesh disk(int rings, double radius)
 {
   std::vector<Eigen::Vector3d> points{{0, 0, 0}};

@@ -28,6 +28,11 @@ Mesh conformal_torus(int rows, double major, double minor);
 //! Flat disk of `radius` in the plane z = 0, normal +z, meshed on `rings` concentric rings.
 Mesh disk(int rings, double radius = 1.0);
 
+//! The spherical cap of sphere radius `radius` and contact angle `degrees` (in (0, 180)) standing on
+//! z = 0, open at its base: disk(rings) mapped by polar angle ψ = r θ about the sphere's centre
+//! (0, 0, −R cos θ). Its rim lies on z = 0 exactly; its normals point out of the cap.
+Mesh spherical_cap(int rings, double radius, double degrees);
+
 //! The two surfaces as one mesh: a's vertices and faces first, then b's.
 Mesh disjoint_union(const Mesh& a, const Mesh& b);
 
