@@ -246,6 +246,22 @@ TEST(SurfaceDiffusion, the_first_step_on_a_new_triangulation_damps_what_it_does_
   EXPECT_GT(tau_after[0], 3 * tau_after[1]) << "the start step keeps the pace the rule had";
 }
 
+// At rest nothing bounded adaptive τ: on a unit sphere it grew 1.25 times a step to 10¹¹ by step
+// 500, where the β = ½ scheme damps no mode; the volume drifted by 0.2% (1.8% by step 1000) and the
+// factorisation failed at step 1027 (issue 33). τ now stops at D⁴, and the sphere stays as it is.
+TEST(SurfaceDiffusion, a_surface_at_rest_keeps_its_volume_and_tau_stops_at_its_time_scale)
+{
+  const Mesh sphere = analytic::icosphere(3);
+  RunParameters p;
+  p.retriangulation.enabled = false;
+  SurfaceDiffusion flow(sphere, p);
+  const double volume = enclosed_volume(sphere), largest = std::pow(2 * std::sqrt(3.0), 4); // D = 2√3
+  for (int k = 0; k < 600; ++k)
+    ASSERT_LE(flow.step().tau, largest * (1 + 1e-9)) << "step " << k + 1;
+  EXPECT_GT(flow.time(), 100 * largest); // it did reach the bound, and stepped on at it
+  EXPECT_NEAR(enclosed_volume(flow.mesh()), volume, 1e-6 * volume);
+}
+
 TEST(SurfaceDiffusion, a_restored_state_continues_bit_for_bit)
 {
   for (const bool extrapolate : {false, true}) {

@@ -14,6 +14,8 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -51,6 +53,16 @@ TimeStepOptions refined_time_step(const RunParameters& p)
   TimeStepOptions options = p.time_step;
   options.adaptive = refined(options.adaptive, p.refinement);
   return options;
+}
+
+//! D⁴ for the bounding-box diagonal D of `mesh`: the longest adaptive τ (SurfaceDiffusion::step).
+double natural_largest_tau(const Mesh& mesh)
+{
+  Eigen::AlignedBox3d box;
+  for (const auto v : mesh.vertices())
+    box.extend(to_eigen(mesh.point(v)));
+  const double diagonal = box.isEmpty() ? 0.0 : box.diagonal().norm();
+  return diagonal > 0 ? std::pow(diagonal, 4) : std::numeric_limits<double>::infinity();
 }
 
 } // namespace
@@ -589,6 +601,12 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
       may_start ? resolved_vertices(explicit_speed, op_.held, edge_lengths) : std::vector<bool>{};
   bool start = may_start && is_start_step(adaptive, new_triangulation ? 1 : next_step, resolved, op_.held);
   const double time_left = std::isfinite(p_.end_time) ? p_.end_time - time_ : std::numeric_limits<double>::infinity();
+  // Adaptive τ stops at D⁴ for the surface's bounding-box diagonal D, some 3500 decay times of its
+  // slowest shape mode (limits.h). At rest nothing else bounds it: on a unit sphere it grew 1.25
+  // times a step to 10¹¹ by step 500, where the β = ½ scheme damps no mode (each factor tends to
+  // −1); the volume drifted by 1.8% and the factorisation lost the mass term (issue 33).
+  const double largest_tau =
+      controller_.adaptive() ? natural_largest_tau(mesh_) : std::numeric_limits<double>::infinity();
   // On a new triangulation mid-run, no longer a step than the rule would take: the step stays as
   // accurate as the others, only its stiffest modes are damped rather than flipped.
   double start_trial_tau = !may_start          ? 0.0
@@ -600,10 +618,13 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
   for (;;) {
     if (cancel_trials_ && cancel_trials_->load())
       throw TrialsCancelled();
-    // An adaptive τ stays within the boundary condition's bound (a contact line's, substrate_boundary.h).
-    const double tau = start ? std::min(start_trial_tau, time_left)
-                             : controller_.propose(next_step, automatic,
-                                                   controller_.adaptive() ? std::min(time_left, op_.tau_limit) : time_left);
+    // An adaptive τ stays within the boundary condition's bound (a contact line's, substrate_boundary.h)
+    // and the surface's own time scale (largest_tau above).
+    const double tau =
+        start ? std::min(start_trial_tau, time_left)
+              : std::min(controller_.propose(next_step, automatic,
+                                             controller_.adaptive() ? std::min(time_left, op_.tau_limit) : time_left),
+                         largest_tau);
     // A start step is backward Euler: with the scheme's β = ½ a mode far shorter than its time
     // scale would come out flipped, not damped (its factor (1 − τk⁴/2)/(1 + τk⁴/2) tends to −1).
     trial = start                   ? solve_step(mesh_, op_, tau, kStartBeta, solver_, guesses)
