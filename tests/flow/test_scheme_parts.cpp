@@ -24,6 +24,11 @@ class DoubledArea final : public SurfaceEnergy {
 public:
   double value(const Mesh& mesh) const override { return 2 * area_.value(mesh); }
   Eigen::VectorXd first_variation(const SurfaceGeometry& g) const override { return 2 * area_.first_variation(g); }
+  FaceEnergy face_energy(const Eigen::Vector3d& a) const override
+  {
+    const FaceEnergy f = area_.face_energy(a);
+    return {2 * f.value, 2 * f.gradient, 2 * f.hessian};
+  }
   FlowSystem implicit_system(const FlowOperators& op, double tau_beta) const override
   {
     return area_.implicit_system(op, tau_beta);
@@ -39,6 +44,7 @@ public:
   double value(const Mesh& mesh) const override { return area_.value(mesh); }
   Eigen::VectorXd first_variation(const SurfaceGeometry& g) const override { return area_.first_variation(g); }
   FlowSystem implicit_system(const FlowOperators& op, double) const override { return area_.implicit_system(op, 0); }
+  FaceEnergy face_energy(const Eigen::Vector3d& a) const override { return area_.face_energy(a); }
 
 private:
   IsotropicEnergy area_{kCotangent.curvature};

@@ -28,6 +28,12 @@ public:
   //! isotropic system, on the same L, so its analysis and factor reuse are the isotropic ones.
   FlowSystem implicit_system(const FlowOperators& operators, double tau_beta) const override;
 
+  //! γ(a), ξ(a), D²γ(a) (anisotropy.h).
+  FaceEnergy face_energy(const Eigen::Vector3d& area_vector) const override
+  {
+    return {gamma_.value(area_vector), gamma_.gradient(area_vector), gamma_.hessian(area_vector)};
+  }
+
   const Anisotropy& anisotropy() const { return gamma_; }
   double stiffness() const { return stiffness_; } //!< s
 

@@ -21,4 +21,11 @@ FlowSystem IsotropicEnergy::implicit_system(const FlowOperators& op, double tau_
   return {op.laplacian, op.areas, op.held, tau_beta};
 }
 
+FaceEnergy IsotropicEnergy::face_energy(const Eigen::Vector3d& a) const
+{
+  const double length = a.norm();
+  const Eigen::Vector3d n = a / length;
+  return {length, n, (Eigen::Matrix3d::Identity() - n * n.transpose()) / length};
+}
+
 } // namespace sdflow

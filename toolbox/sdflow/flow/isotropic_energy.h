@@ -20,6 +20,8 @@ public:
   Eigen::VectorXd first_variation(const SurfaceGeometry& geometry) const override;
   //! M + τβ L M⁻¹ L with the operators' L, M and held vertices.
   FlowSystem implicit_system(const FlowOperators& operators, double tau_beta) const override;
+  //! |a|, n = a/|a| and (I − n nᵀ)/|a|.
+  FaceEnergy face_energy(const Eigen::Vector3d& area_vector) const override;
 
 private:
   CurvatureOptions curvature_;

@@ -21,8 +21,8 @@ struct ContactPoint {
   int vertex = 0;
   Eigen::Vector3d outward = Eigen::Vector3d::Zero();
   double half_chord = 0; //!< ℓ_b = |∂A_base/∂x_b|
-  double cos_angle = 0;  //!< ((∂A/∂x_b + 2 μ_b M_b N_b) · n̂_b) / ℓ_b
-  double stiffness = 0;  //!< k_b = n̂ᵀ ∂²A/∂x_b² n̂ / ℓ_b
+  double cos_angle = 0;  //!< ((∂E_h/∂x_b + 2 μ_b M_b N_b) · n̂_b) / ℓ_b (E_h the area for the isotropic energy)
+  double stiffness = 0;  //!< k_b = n̂ᵀ ∂²E_h/∂x_b² n̂ / ℓ_b
 };
 
 //! The contact points of every boundary loop, loop by loop. A boundary loop runs against its faces,
@@ -51,14 +51,15 @@ std::vector<ContactPoint> contact_points(const Mesh& mesh, const VertexVectors& 
           continue;
         const Eigen::Vector3d xp = x.row(mesh.to_vertex_handle(h).idx());
         const Eigen::Vector3d xq = x.row(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)).idx());
-        const Eigen::Vector3d edge = xq - xp, doubled_normal = (xp - xb).cross(xq - xb);
-        const double doubled_area = doubled_normal.norm();
-        if (!(doubled_area > 0))
+        const Eigen::Vector3d area_vector = 0.5 * (xp - xb).cross(xq - xb);
+        if (!(area_vector.norm() > 0))
           throw InvalidMesh(fmt::format("substrate: a degenerate triangle at contact-line vertex {}", p.vertex));
-        const Eigen::Vector3d normal = doubled_normal / doubled_area;
-        area_gradient += 0.5 * normal.cross(edge);
-        const double along = normal.dot(p.outward);
-        curvature += edge.squaredNorm() * along * along / (2 * doubled_area);
+        // a moves by ½ δ n̂ × (x_p − x_q) as b moves by δ n̂: E_f = γ(a) changes at ξ(a)·u, and is
+        // convex along n̂ with second derivative uᵀ D²γ(a) u (for the area, |e|² (n̂·N_f)² / (4 |f|)).
+        const FaceEnergy face = op.parts.energy->face_energy(area_vector);
+        const Eigen::Vector3d u = 0.5 * p.outward.cross(xp - xq);
+        area_gradient += 0.5 * (xp - xq).cross(face.gradient);
+        curvature += u.dot(face.hessian * u);
       }
       // Less the part of ∂A/∂x_b that the surface's curvature makes, −2 μ_b M_b N_b: it is balanced by
       // the pressure, not by the contact line (an exact cap then has cos θ_d = cos θ to O(h²)).

@@ -16,7 +16,9 @@
 //! edge e, whose second derivative along n̂ is (n̂·N_f)²/dist. A step never takes b past the
 //! minimum of W along n̂ of its linearisation, so the update is stable for every τ (η = ∞: that
 //! Newton step); adaptive steps are bounded by τ ≤ 1/(η max k_b) for it to stay accurate
-//! (tau_limit). The volume that rim motion sweeps is given back by one uniform normal offset of
+//! (tau_limit). With an anisotropic energy E_h = Σ_f γ(a_f) the same holds with A replaced by E_h
+//! (its face gradient ξ(a_f) and Hessian D²γ(a_f), SurfaceEnergy::face_energy) and cos θ_Y read
+//! as σ = γ_VS − γ_FS in γ's units: equilibria are Winterbottom shapes. The volume that rim motion sweeps is given back by one uniform normal offset of
 //! the component's interior (first order in the offset), so a step conserves the material volume
 //! (material_volume.h; its cap lies on the plane) to first order in τ.
 

@@ -23,6 +23,14 @@ struct SurfaceGeometry {
   const Eigen::VectorXd& areas;    //!< M (SchemeOptions::mass)
 };
 
+//! The energy of one face from its area vector a = ½ (x_j − x_i) × (x_k − x_i): γ(a), which is
+//! γ(n)|f| since γ is 1-homogeneous, with its gradient ξ(a) and Hessian D²γ(a) in a.
+struct FaceEnergy {
+  double value = 0;
+  Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
+};
+
 class SurfaceEnergy {
 public:
   virtual ~SurfaceEnergy() = default;
@@ -38,6 +46,9 @@ public:
   //! w gives V_N = -w; its right-hand side is `operators.rhs` = L μ. It must be symmetric positive
   //! definite for the Cholesky solver: the isotropic energy's is M + τβ L M⁻¹ L (docs/design.md §2).
   virtual FlowSystem implicit_system(const FlowOperators& operators, double tau_beta) const = 0;
+
+  //! γ, ξ and D²γ at a face's area vector a ≠ 0: what a contact line needs (substrate_boundary.h).
+  virtual FaceEnergy face_energy(const Eigen::Vector3d& area_vector) const = 0;
 };
 
 } // namespace sdflow
