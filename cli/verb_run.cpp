@@ -58,7 +58,8 @@ struct SchemaFlag {
     case ParameterType::integer: return integer;
     case ParameterType::real: return real;
     case ParameterType::boolean: return boolean;
-    case ParameterType::choice: return text;
+    case ParameterType::choice:
+    case ParameterType::text: return text;
     case ParameterType::path: return std::filesystem::path(text);
     case ParameterType::point: return Eigen::Vector3d(numbers.at(0), numbers.at(1), numbers.at(2));
     case ParameterType::reals: return numbers;
@@ -358,6 +359,9 @@ void add_schema_flags(CLI::App& verb, RunArguments& args)
       break;
     case ParameterType::choice:
       flag.option = verb.add_option(names, flag.text, help)->check(CLI::IsMember(e.choices));
+      break;
+    case ParameterType::text:
+      flag.option = verb.add_option(names, flag.text, help)->type_name("TEXT");
       break;
     case ParameterType::path:
     case ParameterType::schedule:

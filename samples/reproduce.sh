@@ -26,7 +26,8 @@ samples/make_meshes.sh "$sdflow"
 
 names=("$@")
 [[ ${#names[@]} -gt 0 ]] || names=(sphere_accuracy ellipsoid_relax ellipsoid_quarter_beta ellipsoid_explicit torus
-                                   dumbbell sintering spheres_on_plane compact_27 compact_100)
+                                   dumbbell sintering spheres_on_plane compact_27 compact_100
+                                   wulff_ellipsoid cubic_faceting anisotropic_dumbbell)
 index=0
 for name in "${names[@]}"; do
   index=$((index + 1))

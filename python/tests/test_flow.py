@@ -213,7 +213,8 @@ def test_numerical_failure_is_a_numerical_error_with_the_command_lines_message(c
 
 @pytest.mark.parametrize("key,value", [("beta", -1.0), ("curvature", "gauss"), ("mass", "lumped"),
                                        ("bogus", 1), ("steps", 1.5), ("adaptive", {"growth": "fast"}),
-                                       ("retriangulation", {"every": 0}), ("time_step", "sometimes")])
+                                       ("retriangulation", {"every": 0}), ("time_step", "sometimes"),
+                                       ("energy", {"kind": "formula", "formula": "1 - 0.9 * (nx^4 + ny^4 + nz^4)"})])
 def test_parameters_are_checked_with_the_scenario_readers_messages(cli, meshes, tmp_path, key, value):
     V, F = sdflow.read(meshes["ellipsoid"])
     with pytest.raises(sdflow.InvalidParameter) as e:

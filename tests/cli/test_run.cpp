@@ -168,6 +168,18 @@ TEST(RunCommand, energy_flags_and_rows_reach_run_toml_and_bad_g_exits_2_naming_t
   const auto ragged = analytic::run_sdflow(run + (dir / "ragged").string() + " " + (dir / "ragged.toml").string());
   EXPECT_EQ(ragged.exit_code, 2) << ragged.output;
   EXPECT_NE(ragged.output.find("ragged.toml:3: energy.g must be"), std::string::npos) << ragged.output;
+  // A formula reaches run.toml as a TOML string; one that is not convex exits 2 before step 1.
+  const auto formula = analytic::run_sdflow(run + (dir / "f").string() +
+                                            " --energy formula --energy-formula '1 + 0.05 * (nx^4 + ny^4 + nz^4)'");
+  ASSERT_EQ(formula.exit_code, 0) << formula.output;
+  EXPECT_NE(test::read_file(dir / "f/run.toml").find("formula = \"1 + 0.05 * (nx^4 + ny^4 + nz^4)\"\n"),
+            std::string::npos);
+  const auto concave = analytic::run_sdflow(run + (dir / "c").string() +
+                                            " --energy formula --energy-formula '1 - 0.9 * (nx^4 + ny^4 + nz^4)'");
+  EXPECT_EQ(concave.exit_code, 2) << concave.output;
+  EXPECT_NE(concave.output.find("energy.formula \"1 - 0.9 * (nx^4 + ny^4 + nz^4)\": γ is not convex"),
+            std::string::npos)
+      << concave.output;
 }
 
 TEST(RunCommand, substrate_flags_reach_run_toml_and_bad_values_exit_2_naming_the_key)

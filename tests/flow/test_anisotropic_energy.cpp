@@ -4,6 +4,7 @@
 #include "sdflow/flow/anisotropic_energy.h"
 #include "sdflow/flow/isotropic_energy.h"
 #include "sdflow/flow/scheme.h"
+#include "sdflow/geometry/form_sum_anisotropy.h"
 #include "sdflow/geometry/laplacian.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/normals.h"
@@ -40,7 +41,7 @@ Mesh irregular_mesh()
 TEST(AnisotropicEnergy, unit_g_is_the_area_and_the_cotangent_mean_curvature)
 {
   const Mesh mesh = irregular_mesh();
-  const AnisotropicEnergy unit(kUnit);
+  const AnisotropicEnergy unit(std::make_shared<const FormSumAnisotropy>(kUnit));
   const IsotropicEnergy area({.method = CurvatureMethod::cotangent});
   EXPECT_NEAR(unit.value(mesh), surface_area(mesh), 1e-13 * surface_area(mesh));
   const Eigen::VectorXd mu = test::first_variation(unit, mesh), h = test::first_variation(area, mesh);
@@ -56,7 +57,7 @@ TEST(AnisotropicEnergy, first_variation_is_the_derivative_of_the_value)
   const Eigen::VectorXd areas = mixed_voronoi_areas(mesh);
   for (const auto* terms : {&kEllipsoidal, &kCubicLike}) {
     SCOPED_TRACE(terms->size());
-    const AnisotropicEnergy energy(*terms);
+    const AnisotropicEnergy energy(std::make_shared<const FormSumAnisotropy>(*terms));
     test::expect_first_variation_is_the_derivative(energy, mesh, test::first_variation(energy, mesh), normals,
                                                    areas);
   }
@@ -72,7 +73,7 @@ TEST(AnisotropicEnergy, weighted_curvature_is_constant_on_the_wulff_shape_under_
   const Eigen::Vector3d g(1, 2, 3);
   constexpr double r = 0.7;
   const Eigen::Vector3d axes = r * g.cwiseSqrt();
-  const AnisotropicEnergy energy(kEllipsoidal);
+  const AnisotropicEnergy energy(std::make_shared<const FormSumAnisotropy>(kEllipsoidal));
   const IsotropicEnergy area({.method = CurvatureMethod::cotangent});
   std::vector<double> h, mean_errors;
   for (const int level : {2, 3, 4, 5}) {
@@ -106,6 +107,25 @@ TEST(AnisotropicEnergy, implicit_system_is_the_isotropic_one_with_tau_beta_times
   EXPECT_EQ(&system.laplacian, &op.laplacian);
   EXPECT_EQ(&system.areas, &op.areas);
   EXPECT_DOUBLE_EQ(system.tau_beta, 0.3 * energy->stiffness());
+}
+
+// energy.kind = "formula" goes through the same energy with ξ by differences: written out, the
+// cubic-like sum gives the exact form's μ to the differences' error, and the same stiffness.
+TEST(AnisotropicEnergy, a_formula_gives_the_weighted_curvature_of_the_form_it_writes_out)
+{
+  const Mesh mesh = irregular_mesh();
+  const SchemeOptions forms{.energy = {.kind = SurfaceEnergyKind::sum,
+                                       .g = {1, 1, 4, 0, 0, 0, 1, 1, 4, 90, 0, 0, 1, 1, 4, 0, 90, 0}}};
+  const SchemeOptions formula{
+      .energy = {.kind = SurfaceEnergyKind::formula,
+                 .formula = "sqrt(nx^2 + ny^2 + 4*nz^2) + sqrt(nx^2 + 4*ny^2 + nz^2) + sqrt(4*nx^2 + ny^2 + nz^2)"}};
+  const FlowOperators exact = flow_operators(mesh, forms), differenced = flow_operators(mesh, formula);
+  const Eigen::VectorXd mu = test::first_variation(*exact.parts.energy, mesh);
+  EXPECT_LT((test::first_variation(*differenced.parts.energy, mesh) - mu).lpNorm<Eigen::Infinity>(),
+            1e-8 * mu.lpNorm<Eigen::Infinity>());
+  EXPECT_NEAR(differenced.system(1).tau_beta, exact.system(1).tau_beta, 1e-5 * exact.system(1).tau_beta);
+  EXPECT_NEAR(differenced.parts.energy->value(mesh), exact.parts.energy->value(mesh),
+              1e-13 * exact.parts.energy->value(mesh));
 }
 
 } // namespace

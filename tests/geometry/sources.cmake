@@ -9,4 +9,5 @@ target_sources(sdflow_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/test_topology.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_quality.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_mesh_arrays.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/test_anisotropy.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/test_anisotropy.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_formula_anisotropy.cpp)

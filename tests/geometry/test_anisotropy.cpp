@@ -1,6 +1,6 @@
-//! The anisotropies γ(p) = Σ √(pᵀ G_l p) (anisotropy.h): gradient and Hessian against central
+//! The anisotropies γ(p) = Σ √(pᵀ G_l p) (form_sum_anisotropy.h): gradient and Hessian against central
 //! differences, 1-homogeneity, the area for G = I, rotations, and the stiffest tangent direction.
-#include "sdflow/geometry/anisotropy.h"
+#include "sdflow/geometry/form_sum_anisotropy.h"
 
 #include "sdflow/errors.h"
 
@@ -27,7 +27,7 @@ const std::vector<Eigen::Vector3d> kPoints{{0.3, -0.7, 0.5}, {-1.2, 0.1, 0.4}, {
 TEST(Anisotropy, gradient_and_hessian_match_central_differences)
 {
   for (const auto* terms : {&kEllipsoidal, &kCubicLike}) {
-    const Anisotropy gamma(*terms);
+    const FormSumAnisotropy gamma(*terms);
     for (const Eigen::Vector3d& p : kPoints) {
       SCOPED_TRACE(testing::Message() << "terms " << terms->size() << ", p = " << p.transpose());
       const Eigen::Vector3d xi = gamma.gradient(p);
@@ -45,7 +45,7 @@ TEST(Anisotropy, gradient_and_hessian_match_central_differences)
 
 TEST(Anisotropy, is_one_homogeneous_with_eulers_identity)
 {
-  const Anisotropy gamma(kCubicLike);
+  const FormSumAnisotropy gamma(kCubicLike);
   for (const Eigen::Vector3d& p : kPoints)
     for (const double scale : {1e-3, 0.5, 7.0, 1e4}) {
       SCOPED_TRACE(testing::Message() << "p = " << p.transpose() << ", λ = " << scale);
@@ -58,7 +58,7 @@ TEST(Anisotropy, is_one_homogeneous_with_eulers_identity)
 
 TEST(Anisotropy, unit_g_is_the_euclidean_norm)
 {
-  const Anisotropy gamma(std::vector<AnisotropyTerm>{{.g = {1, 1, 1}, .rotation_deg = {10, 20, 30}}});
+  const FormSumAnisotropy gamma(std::vector<AnisotropyTerm>{{.g = {1, 1, 1}, .rotation_deg = {10, 20, 30}}});
   for (const Eigen::Vector3d& p : kPoints) {
     EXPECT_NEAR(gamma.value(p), p.norm(), 1e-15 * p.norm());
     EXPECT_LT((gamma.gradient(p) - p.normalized()).norm(), 1e-15);
@@ -71,8 +71,8 @@ TEST(Anisotropy, unit_g_is_the_euclidean_norm)
 TEST(Anisotropy, a_rotation_turns_the_principal_axes)
 {
   // R_x(90°) takes y to z: G = R diag(1, 1, 4) Rᵀ = diag(1, 4, 1).
-  const Anisotropy rotated(std::vector<AnisotropyTerm>{{.g = {1, 1, 4}, .rotation_deg = {90, 0, 0}}});
-  const Anisotropy axis_aligned(std::vector<AnisotropyTerm>{{.g = {1, 4, 1}}});
+  const FormSumAnisotropy rotated(std::vector<AnisotropyTerm>{{.g = {1, 1, 4}, .rotation_deg = {90, 0, 0}}});
+  const FormSumAnisotropy axis_aligned(std::vector<AnisotropyTerm>{{.g = {1, 4, 1}}});
   for (const Eigen::Vector3d& p : kPoints)
     EXPECT_NEAR(rotated.value(p), axis_aligned.value(p), 1e-14 * p.norm());
 }
@@ -80,11 +80,11 @@ TEST(Anisotropy, a_rotation_turns_the_principal_axes)
 // For γ = √(pᵀGp) at n = e₁ the tangent block of D²γ = G − G e₁ e₁ᵀ G / g₁ is diag(g₂, g₃)/√g₁.
 TEST(Anisotropy, tangent_stiffness_at_an_axis_and_its_maximum_against_a_fine_sampling)
 {
-  const Anisotropy gamma(std::vector<AnisotropyTerm>{{.g = {1, 1, 4}}});
+  const FormSumAnisotropy gamma(std::vector<AnisotropyTerm>{{.g = {1, 1, 4}}});
   EXPECT_NEAR(gamma.tangent_stiffness(Eigen::Vector3d::UnitX()), 4, 1e-14);
   EXPECT_NEAR(gamma.tangent_stiffness(Eigen::Vector3d::UnitZ()), 0.5, 1e-14);
   for (const auto* terms : {&kEllipsoidal, &kCubicLike}) {
-    const Anisotropy form(*terms);
+    const FormSumAnisotropy form(*terms);
     // An independent search: a latitude-longitude grid of 4·10⁵ directions.
     double grid_max = 0;
     constexpr int kRows = 400, kColumns = 1000;
@@ -105,9 +105,9 @@ TEST(Anisotropy, refuses_non_positive_or_non_finite_g)
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const Eigen::Vector3d& g : {Eigen::Vector3d(1, 0, 1), Eigen::Vector3d(-1, 1, 1), Eigen::Vector3d(1, nan, 1),
                                    Eigen::Vector3d(1, 1, std::numeric_limits<double>::infinity())})
-    EXPECT_THROW(Anisotropy(std::vector<AnisotropyTerm>{{.g = g}}), InvalidParameter) << g.transpose();
-  EXPECT_THROW(Anisotropy(std::vector<AnisotropyTerm>{{.rotation_deg = {0, nan, 0}}}), InvalidParameter);
-  EXPECT_THROW(Anisotropy(std::vector<AnisotropyTerm>{}), InvalidParameter);
+    EXPECT_THROW(FormSumAnisotropy(std::vector<AnisotropyTerm>{{.g = g}}), InvalidParameter) << g.transpose();
+  EXPECT_THROW(FormSumAnisotropy(std::vector<AnisotropyTerm>{{.rotation_deg = {0, nan, 0}}}), InvalidParameter);
+  EXPECT_THROW(FormSumAnisotropy(std::vector<AnisotropyTerm>{}), InvalidParameter);
 }
 
 } // namespace

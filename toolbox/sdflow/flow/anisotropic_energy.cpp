@@ -2,10 +2,12 @@
 
 #include "sdflow/flow/scheme.h"
 
+#include <utility>
+
 namespace sdflow {
 
-AnisotropicEnergy::AnisotropicEnergy(std::span<const AnisotropyTerm> terms)
-    : gamma_(terms), stiffness_(gamma_.max_tangent_stiffness())
+AnisotropicEnergy::AnisotropicEnergy(std::shared_ptr<const Anisotropy> gamma)
+    : gamma_(std::move(gamma)), stiffness_(gamma_->max_tangent_stiffness())
 {
 }
 
@@ -16,7 +18,7 @@ double AnisotropicEnergy::value(const Mesh& mesh) const
   double energy = 0;
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     const Eigen::Vector3d xi = x.row(faces(f, 0)), xj = x.row(faces(f, 1)), xk = x.row(faces(f, 2));
-    energy += gamma_.value(0.5 * (xj - xi).cross(xk - xi));
+    energy += gamma_->value(0.5 * (xj - xi).cross(xk - xi));
   }
   return energy;
 }
@@ -32,7 +34,7 @@ Eigen::VectorXd AnisotropicEnergy::first_variation(const SurfaceGeometry& g) con
     const Eigen::Vector3d area_vector = 0.5 * (corner[1] - corner[0]).cross(corner[2] - corner[0]);
     if (area_vector.squaredNorm() == 0)
       continue; // a face of zero area: ξ has no direction, and the Voronoi areas refuse the mesh anyway
-    const Eigen::Vector3d xi = gamma_.gradient(area_vector);
+    const Eigen::Vector3d xi = gamma_->gradient(area_vector);
     // ∂γ(a)/∂x_i = ½ (x_j − x_k) × ξ(a) for the cyclic order (i, j, k): the derivative of
     // a = ½ (x_i × x_j + x_j × x_k + x_k × x_i) along δx_i is ½ δx_i × (x_j − x_k).
     for (int k = 0; k < 3; ++k)

@@ -1,19 +1,20 @@
 #pragma once
 //! \file anisotropic_energy.h
-//! \brief The anisotropic surface energy E = ∫ γ(n) dA for γ = Σ_l √(nᵀ G_l n) (anisotropy.h,
-//! Barrett, Garcke, Nürnberg 2008): μ is the weighted mean curvature, the exact derivative of the
+//! \brief The anisotropic surface energy E = ∫ γ(n) dA for a convex γ (anisotropy.h: Barrett, Garcke
+//! and Nürnberg's forms, or a formula): μ is the weighted mean curvature, the exact derivative of the
 //! discrete energy; the implicit system is the isotropic one with τβ scaled by the stiffness s of
 //! γ, which keeps every linear mode stable for β ≥ ½ (docs/method.md, "Anisotropic surface energy").
 
 #include "sdflow/flow/surface_energy.h"
 #include "sdflow/geometry/anisotropy.h"
 
+#include <memory>
+
 namespace sdflow {
 
 class AnisotropicEnergy final : public SurfaceEnergy {
 public:
-  //! Throws InvalidParameter on a term that is not a positive definite form (Anisotropy).
-  explicit AnisotropicEnergy(std::span<const AnisotropyTerm> terms);
+  explicit AnisotropicEnergy(std::shared_ptr<const Anisotropy> gamma);
 
   //! E_h = Σ_f γ(a_f) with a_f = ½ (x_j − x_i) × (x_k − x_i) the area vector of face f = (i, j, k),
   //! which is γ(n_f) |f| since γ is 1-homogeneous.
@@ -31,14 +32,14 @@ public:
   //! γ(a), ξ(a), D²γ(a) (anisotropy.h).
   FaceEnergy face_energy(const Eigen::Vector3d& area_vector) const override
   {
-    return {gamma_.value(area_vector), gamma_.gradient(area_vector), gamma_.hessian(area_vector)};
+    return {gamma_->value(area_vector), gamma_->gradient(area_vector), gamma_->hessian(area_vector)};
   }
 
-  const Anisotropy& anisotropy() const { return gamma_; }
+  const Anisotropy& anisotropy() const { return *gamma_; }
   double stiffness() const { return stiffness_; } //!< s
 
 private:
-  Anisotropy gamma_;
+  std::shared_ptr<const Anisotropy> gamma_;
   double stiffness_;
 };
 

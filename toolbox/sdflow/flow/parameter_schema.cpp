@@ -44,6 +44,28 @@ std::string quoted(const std::string& s)
   return out.str();
 }
 
+//! `s` as a TOML basic string: in double quotes, with quotes, backslashes and control characters escaped
+//! (toml++ would print a plain name as a literal string, 'name', changing run.toml's bytes).
+std::string basic_string(const std::string& s)
+{
+  std::string out = "\"";
+  for (const char c : s) {
+    switch (c) {
+    case '"': out += "\\\""; break;
+    case '\\': out += "\\\\"; break;
+    case '\n': out += "\\n"; break;
+    case '\t': out += "\\t"; break;
+    case '\r': out += "\\r"; break;
+    default:
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+        out += fmt::format("\\u{:04X}", static_cast<unsigned char>(c));
+      else
+        out += c;
+    }
+  }
+  return out + "\"";
+}
+
 //! Levenshtein distance, for suggestions.
 std::size_t edit_distance(const std::string& a, const std::string& b)
 {
@@ -75,6 +97,7 @@ std::string type_name(ParameterType type)
   case ParameterType::point: return "point";
   case ParameterType::schedule: return "schedule";
   case ParameterType::reals: return "reals";
+  case ParameterType::text: return "text";
   }
   return "?";
 }
@@ -194,7 +217,7 @@ std::string toml_text(const ParameterValue& value)
         } else if constexpr (std::is_same_v<T, bool>) {
           return v ? "true" : "false";
         } else if constexpr (std::is_same_v<T, std::string>) {
-          return fmt::format("\"{}\"", v); // a choice's name: letters and underscores
+          return basic_string(v); // a choice's name or a text
         } else if constexpr (std::is_same_v<T, std::filesystem::path>) {
           return quoted(std::filesystem::absolute(v).lexically_normal().string());
         } else if constexpr (std::is_same_v<T, Eigen::Vector3d>) {

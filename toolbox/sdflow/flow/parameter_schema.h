@@ -48,9 +48,10 @@ enum class ParameterType {
   point,    //!< three reals, [x, y, z] (flag: x,y,z)
   schedule, //!< a τ table: a file (CSV or TOML) or, in a scenario, an inline [[first, last, τ], ...]
   reals,    //!< a list of reals, [a, b, ...] or rows of equal length [[a, b], [c, d]] read in order (flag: a,b,...)
+  text,     //!< free text in quotes, e.g. a formula
 };
 
-//! "integer", "real", "boolean", "choice", "path", "point", "schedule", "reals".
+//! "integer", "real", "boolean", "choice", "path", "point", "schedule", "reals", "text".
 std::string type_name(ParameterType type);
 
 //! The allowed values of a number: min and max, each end open or closed; infinite values only

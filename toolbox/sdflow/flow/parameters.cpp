@@ -40,6 +40,7 @@ const char* expected(ParameterType type)
   case ParameterType::point: return "[x, y, z]";
   case ParameterType::schedule: return "a file name in quotes or [[first_step, last_step, tau], ...]";
   case ParameterType::reals: return "[a, b, ...] or rows [[a, b, ...], ...]";
+  case ParameterType::text: return "a text in quotes";
   }
   return "?";
 }
@@ -121,6 +122,10 @@ ParameterValue toml_value(const std::filesystem::path& file, const toml::node& n
       return *node.value<std::string>();
     if (node.is_boolean() && entry.meshlab.boolean_choices) // as the dialog's boolean, and older keys, give it
       return *node.value<bool>() ? entry.meshlab.boolean_choices->second : entry.meshlab.boolean_choices->first;
+    return wrong_type();
+  case ParameterType::text:
+    if (node.is_string())
+      return *node.value<std::string>();
     return wrong_type();
   case ParameterType::path:
     if (node.is_string())
@@ -286,7 +291,7 @@ void validate_flow_parameters(const RunParameters& p)
     if (!e.in_use || e.in_use(p))
       check_range(e, e.get(p));
   if (p.scheme.energy.kind != SurfaceEnergyKind::isotropic) {
-    anisotropy_terms(p.scheme.energy); // the count and values of energy.g for the kind
+    make_anisotropy(p.scheme.energy); // energy.g's count and values for the kind, or a convex formula
     if (p.scheme.curvature.method != CurvatureMethod::cotangent)
       throw InvalidParameter(fmt::format("curvature = \"{}\" chooses how the isotropic energy's H is computed; "
                                          "energy.kind = \"{}\" has a weighted curvature of its own: leave "

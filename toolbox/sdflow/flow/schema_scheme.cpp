@@ -184,9 +184,9 @@ void add_energy_entries(std::vector<ParameterEntry>& s)
   {
     auto& e = add(s, entry("energy.kind", "--energy", ParameterType::choice,
                            "Surface energy ∫ γ(n) dA: `isotropic` (γ = 1, the area: the paper's flow), `ellipsoidal` "
-                           "(γ = √(g1 n1² + g2 n2² + g3 n3²), Wulff shape the ellipsoid of semi-axes ∝ √g) or `sum` "
-                           "(of rotated ellipsoidal terms: cubic-like anisotropies)"));
-    e.choices = {"isotropic", "ellipsoidal", "sum"};
+                           "(γ = √(g1 n1² + g2 n2² + g3 n3²), Wulff shape the ellipsoid of semi-axes ∝ √g), `sum` "
+                           "(of rotated ellipsoidal terms: cubic-like anisotropies) or `formula` (`energy.formula`)"));
+    e.choices = {"isotropic", "ellipsoidal", "sum", "formula"};
     e.get = [](const RunParameters& p) -> ParameterValue { return surface_energy_name(p.scheme.energy.kind); };
     e.set = [](RunParameters& p, const ParameterValue& v) {
       p.scheme.energy.kind = surface_energy_kind(std::get<std::string>(v));
@@ -199,7 +199,17 @@ void add_energy_entries(std::vector<ParameterEntry>& s)
                            "[[g1, g2, g3, rx, ry, rz], ...], the term √(nᵀ R diag(g) Rᵀ n) with R = Rz·Ry·Rx by the "
                            "angles in degrees (flag: the numbers in one comma-separated list)"));
     bind<std::vector<double>>(e, &RunParameters::scheme, &SchemeOptions::energy, &SurfaceEnergyOptions::g);
-    e.in_use = [](const RunParameters& p) { return p.scheme.energy.kind != SurfaceEnergyKind::isotropic; };
+    e.in_use = [](const RunParameters& p) {
+      return p.scheme.energy.kind == SurfaceEnergyKind::ellipsoidal || p.scheme.energy.kind == SurfaceEnergyKind::sum;
+    };
+  }
+  {
+    auto& e = add(s, entry("energy.formula", "--energy-formula", ParameterType::text,
+                           "γ(nx, ny, nz) for `formula`, in muparser syntax on unit normals, e.g. "
+                           "\"1 + 0.05 * (nx^4 + ny^4 + nz^4)\"; it must be positive and convex (checked on 2000 "
+                           "directions), its derivatives are taken by differences"));
+    bind<std::string>(e, &RunParameters::scheme, &SchemeOptions::energy, &SurfaceEnergyOptions::formula);
+    e.in_use = [](const RunParameters& p) { return p.scheme.energy.kind == SurfaceEnergyKind::formula; };
   }
 }
 

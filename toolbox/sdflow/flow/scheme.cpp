@@ -18,7 +18,7 @@ SchemeParts scheme_parts(const SchemeOptions& options)
   if (options.energy.kind == SurfaceEnergyKind::isotropic)
     energy = std::make_shared<const IsotropicEnergy>(options.curvature);
   else
-    energy = std::make_shared<const AnisotropicEnergy>(anisotropy_terms(options.energy));
+    energy = std::make_shared<const AnisotropicEnergy>(make_anisotropy(options.energy));
   return {std::move(energy), flow_boundary(options.boundary, options.substrate)};
 }
 

@@ -59,7 +59,7 @@ struct SchemeParts {
 };
 
 //! The parts `options` select: the isotropic energy with its `curvature`, or the anisotropic one of
-//! its `energy` (InvalidParameter on bad numbers, anisotropy_terms), and its `boundary`.
+//! its `energy` (InvalidParameter on bad numbers or formulas, make_anisotropy), and its `boundary`.
 SchemeParts scheme_parts(const SchemeOptions& options);
 
 //! A volume-gradient area below this fraction of the Voronoi area marks a folded star.

@@ -1,6 +1,7 @@
 #include "sdflow/flow/surface_energy_options.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/geometry/formula_anisotropy.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -15,17 +16,19 @@ std::string surface_energy_name(SurfaceEnergyKind kind)
   case SurfaceEnergyKind::isotropic: return "isotropic";
   case SurfaceEnergyKind::ellipsoidal: return "ellipsoidal";
   case SurfaceEnergyKind::sum: return "sum";
+  case SurfaceEnergyKind::formula: return "formula";
   }
   return "?";
 }
 
 SurfaceEnergyKind surface_energy_kind(const std::string& name)
 {
-  for (const SurfaceEnergyKind kind : {SurfaceEnergyKind::isotropic, SurfaceEnergyKind::ellipsoidal, SurfaceEnergyKind::sum})
+  for (const SurfaceEnergyKind kind : {SurfaceEnergyKind::isotropic, SurfaceEnergyKind::ellipsoidal,
+                                       SurfaceEnergyKind::sum, SurfaceEnergyKind::formula})
     if (name == surface_energy_name(kind))
       return kind;
   throw InvalidParameter(
-      fmt::format("energy.kind must be \"isotropic\", \"ellipsoidal\" or \"sum\", got \"{}\"", name));
+      fmt::format("energy.kind must be \"isotropic\", \"ellipsoidal\", \"sum\" or \"formula\", got \"{}\"", name));
 }
 
 std::vector<AnisotropyTerm> anisotropy_terms(const SurfaceEnergyOptions& options)
@@ -37,7 +40,8 @@ std::vector<AnisotropyTerm> anisotropy_terms(const SurfaceEnergyOptions& options
   std::vector<AnisotropyTerm> terms;
   switch (options.kind) {
   case SurfaceEnergyKind::isotropic:
-    throw InvalidParameter("energy.kind = \"isotropic\" has no anisotropy terms");
+  case SurfaceEnergyKind::formula:
+    throw InvalidParameter(fmt::format("energy.kind = \"{}\" has no anisotropy terms", surface_energy_name(options.kind)));
   case SurfaceEnergyKind::ellipsoidal:
     if (g.size() != 3)
       throw bad(fmt::format("an ellipsoidal γ takes three numbers g1, g2, g3, got {}", g.size()));
@@ -58,6 +62,13 @@ std::vector<AnisotropyTerm> anisotropy_terms(const SurfaceEnergyOptions& options
         throw bad(fmt::format("term {}'s rotation angle {} is not finite", l + 1, terms[l].rotation_deg[k]));
     }
   return terms;
+}
+
+std::shared_ptr<const Anisotropy> make_anisotropy(const SurfaceEnergyOptions& options)
+{
+  if (options.kind == SurfaceEnergyKind::formula)
+    return std::make_shared<const FormulaAnisotropy>(options.formula);
+  return std::make_shared<const FormSumAnisotropy>(anisotropy_terms(options));
 }
 
 } // namespace sdflow

@@ -1,10 +1,5 @@
 #include "sdflow/geometry/anisotropy.h"
 
-#include "sdflow/errors.h"
-
-#include <Eigen/Geometry>
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -21,7 +16,18 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> tangent_frame(const Eigen::Vector3d&
   return {t1, n.cross(t1)};
 }
 
-//! Directions of the Fibonacci lattice on the unit sphere (Swinbank and Purser 2006).
+//! The two eigenvalues of D²γ(n) restricted to the tangent plane of n, largest first.
+std::pair<double, double> tangent_eigenvalues(const Anisotropy& gamma, const Eigen::Vector3d& n)
+{
+  const auto [t1, t2] = tangent_frame(n);
+  const Eigen::Matrix3d H = gamma.hessian(n);
+  const double a = t1.dot(H * t1), b = t1.dot(H * t2), c = t2.dot(H * t2);
+  const double radius = std::hypot((a - c) / 2, b);
+  return {(a + c) / 2 + radius, (a + c) / 2 - radius};
+}
+
+} // namespace
+
 std::vector<Eigen::Vector3d> fibonacci_directions(int count)
 {
   std::vector<Eigen::Vector3d> directions;
@@ -35,70 +41,11 @@ std::vector<Eigen::Vector3d> fibonacci_directions(int count)
   return directions;
 }
 
-} // namespace
+double Anisotropy::tangent_stiffness(const Eigen::Vector3d& n) const { return tangent_eigenvalues(*this, n).first; }
 
-Eigen::Matrix3d rotation_from_degrees(const Eigen::Vector3d& rotation_deg)
+double Anisotropy::least_tangent_stiffness(const Eigen::Vector3d& n) const
 {
-  const Eigen::Vector3d r = rotation_deg * (std::numbers::pi / 180);
-  return (Eigen::AngleAxisd(r.z(), Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(r.y(), Eigen::Vector3d::UnitY()) *
-          Eigen::AngleAxisd(r.x(), Eigen::Vector3d::UnitX()))
-      .toRotationMatrix();
-}
-
-Anisotropy::Anisotropy(std::span<const AnisotropyTerm> terms)
-{
-  if (terms.empty())
-    throw InvalidParameter("anisotropy: γ needs at least one term");
-  for (std::size_t l = 0; l < terms.size(); ++l) {
-    const AnisotropyTerm& t = terms[l];
-    for (int k = 0; k < 3; ++k) {
-      if (!std::isfinite(t.g[k]) || !(t.g[k] > 0))
-        throw InvalidParameter(fmt::format("anisotropy: term {} has g{} = {}; every g must be finite and > 0",
-                                           l + 1, k + 1, t.g[k]));
-      if (!std::isfinite(t.rotation_deg[k]))
-        throw InvalidParameter(fmt::format("anisotropy: term {} has a rotation angle {} that is not finite", l + 1,
-                                           t.rotation_deg[k]));
-    }
-    const Eigen::Matrix3d rotation = rotation_from_degrees(t.rotation_deg);
-    matrices_.push_back(rotation * t.g.asDiagonal() * rotation.transpose());
-  }
-}
-
-double Anisotropy::value(const Eigen::Vector3d& p) const
-{
-  double gamma = 0;
-  for (const Eigen::Matrix3d& G : matrices_)
-    gamma += std::sqrt(p.dot(G * p));
-  return gamma;
-}
-
-Eigen::Vector3d Anisotropy::gradient(const Eigen::Vector3d& p) const
-{
-  Eigen::Vector3d xi = Eigen::Vector3d::Zero();
-  for (const Eigen::Matrix3d& G : matrices_) {
-    const Eigen::Vector3d Gp = G * p;
-    xi += Gp / std::sqrt(p.dot(Gp));
-  }
-  return xi;
-}
-
-Eigen::Matrix3d Anisotropy::hessian(const Eigen::Vector3d& p) const
-{
-  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
-  for (const Eigen::Matrix3d& G : matrices_) {
-    const Eigen::Vector3d Gp = G * p;
-    const double q = p.dot(Gp);
-    hessian += (G - Gp * Gp.transpose() / q) / std::sqrt(q);
-  }
-  return hessian;
-}
-
-double Anisotropy::tangent_stiffness(const Eigen::Vector3d& n) const
-{
-  const auto [t1, t2] = tangent_frame(n);
-  const Eigen::Matrix3d H = hessian(n);
-  const double a = t1.dot(H * t1), b = t1.dot(H * t2), c = t2.dot(H * t2);
-  return (a + c) / 2 + std::hypot((a - c) / 2, b);
+  return tangent_eigenvalues(*this, n).second;
 }
 
 double Anisotropy::max_tangent_stiffness() const

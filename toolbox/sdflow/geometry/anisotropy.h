@@ -1,53 +1,40 @@
 #pragma once
 //! \file anisotropy.h
-//! \brief Anisotropic surface energy densities γ(p) = Σ_l √(pᵀ G_l p), G_l symmetric positive
-//! definite: the class of Barrett, Garcke and Nürnberg (J. Comput. Phys. 227, 2008), for which
-//! docs/method.md ("Anisotropic surface energy") gives the flow. γ is convex and 1-homogeneous,
-//! γ(λp) = λγ(p) for λ > 0, so its gradient ξ = ∇γ (the Cahn–Hoffman vector) is 0-homogeneous and
-//! its Hessian D²γ is (-1)-homogeneous with D²γ(p) p = 0. For G = I, γ = |p|: the area.
+//! \brief An anisotropic surface energy density γ(p), convex and 1-homogeneous (γ(λp) = λγ(p) for
+//! λ > 0), with its gradient ξ = ∇γ (the Cahn–Hoffman vector, 0-homogeneous) and Hessian D²γ
+//! ((-1)-homogeneous, D²γ(p) p = 0): what the anisotropic flow needs (docs/method.md, "Anisotropic
+//! surface energy"). Two forms implement it: the sums of quadratic-form roots of Barrett, Garcke and
+//! Nürnberg (form_sum_anisotropy.h) and a user formula (formula_anisotropy.h).
 
 #include <Eigen/Core>
 
-#include <span>
 #include <vector>
 
 namespace sdflow {
 
-//! One term √(pᵀ G p) with G = R diag(g) Rᵀ: the axes of the rotation R = R_z(r_z) R_y(r_y) R_x(r_x)
-//! (about the fixed axes, x first) are its principal directions.
-struct AnisotropyTerm {
-  Eigen::Vector3d g = Eigen::Vector3d::Ones();             //!< the eigenvalues of G, all > 0
-  Eigen::Vector3d rotation_deg = Eigen::Vector3d::Zero();  //!< (r_x, r_y, r_z) in degrees
-};
-
-//! γ(p) = Σ_l √(pᵀ G_l p) with its gradient and Hessian, exact (no differences).
 class Anisotropy {
 public:
-  //! Throws InvalidParameter when there is no term or a g is not finite and > 0, or an angle not finite.
-  explicit Anisotropy(std::span<const AnisotropyTerm> terms);
+  virtual ~Anisotropy() = default;
 
-  double value(const Eigen::Vector3d& p) const;               //!< γ(p); p ≠ 0
-  Eigen::Vector3d gradient(const Eigen::Vector3d& p) const;   //!< ξ(p) = Σ_l G_l p / √(pᵀ G_l p)
-  //! D²γ(p) = Σ_l (G_l − G_l p pᵀ G_l / (pᵀ G_l p)) / √(pᵀ G_l p)
-  Eigen::Matrix3d hessian(const Eigen::Vector3d& p) const;
+  virtual double value(const Eigen::Vector3d& p) const = 0;             //!< γ(p); p ≠ 0
+  virtual Eigen::Vector3d gradient(const Eigen::Vector3d& p) const = 0; //!< ξ(p) = ∇γ(p)
+  virtual Eigen::Matrix3d hessian(const Eigen::Vector3d& p) const = 0;  //!< D²γ(p)
 
   //! The largest eigenvalue of D²γ(n) on the tangent plane of the unit vector n: the stiffness of
   //! the weighted curvature's linearisation ½ div_s(D²γ ∇_s u) in its stiffest direction at n.
   double tangent_stiffness(const Eigen::Vector3d& n) const;
 
+  //! The smallest eigenvalue of D²γ(n) on the tangent plane of the unit vector n: negative where
+  //! γ is not convex (its Wulff shape would have a corner or a missing orientation there).
+  double least_tangent_stiffness(const Eigen::Vector3d& n) const;
+
   //! s = max over unit n of tangent_stiffness(n) (1 for the area), the factor the anisotropic
   //! energy scales the scheme's implicit term by. Found by sampling 2000 directions (a Fibonacci
   //! lattice) and refining the 8 best by a compass search on the sphere down to steps of 10⁻⁹ rad.
   double max_tangent_stiffness() const;
-
-  //! The matrices G_l.
-  const std::vector<Eigen::Matrix3d>& matrices() const { return matrices_; }
-
-private:
-  std::vector<Eigen::Matrix3d> matrices_;
 };
 
-//! R_z(r_z) R_y(r_y) R_x(r_x) for `rotation_deg` = (r_x, r_y, r_z) in degrees.
-Eigen::Matrix3d rotation_from_degrees(const Eigen::Vector3d& rotation_deg);
+//! `count` nearly uniform unit directions: the Fibonacci lattice (Swinbank and Purser 2006).
+std::vector<Eigen::Vector3d> fibonacci_directions(int count);
 
 } // namespace sdflow

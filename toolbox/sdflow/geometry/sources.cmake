@@ -9,4 +9,6 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/geometry/material_volume.cpp
   sdflow/geometry/quality.cpp
   sdflow/geometry/topology.cpp
-  sdflow/geometry/anisotropy.cpp)
+  sdflow/geometry/anisotropy.cpp
+  sdflow/geometry/form_sum_anisotropy.cpp
+  sdflow/geometry/formula_anisotropy.cpp)
