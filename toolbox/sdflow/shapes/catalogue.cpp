@@ -257,9 +257,9 @@ ImplicitSurface cuboid_island_shape(const CuboidIslandParameters& parameters)
   const auto excess = [inner](const Eigen::Vector3d& p) { return Eigen::Vector3d(p.cwiseAbs() - inner); };
   ImplicitSurface s;
   s.name = std::string(name);
-  s.value = [excess, r](const Eigen::Vector3d& p) {
+  s.value = [excess, radius = r](const Eigen::Vector3d& p) { // a structured binding is named by an init-capture (C++20)
     const Eigen::Vector3d q = excess(p);
-    return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0) - r;
+    return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0) - radius;
   };
   s.gradient = [excess](const Eigen::Vector3d& p) {
     const Eigen::Vector3d q = excess(p), outside = q.cwiseMax(0.0);
