@@ -1,17 +1,17 @@
 //! libFuzzer harness: two steps of `sdflow run` with its defaults (re-triangulation on) on a small
-//! mesh read from OFF text, after the checks `run` makes before step 1 (check_span,
-//! check_crossings, check_retriangulation_input). A refusal with a reason (an sdflow::Error) is fine, and so is a
-//! SolverFailure of the flow itself. Findings, besides a crash, a sanitizer report or another
-//! exception: a failure from inside the re-triangulation (a message from a stage, which no user
-//! should see) and a surface after the steps with a zero-area or non-finite face. Inputs above
-//! `max_vertices` are skipped, which keeps each under about a second; libFuzzer's -timeout catches
-//! a slow one (scripts/fuzz.sh).
+//! mesh read from OFF text, after what `run` does before step 1 (check_run_input, flow/run_input.h:
+//! the checks, and the exact refinement of a surface too coarse for the default ℓ). A refusal with
+//! a reason (an sdflow::Error) is fine, and so is a SolverFailure of the flow itself. Findings,
+//! besides a crash, a sanitizer report or another exception: a failure from inside the
+//! re-triangulation (a message from a stage, which no user should see) and a surface after the
+//! steps with a zero-area or non-finite face. Inputs above `max_vertices`, or refined by `run`
+//! beyond `max_refined_vertices`, are skipped, which keeps each under about a second; libFuzzer's
+//! -timeout catches a slow one (scripts/fuzz.sh).
 #include "fuzz_common.h"
 
-#include "sdflow/check/span.h"
 #include "sdflow/flow/parameters.h"
+#include "sdflow/flow/run_input.h"
 #include "sdflow/flow/surface_diffusion.h"
-#include "sdflow/retri/input_checks.h"
 
 #include <tbb/global_control.h>
 
@@ -23,6 +23,7 @@
 namespace {
 
 constexpr std::size_t max_vertices = 400;
+constexpr std::size_t max_refined_vertices = 2000;
 
 [[noreturn]] void finding(const std::string& what)
 {
@@ -51,13 +52,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   sdflow::RunParameters parameters;
   parameters.steps = 2;
   try {
-    sdflow::check_span(mesh, "fuzz.off");
-    sdflow::check_crossings(mesh, "fuzz.off");
-    sdflow::check_retriangulation_input(mesh, parameters.retriangulation.pipeline, "fuzz.off");
     sdflow::validate_run_parameters(parameters);
+    sdflow::check_run_input(mesh, parameters, "fuzz.off", sdflow::FrontEnd::command_line,
+                            sdflow::run_input_limits(sdflow::FrontEnd::command_line, false));
   } catch (const sdflow::Error&) {
     return 0; // refused up front, as `run` refuses it
   }
+  if (mesh.n_vertices() > max_refined_vertices)
+    return 0; // refined by `run` beyond what two steps take in about a second
   std::optional<sdflow::SurfaceDiffusion> made;
   try {
     made.emplace(mesh, parameters);

@@ -235,7 +235,7 @@ ShadedSurface surface_diffusion(const Surface& input, const std::string& name, c
   const LoggerScope scope(reporter);
   // The same flow as `sdflow run` with the same options, in memory.
   const RunParameters p = run_parameters(settings);
-  const Mesh initial = checked_mesh(input, name);
+  Mesh initial = checked_mesh(input, name);
   check_run_input(initial, p, name, FrontEnd::meshlab, run_input_limits(FrontEnd::meshlab, false));
   SurfaceDiffusion flow(initial, p);
   while (!flow.finished()) {

@@ -3,6 +3,7 @@
 //! validation for every verb, and messages in the user's terms for what used to fail inside a stage.
 #include "io/temp_dir.h"
 #include "support/json_query.h"
+#include "sdflow/geometry/measures.h"
 #include "sdflow/io/io.h"
 #include "support/analytic_meshes.h"
 #include "support/run_command.h"
@@ -219,21 +220,37 @@ TEST_F(HardeningSecond, a_component_that_crosses_itself_is_refused_before_step_1
   EXPECT_EQ(joined.exit_code, 0) << joined.err;
 }
 
-// A mesh too coarse for the re-triangulation ("nearest_neighbours: k = 18 is not in [2, 11]",
-// "re-triangulation: nothing is left ...") is refused before step 1 with what to do, and what it
-// says to do works.
-TEST_F(HardeningSecond, a_surface_too_coarse_to_retriangulate_is_refused_with_the_edge_length_that_works)
+// A mesh too coarse for the re-triangulation at its mean edge length ("nearest_neighbours: k = 18
+// is not in [2, 11]", "re-triangulation: nothing is left ...") is refined by `run` itself when no
+// ℓ is given, saying so. With that ℓ given it is refused before step 1 (exit 2), and a small body
+// beside a large one with what to do, and what it says to do works.
+TEST_F(HardeningSecond, a_surface_too_coarse_to_retriangulate_is_refined_or_refused_with_the_edge_length_that_works)
 {
-  const auto r = run_sdflow("run --input " + path("icosahedron.off") + " --out " + path("ico") + " --steps 2");
+  const auto refined = run_sdflow("run --input " + path("icosahedron.off") + " --out " + path("ico_refined") +
+                                  " --steps 2");
+  EXPECT_EQ(refined.exit_code, 0) << refined.output;
+  expect_mentions(refined.output, "icosahedron.off: the surface (12 vertices) is too coarse to re-triangulate at its "
+                                  "mean edge length 1.05: refined it, unchanged in shape, to ");
+  expect_mentions(refined.output, "give --edge-length to choose another ℓ");
+  const auto given = run_sdflow("run --input " + path("icosahedron.off") + " --out " + path("ico") +
+                                " --steps 2 --edge-length 1.05");
+  EXPECT_EQ(given.exit_code, 2) << given.output;
+  expect_mentions(given.output, "fewer than the 20 it needs");
+  EXPECT_FALSE(fs::exists(dir / "ico" / "metrics.csv"));
+  const Mesh scene =
+      analytic::disjoint_union(analytic::icosphere(3), analytic::icosphere(0, 0.1, Eigen::Vector3d(5, 0, 0)));
+  write_mesh(scene, dir / "scene.ply", {.encoding = Encoding::binary});
+  const auto r = run_sdflow("run --input " + path("scene.ply") + " --out " + path("scene") + " --steps 2 --edge-length " +
+                            fmt::format("{}", mean_edge_length(scene)));
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  expect_mentions(r.output, "too coarse to re-triangulate");
+  expect_mentions(r.output, "component 1 (area 0.0957) is too coarse to re-triangulate");
   expect_mentions(r.output, "sdflow remesh");
   EXPECT_EQ(r.output.find("nearest_neighbours"), std::string::npos) << r.output;
   const std::string marker = "Give --edge-length ";
   const std::size_t at = r.output.find(marker);
   ASSERT_NE(at, std::string::npos) << r.output;
   const std::string edge = r.output.substr(at + marker.size(), r.output.find(' ', at + marker.size()) - at - marker.size());
-  const auto advised = run_sdflow("run --input " + path("icosahedron.off") + " --out " + path("ico_fine") +
+  const auto advised = run_sdflow("run --input " + path("scene.ply") + " --out " + path("scene_fine") +
                                   " --steps 2 -q --edge-length " + edge);
   EXPECT_EQ(advised.exit_code, 0) << advised.output;
   const auto retri = run_sdflow("retriangulate " + path("icosahedron.off") + " -o " + path("ico.ply"));

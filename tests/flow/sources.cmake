@@ -4,6 +4,7 @@ target_sources(sdflow_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/test_blas_threads.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_boundary_condition.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_carried_ordering.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_coarse_input.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_degraded_elements.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_exact_kinetics.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_isotropic_energy.cpp

@@ -179,6 +179,54 @@ Mesh disk(int rings, double radius)
   return mesh_from(points, faces);
 }
 
+namespace {
+
+//! The convex polyhedron of `points` with the triangles `faces`, each turned to face away from the
+//! centroid.
+Mesh convex_polyhedron(VertexVectors points, FaceIndices faces)
+{
+  const Eigen::Vector3d centre = points.colwise().mean().transpose();
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const Eigen::Vector3d a = points.row(faces(f, 0)).transpose(), b = points.row(faces(f, 1)).transpose(),
+                          c = points.row(faces(f, 2)).transpose();
+    if ((b - a).cross(c - a).dot(a - centre) < 0)
+      std::swap(faces(f, 1), faces(f, 2));
+  }
+  return make_mesh(points, faces);
+}
+
+} // namespace
+
+Mesh cube(double edge, const Eigen::Vector3d& centre)
+{
+  VertexVectors x(8, 3);
+  for (int i = 0; i < 8; ++i)
+    x.row(i) = (centre + edge * Eigen::Vector3d((i & 1) - 0.5, ((i >> 1) & 1) - 0.5, ((i >> 2) & 1) - 0.5)).transpose();
+  FaceIndices t(12, 3);
+  // Vertex i has x, y, z from bits 0, 1, 2 of i; each face is a quad of the vertices with one bit fixed.
+  t << 0, 2, 6, 0, 6, 4, 1, 3, 7, 1, 7, 5, 0, 1, 5, 0, 5, 4, 2, 3, 7, 2, 7, 6, 0, 1, 3, 0, 3, 2, 4, 5, 7, 4, 7, 6;
+  return convex_polyhedron(x, t);
+}
+
+Mesh regular_tetrahedron()
+{
+  VertexVectors x(4, 3);
+  x << 1, 1, 1, 1, -1, -1, -1, 1, -1, -1, -1, 1;
+  x /= std::sqrt(3.0);
+  FaceIndices t(4, 3);
+  t << 0, 1, 2, 0, 1, 3, 0, 2, 3, 1, 2, 3;
+  return convex_polyhedron(x, t);
+}
+
+Mesh regular_octahedron()
+{
+  VertexVectors x(6, 3);
+  x << 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1;
+  FaceIndices t(8, 3);
+  t << 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 0, 2, 5, 2, 1, 5, 1, 3, 5, 3, 0, 5;
+  return convex_polyhedron(x, t);
+}
+
 Mesh disjoint_union(const Mesh& a, const Mesh& b)
 {
   VertexVectors x(a.n_vertices() + b.n_vertices(), 3);

@@ -33,6 +33,14 @@ Mesh disk(int rings, double radius = 1.0);
 //! (0, 0, −R cos θ). Its rim lies on z = 0 exactly; its normals point out of the cap.
 Mesh spherical_cap(int rings, double radius, double degrees);
 
+//! Coarse convex polyhedra as the files users bring, oriented outward: the cube of edge `edge`
+//! centred at `centre` (8 vertices, each square face split along a diagonal), the regular
+//! tetrahedron (4 vertices) and octahedron (6 vertices) with their vertices at distance 1 from
+//! the origin.
+Mesh cube(double edge = 1.0, const Eigen::Vector3d& centre = Eigen::Vector3d::Zero());
+Mesh regular_tetrahedron();
+Mesh regular_octahedron();
+
 //! The two surfaces as one mesh: a's vertices and faces first, then b's.
 Mesh disjoint_union(const Mesh& a, const Mesh& b);
 

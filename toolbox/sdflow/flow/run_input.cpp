@@ -1,6 +1,7 @@
 #include "sdflow/flow/run_input.h"
 
 #include "sdflow/check/span.h"
+#include "sdflow/flow/coarse_input.h"
 #include "sdflow/flow/parameter_schema.h"
 #include "sdflow/retri/input_checks.h"
 
@@ -87,7 +88,7 @@ SizeLimits run_input_limits(FrontEnd front_end, bool force)
   return limits;
 }
 
-void check_run_input(const Mesh& mesh, const RunParameters& p, std::string_view source, FrontEnd front_end,
+void check_run_input(Mesh& mesh, const RunParameters& p, std::string_view source, FrontEnd front_end,
                      const SizeLimits& limits)
 {
   const UserTerms terms = run_input_terms(front_end);
@@ -95,6 +96,7 @@ void check_run_input(const Mesh& mesh, const RunParameters& p, std::string_view 
   check_span(mesh, source, terms);
   check_crossings(mesh, source, terms);
   if (p.retriangulation.enabled) {
+    refine_coarse_input(mesh, p.retriangulation.pipeline, source, terms);
     const double ell = p.retriangulation.pipeline.edge_length;
     check_remeshed_size(mesh, ell,
                         fmt::format("run with {}", terms.setting("retriangulation.edge_length", fmt::format("{}", ell))),

@@ -4,6 +4,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/boundary_condition.cpp
   sdflow/flow/carried_ordering.cpp
   sdflow/flow/checkpoint.cpp
+  sdflow/flow/coarse_input.cpp
   sdflow/flow/degraded_elements.cpp
   sdflow/flow/fixed_boundary.cpp
   sdflow/flow/intersection_guard.cpp

@@ -21,17 +21,29 @@ double edge_length_for_vertices(double area, double vertices)
   return std::sqrt(area / (vertices * std::sqrt(3.0) / 2.0));
 }
 
+double retriangulation_vertex_need(const RetriangulationOptions& options)
+{
+  return std::max(min_retriangulated_vertices, options.normals.neighbours + 2.0);
+}
+
+std::vector<double> component_areas(const Mesh& mesh)
+{
+  int count = 0;
+  const std::vector<int> component = face_component_ids(mesh, &count);
+  std::vector<double> areas(static_cast<std::size_t>(count), 0.0);
+  for (const auto f : mesh.faces())
+    areas[static_cast<std::size_t>(component[static_cast<std::size_t>(f.idx())])] += mesh.calc_face_area(f);
+  return areas;
+}
+
 void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions& options, std::string_view source,
                                  const UserTerms& terms)
 {
   check_span(mesh, source, terms);
-  int count = 0;
-  const std::vector<int> component = face_component_ids(mesh, &count);
+  const std::vector<double> areas = component_areas(mesh);
+  const int count = static_cast<int>(areas.size());
   if (count == 0)
     throw InvalidMesh(fmt::format("{}: the surface has no triangles to re-triangulate", source));
-  std::vector<double> areas(static_cast<std::size_t>(count), 0.0);
-  for (const auto f : mesh.faces())
-    areas[static_cast<std::size_t>(component[static_cast<std::size_t>(f.idx())])] += mesh.calc_face_area(f);
   const double ell = options.edge_length > 0 ? options.edge_length : mean_edge_length(mesh);
   // A closed component thinner than this for its area is taken for a collapsed double sheet and
   // dropped (pipeline.h, stage 6): a body flattened by the input, not by the flow.
@@ -52,7 +64,7 @@ void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions&
         terms.setting("retriangulation.edge_length",
                       fmt::format("{:.3g}", thickness / options.min_component_thickness / 2))));
   }
-  const double needed = std::max(min_retriangulated_vertices, options.normals.neighbours + 2.0);
+  const double needed = retriangulation_vertex_need(options);
   const auto smallest = std::min_element(areas.begin(), areas.end());
   const double vertices = estimated_vertices(*smallest, ell);
   if (vertices >= needed)

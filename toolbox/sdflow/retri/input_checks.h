@@ -10,6 +10,7 @@
 #include "sdflow/user_terms.h"
 
 #include <string_view>
+#include <vector>
 
 namespace sdflow {
 
@@ -17,6 +18,13 @@ namespace sdflow {
 //! closed body loses its shape and is dropped as debris (fewer than min_component_faces), and
 //! the rebuild's jet normals fit `normals.neighbours` points.
 inline constexpr double min_retriangulated_vertices = 20;
+
+//! Fewest vertices the re-triangulation with `options` needs of each component:
+//! max(min_retriangulated_vertices, options.normals.neighbours + 2).
+double retriangulation_vertex_need(const RetriangulationOptions& options);
+
+//! The area of each connected component of `mesh`, by face_component_ids' numbering (topology.h).
+std::vector<double> component_areas(const Mesh& mesh);
 
 //! The edge length a component of `area` needs to be re-triangulated with `vertices` vertices
 //! (the inverse of estimated_vertices, limits.h).
@@ -26,7 +34,7 @@ double edge_length_for_vertices(double area, double vertices);
 //! far from the others (check_span, span.h), a closed component thinner than the debris bound
 //! (options.min_component_thickness · ℓ) for the target edge length ℓ (options.edge_length, or the
 //! mean edge length when 0), or a component that ℓ leaves with fewer than
-//! max(min_retriangulated_vertices, options.normals.neighbours + 2) vertices. The message gives the
+//! retriangulation_vertex_need(options) vertices. The message gives the
 //! edge length that would do, and what refines the surface, in `terms`.
 void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions& options, std::string_view source,
                                  const UserTerms& terms = {});
