@@ -84,7 +84,8 @@ double natural_time_step(double mean_edge_length);
 //! its own (Appendix A of the paper); with `settings.retriangulate` the run re-triangulates as
 //! `sdflow run --retriangulate` does. The surface gets the checks of `sdflow run` first
 //! (check_run_input, sdflow/flow/run_input.h), named in the dialog's terms: InvalidMesh for bodies
-//! that overlap or a surface too coarse to re-triangulate, before any step.
+//! that overlap or a surface too coarse to re-triangulate at the ℓ given, before any step (with ℓ = 0,
+//! a surface too coarse at its mean edge length is refined exactly first, coarse_input.h).
 ShadedSurface surface_diffusion(const Surface& input, const std::string& name, const DiffusionSettings& settings,
                                 const Reporter& reporter = {});
 

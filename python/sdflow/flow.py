@@ -147,7 +147,9 @@ class Flow:
 
     The surface and parameters get the checks of `sdflow run` before step 1 (InvalidMesh,
     InvalidParameter): bodies that overlap, a vertex far from the others, a surface too coarse to
-    re-triangulate, an absurd end time. force=True skips the plausibility limits (as --force).
+    re-triangulate at an edge length given, an absurd end time. With no edge length given, a surface
+    too coarse at its mean edge length is refined first, exactly, as `sdflow run` does. force=True
+    skips the plausibility limits (as --force).
     """
 
     def __init__(self, V, F, *, scenario=None, force=False, **parameters):

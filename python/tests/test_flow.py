@@ -292,3 +292,18 @@ def test_run_and_flow_refuse_a_vertex_far_from_the_others_and_absurd_end_times()
     assert flow.step_index == 0
     forced = sdflow.Flow(V, F, retriangulation=False, t_end=1e308, steps=2, force=True)
     assert len(forced.advance()) == 2
+
+
+def test_flow_refines_a_cube_too_coarse_for_its_mean_edge_length_and_keeps_an_edge_length_given():
+    """A cube of 8 vertices with no edge length given is refined exactly before step 1, as `sdflow
+    run` refines it (the same volume, 1, to rounding), and runs; given that edge length, it is
+    refused as too coarse for it."""
+    V = np.array([[x, y, z] for z in (-0.5, 0.5) for y in (-0.5, 0.5) for x in (-0.5, 0.5)], dtype=float)
+    F = np.array([[0, 6, 2], [0, 4, 6], [1, 3, 7], [1, 7, 5], [0, 1, 5], [0, 5, 4],
+                  [2, 7, 3], [2, 6, 7], [0, 3, 1], [0, 2, 3], [4, 5, 7], [4, 7, 6]])
+    flow = sdflow.Flow(V, F)
+    assert len(flow.V) > 300
+    assert flow.metrics["volume"] == pytest.approx(1.0, abs=1e-13)
+    assert len(flow.advance(steps=2)) == 2
+    with pytest.raises(sdflow.InvalidParameter, match="fewer than the 20 it needs"):
+        sdflow.Flow(V, F, retriangulation={"edge_length": 1.0})
