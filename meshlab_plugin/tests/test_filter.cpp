@@ -338,6 +338,28 @@ TEST_F(FilterTest, retriangulation_leaving_nothing_fails_with_the_reason_and_lea
   EXPECT_EQ(model->cm.vert[7].cP(), before);
 }
 
+// The filter makes the run's checks before step 1 (check_run_input, sdflow/flow/run_input.h) and
+// says what to do in the dialog's words: bodies that overlap are joined by the re-triangulate
+// filter first; a part thinner than the re-triangulation resolves names the EdgeLength that does.
+TEST_F(FilterTest, run_input_is_refused_before_step_1_in_the_dialogs_words)
+{
+  MeshModel* spheres = add_overlapping_spheres();
+  const Point3m first = spheres->cm.vert[7].cP();
+  EXPECT_FALSE(plugin.applyFilter(action(), document, parameters(3), nullptr));
+  EXPECT_TRUE(plugin.errorMsg().contains("overlap")) << plugin.errorMsg().toStdString();
+  EXPECT_TRUE(plugin.errorMsg().contains("\"Surface diffusion: re-triangulate\"")) << plugin.errorMsg().toStdString();
+  EXPECT_EQ(spheres->cm.vert[7].cP(), first);
+
+  MeshModel* pancake = add_sphere(); // radius 2, flattened to 0.02 thick: edges about 0.3 long
+  for (auto& v : pancake->cm.vert)
+    v.P()[2] *= 0.005f;
+  const Point3m second = pancake->cm.vert[7].cP();
+  EXPECT_FALSE(plugin.applyFilter(action(), document, parameters(3), nullptr));
+  EXPECT_TRUE(plugin.errorMsg().contains(" thick at (")) << plugin.errorMsg().toStdString();
+  EXPECT_TRUE(plugin.errorMsg().contains("(EdgeLength) = ")) << plugin.errorMsg().toStdString();
+  EXPECT_EQ(pancake->cm.vert[7].cP(), second);
+}
+
 TEST_F(FilterTest, retriangulation_joins_overlapping_spheres_into_one_outward_surface)
 {
   add_overlapping_spheres();

@@ -1,9 +1,10 @@
-//! The resolution check before step 1 (resolution_check.h, run_simulation): a part thinner than the
-//! finest edge of the run's sizing is named with where it is, how thin, and the --edge-length that
-//! resolves it; a part the run resolves is evolved, not cut off.
+//! The resolution check before step 1 (resolution_check.h, check_run_input): a part thinner than
+//! the finest edge of the run's sizing is named with where it is, how thin, and the edge length that
+//! resolves it in each front end's words; a part the run resolves is evolved, not cut off.
 #include "io/temp_dir.h"
 #include "sdflow/errors.h"
 #include "sdflow/flow/resolution_check.h"
+#include "sdflow/flow/run_input.h"
 #include "sdflow/flow/simulation.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
@@ -74,23 +75,31 @@ TEST(ResolutionCheck, names_a_tail_thinner_than_the_finest_edge_and_the_edge_len
 
 TEST(ResolutionCheck, a_run_refuses_before_step_1_unless_its_coarser_edge_length_was_asked_for)
 {
-  const Mesh body = body_with_thin_tail();
-  test::TempDir dir;
+  Mesh body = body_with_thin_tail();
   RunParameters p;
   p.steps = 2;
   p.snapshot_every = 0;
   // A sizing that never refines below ℓ (the mean edge, about 0.09) cannot resolve the tail.
   p.retriangulation.pipeline.min_edge_fraction = 1;
-  p.output_dir = dir / "automatic";
-  try {
-    run_simulation(body, {.parameters = p});
-    ADD_FAILURE() << "the run should have refused the tail";
-  } catch (const InvalidParameter& e) {
-    EXPECT_NE(std::string(e.what()).find("--edge-length"), std::string::npos) << e.what();
+  // Each front end is told in its own words how to resolve it, or to give the coarser ℓ.
+  const std::pair<FrontEnd, std::string> words[] = {
+      {FrontEnd::command_line, "--edge-length"},
+      {FrontEnd::python, "retriangulation={\"edge_length\": "},
+      {FrontEnd::meshlab, "(EdgeLength) = "}};
+  for (const auto& [front_end, setting] : words) {
+    try {
+      check_run_input(body, p, "body.off", front_end, run_input_limits(front_end, false));
+      ADD_FAILURE() << "the run should have refused the tail";
+    } catch (const InvalidParameter& e) {
+      EXPECT_NE(std::string(e.what()).find(setting), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("only 0.0"), std::string::npos) << "how thin: " << e.what();
+    }
   }
-  EXPECT_FALSE(std::filesystem::exists(dir / "automatic/metrics.csv")) << "refused before anything is written";
-  // The same ℓ given explicitly: the run goes on.
+  // The same ℓ given explicitly: the check lets it through and the run goes on.
   p.retriangulation.pipeline.edge_length = mean_edge_length(body);
+  EXPECT_NO_THROW(check_run_input(body, p, "body.off", FrontEnd::command_line,
+                                  run_input_limits(FrontEnd::command_line, false)));
+  test::TempDir dir;
   p.output_dir = dir / "asked";
   EXPECT_EQ(run_simulation(body, {.parameters = p}).steps, 2);
 }

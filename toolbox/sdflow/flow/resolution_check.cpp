@@ -57,14 +57,14 @@ std::optional<ThinPart> thinnest_unresolved_part(const Mesh& mesh, const Retrian
   return thinnest;
 }
 
-std::string describe_thin_part(const ThinPart& part, double edge_length)
+std::string describe_thin_part(const ThinPart& part, double edge_length, const UserTerms& terms)
 {
   return fmt::format("the surface has {} only {:.3g} {} at ({:.4g}, {:.4g}, {:.4g}) ({} vertices where it is thinner "
                      "than {:.3g}, the finest edge the re-triangulation makes with ℓ = {:.4g}): the first "
-                     "remeshing would collapse it instead of the flow evolving it; --edge-length {:.2g} resolves it",
+                     "remeshing would collapse it instead of the flow evolving it; {} resolves it",
                      part.gap ? "a gap between two bodies" : "a part", part.size, part.gap ? "wide" : "thick",
                      part.where.x(), part.where.y(), part.where.z(), part.vertices, part.finest_edge, edge_length,
-                     part.resolving_edge_length);
+                     terms.setting("retriangulation.edge_length", fmt::format("{:.2g}", part.resolving_edge_length)));
 }
 
 } // namespace sdflow

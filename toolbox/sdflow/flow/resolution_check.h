@@ -7,6 +7,7 @@
 
 #include "sdflow/mesh.h"
 #include "sdflow/retri/pipeline.h"
+#include "sdflow/user_terms.h"
 
 #include <Eigen/Core>
 
@@ -32,7 +33,8 @@ struct ThinPart {
 //! ℓ ≤ 0, InvalidMesh for a surface without triangles.
 std::optional<ThinPart> thinnest_unresolved_part(const Mesh& mesh, const RetriangulationOptions& pipeline);
 
-//! One sentence for a user: where the part is, how thin, and the --edge-length that resolves it.
-std::string describe_thin_part(const ThinPart& part, double edge_length);
+//! One sentence for a user: where the part is, how thin, and the edge length that resolves it, in
+//! `terms` (`--edge-length 0.041` by default).
+std::string describe_thin_part(const ThinPart& part, double edge_length, const UserTerms& terms = {});
 
 } // namespace sdflow

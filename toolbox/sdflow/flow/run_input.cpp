@@ -3,10 +3,14 @@
 #include "sdflow/check/span.h"
 #include "sdflow/flow/coarse_input.h"
 #include "sdflow/flow/parameter_schema.h"
+#include "sdflow/flow/resolution_check.h"
+#include "sdflow/geometry/measures.h"
+#include "sdflow/log.h"
 #include "sdflow/retri/input_checks.h"
 
 #include <fmt/format.h>
 
+#include <optional>
 #include <string>
 
 namespace sdflow {
@@ -44,6 +48,25 @@ std::string dialog_setting(std::string_view key, std::string_view value)
   const ParameterEntry& e = entry(key);
   const std::string name = e.meshlab.name.empty() ? e.key : fmt::format("{} ({})", e.meshlab.label, e.meshlab.name);
   return value.empty() ? name : fmt::format("{} = {}", name, value);
+}
+
+//! The resolution check (resolution_check.h) at the run's ℓ: a part thinner than the finest edge of
+//! its sizing is refused, or only warned about when the user gave that ℓ.
+void check_resolution(const Mesh& mesh, RetriangulationOptions pipeline, const UserTerms& terms)
+{
+  const bool given = pipeline.edge_length > 0;
+  if (!given)
+    pipeline.edge_length = mean_edge_length(mesh);
+  if (!(pipeline.edge_length > 0))
+    return; // a surface without edges is refused by the checks before this one
+  const std::optional<ThinPart> thin = thinnest_unresolved_part(mesh, pipeline);
+  if (!thin)
+    return;
+  const std::string what = describe_thin_part(*thin, pipeline.edge_length, terms);
+  if (!given)
+    throw InvalidParameter(fmt::format("{} (or give the coarser {} explicitly to run anyway)", what,
+                                       terms.name("retriangulation.edge_length")));
+  logger().warn("{}; running with the {} given", what, terms.name("retriangulation.edge_length"));
 }
 
 } // namespace
@@ -102,6 +125,7 @@ void check_run_input(Mesh& mesh, const RunParameters& p, std::string_view source
                         fmt::format("run with {}", terms.setting("retriangulation.edge_length", fmt::format("{}", ell))),
                         limits);
     check_retriangulation_input(mesh, p.retriangulation.pipeline, source, terms);
+    check_resolution(mesh, p.retriangulation.pipeline, terms);
   }
   check_end_time(mesh, p.end_time, p.time_step.mode == TimeStepMode::constant ? p.time_step.tau : 0.0, limits, terms);
 }

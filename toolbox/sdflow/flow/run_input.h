@@ -34,11 +34,13 @@ SizeLimits run_input_limits(FrontEnd front_end, bool force);
 //! more steps than the limit (check_count), a vertex far from the others (check_span, span.h),
 //! components that cross themselves or each other (check_crossings), with re-triangulation on a
 //! remeshed size beyond the limits (check_remeshed_size) or a surface it cannot take
-//! (check_retriangulation_input, retri/input_checks.h), and an absurd end time (check_end_time).
-//! With re-triangulation on and no ℓ given, a surface too coarse to re-triangulate at its mean edge
-//! length is first refined in place, exactly, to one the run takes (refine_coarse_input,
-//! coarse_input.h): the run then starts from the refined `mesh`. Throws InvalidMesh or
-//! InvalidParameter (exit 2 in the command line).
+//! (check_retriangulation_input, retri/input_checks.h) or a part thinner than its sizing resolves
+//! (resolution_check.h: refused when ℓ is the automatic one, a warning when it was given), and an
+//! absurd end time (check_end_time). With re-triangulation on and no ℓ given, a surface too coarse
+//! to re-triangulate at its mean edge length is first refined in place, exactly, to one the run
+//! takes (refine_coarse_input, coarse_input.h): the run then starts from the refined `mesh`, and
+//! the resolution check uses its ℓ. Throws InvalidMesh or InvalidParameter (exit 2 in the command
+//! line).
 void check_run_input(Mesh& mesh, const RunParameters& p, std::string_view source, FrontEnd front_end,
                      const SizeLimits& limits);
 

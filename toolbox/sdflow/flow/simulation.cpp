@@ -2,9 +2,7 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/flow/checkpoint.h"
-#include "sdflow/flow/resolution_check.h"
 #include "sdflow/flow/run_lock.h"
-#include "sdflow/geometry/measures.h"
 #include "sdflow/io/io.h"
 #include "sdflow/io/repair.h"
 #include "sdflow/io/vtk.h"
@@ -351,35 +349,9 @@ std::string timings_row(long step, const StepTimes& t, double output)
                      p.components, t.volume_restoration, output, other, t.cpu, t.side_by_side);
 }
 
-namespace {
-
-//! The resolution check of run_simulation (simulation.h), for a run with its own re-triangulation.
-void check_resolution(const Mesh& initial, const SimulationOptions& options)
-{
-  const RetriangulationSchedule& schedule = options.parameters.retriangulation;
-  if (options.retriangulate || !schedule.enabled || initial.n_faces() == 0)
-    return;
-  RetriangulationOptions pipeline = schedule.pipeline;
-  const bool given = pipeline.edge_length > 0;
-  if (!given)
-    pipeline.edge_length = mean_edge_length(initial);
-  if (!(pipeline.edge_length > 0))
-    return; // validation of the surface reports it
-  const std::optional<ThinPart> thin = thinnest_unresolved_part(initial, pipeline);
-  if (!thin)
-    return;
-  const std::string what = describe_thin_part(*thin, pipeline.edge_length);
-  if (!given)
-    throw InvalidParameter(fmt::format("{} (or give the coarser --edge-length explicitly to run anyway)", what));
-  logger().warn("{}; running with the --edge-length given", what);
-}
-
-} // namespace
-
 SimulationResult run_simulation(const Mesh& initial, const SimulationOptions& options)
 {
   validate_run_parameters(options.parameters);
-  check_resolution(initial, options);
   RunRecorder recorder(options.parameters, false);
   SurfaceDiffusion flow(initial, options.parameters, options.retriangulate);
   recorder.begin(flow);

@@ -80,10 +80,8 @@ struct SimulationResult {
 //! file or holds a run or is locked, InvalidMesh on a mesh the scheme cannot use, SolverFailure
 //! when the run becomes unstable (the files written so far stay complete), IoError when an output
 //! cannot be written (EnvironmentFailure when the disk is full).
-//! Before step 1, a run that re-triangulates by its own schedule checks that its ℓ resolves the
-//! input (resolution_check.h): a part thinner than the finest edge of its sizing throws
-//! InvalidParameter saying where, how thin and the --edge-length that resolves it, unless ℓ was
-//! given (retriangulation.edge_length > 0): then it is a warning and the run goes on.
+//! The input is taken as it is: the front ends check it first with check_run_input (run_input.h),
+//! which refuses what the flow and its re-triangulation cannot take.
 SimulationResult run_simulation(const Mesh& initial, const SimulationOptions& options);
 
 //! Continue the run in `options.parameters.output_dir` from its checkpoint, exactly as if it had
