@@ -73,6 +73,29 @@ TEST(ResolutionCheck, names_a_tail_thinner_than_the_finest_edge_and_the_edge_len
       << message;
 }
 
+// A spike pulled out to one far vertex has no vertex where it is thin: its long edges are sampled
+// (the fuzzer's mesh that passed the check and left nothing after the second re-triangulation).
+TEST(ResolutionCheck, finds_a_spike_between_the_vertices_of_its_long_edges)
+{
+  Mesh sphere = analytic::icosphere(2); // 162 vertices, edges about 0.3
+  const auto tip = sphere.vertex_handle(0);
+  sphere.set_point(tip, sphere.point(tip) * 10);
+  const double ell = mean_edge_length(sphere);
+  for (const auto v : sphere.vertices()) {
+    if (v != tip) {
+      ASSERT_LT(sphere.point(v).norm(), 1 + 1e-9) << "the spike's only vertex off the sphere is its tip";
+    }
+  }
+  const std::optional<ThinPart> thin = thinnest_unresolved_part(sphere, {.edge_length = ell});
+  ASSERT_TRUE(thin) << "the spike is thinner than the finest edge along most of its length";
+  EXPECT_LT(thin->size, thin->finest_edge);
+  EXPECT_GT(thin->where.norm(), 1.5) << "found on the spike";
+  // Thin along its length, where the input has no vertex: measured at the points sampled there.
+  EXPECT_GE(thin->vertices, 10);
+  // The ℓ it proposes makes the sizing fine enough where it measured.
+  EXPECT_LE(0.25 * thin->resolving_edge_length, thin->size);
+}
+
 TEST(ResolutionCheck, a_run_refuses_before_step_1_unless_its_coarser_edge_length_was_asked_for)
 {
   Mesh body = body_with_thin_tail();

@@ -1,16 +1,30 @@
 #include "sdflow/flow/resolution_check.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/remesh/exact_refinement.h"
 #include "sdflow/spatial/intersect.h"
 #include "sdflow/spatial/local_thickness.h"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
 namespace sdflow {
 namespace {
+
+//! Most vertices the sampling of long edges adds: the check stays a fraction of a step's cost.
+constexpr std::size_t kMaxSampledVertices = 200'000;
+
+//! The longest edge of `mesh`.
+double longest_edge(const Mesh& mesh)
+{
+  double longest = 0;
+  for (const auto e : mesh.edges())
+    longest = std::max(longest, static_cast<double>(mesh.calc_edge_length(e)));
+  return longest;
+}
 
 //! `x` rounded down to two significant digits.
 double two_digits_down(double x)
@@ -19,12 +33,9 @@ double two_digits_down(double x)
   return std::floor(x / unit) * unit;
 }
 
-} // namespace
-
-std::optional<ThinPart> thinnest_unresolved_part(const Mesh& mesh, const RetriangulationOptions& pipeline)
+//! thinnest_unresolved_part (resolution_check.h) measured at the vertices of `mesh` as they are.
+std::optional<ThinPart> thinnest_at_vertices(const Mesh& mesh, const RetriangulationOptions& pipeline)
 {
-  if (!(pipeline.edge_length > 0) || !std::isfinite(pipeline.edge_length))
-    throw InvalidParameter(fmt::format("resolution check: ℓ must be positive, got {}", pipeline.edge_length));
   const double finest = pipeline.min_edge_fraction * pipeline.edge_length;
   const LocalThickness thickness =
       local_thickness(mesh, {.max_distance = 2 * finest, .gaps_between_components_only = true});
@@ -55,6 +66,23 @@ std::optional<ThinPart> thinnest_unresolved_part(const Mesh& mesh, const Retrian
     thinnest->resolving_edge_length = two_digits_down(thinnest->size / pipeline.min_edge_fraction);
   }
   return thinnest;
+}
+
+} // namespace
+
+std::optional<ThinPart> thinnest_unresolved_part(const Mesh& mesh, const RetriangulationOptions& pipeline)
+{
+  if (!(pipeline.edge_length > 0) || !std::isfinite(pipeline.edge_length))
+    throw InvalidParameter(fmt::format("resolution check: ℓ must be positive, got {}", pipeline.edge_length));
+  // Thickness is measured at vertices: an edge far longer than ℓ (a spike pulled out to one far
+  // vertex, a CAD wire of a few long triangles) hides the thin part between its ends, which the
+  // re-triangulation will sample. Sample it first, on the same surface (exact_refinement.h).
+  if (longest_edge(mesh) > 2 * pipeline.edge_length)
+    return thinnest_at_vertices(refine_exactly(mesh, {.max_edge_length = pipeline.edge_length,
+                                                      .max_vertices = mesh.n_vertices() + kMaxSampledVertices})
+                                    .mesh,
+                                pipeline);
+  return thinnest_at_vertices(mesh, pipeline);
 }
 
 std::string describe_thin_part(const ThinPart& part, double edge_length, const UserTerms& terms)

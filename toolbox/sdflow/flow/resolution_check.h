@@ -28,7 +28,9 @@ struct ThinPart {
 };
 
 //! The thinnest part of `mesh` thinner than `pipeline.min_edge_fraction · pipeline.edge_length`
-//! (ℓ > 0), if any. The vertices of intersecting faces and their neighbours are left out: two
+//! (ℓ > 0), if any, measured at the vertices, after splitting edges longer than 2ℓ down to ℓ
+//! (refine_exactly: the same surface) so that what lies between far-apart vertices is measured
+//! too. The vertices of intersecting faces and their neighbours are left out: two
 //! sheets that cross are the flow's first surgery, not a thin part. Throws InvalidParameter for
 //! ℓ ≤ 0, InvalidMesh for a surface without triangles.
 std::optional<ThinPart> thinnest_unresolved_part(const Mesh& mesh, const RetriangulationOptions& pipeline);
