@@ -354,10 +354,19 @@ TEST_F(FilterTest, run_input_is_refused_before_step_1_in_the_dialogs_words)
   for (auto& v : pancake->cm.vert)
     v.P()[2] *= 0.005f;
   const Point3m second = pancake->cm.vert[7].cP();
-  EXPECT_FALSE(plugin.applyFilter(action(), document, parameters(3), nullptr));
+  // EdgeLength 0 asks for the automatic ℓ, which the run refuses to collapse the pancake with.
+  RichParameterList automatic = parameters(3);
+  automatic.setValue("EdgeLength", FloatValue(0.0f));
+  EXPECT_FALSE(plugin.applyFilter(action(), document, automatic, nullptr));
   EXPECT_TRUE(plugin.errorMsg().contains(" thick at (")) << plugin.errorMsg().toStdString();
   EXPECT_TRUE(plugin.errorMsg().contains("(EdgeLength) = ")) << plugin.errorMsg().toStdString();
   EXPECT_EQ(pancake->cm.vert[7].cP(), second);
+  // The dialog's default EdgeLength (the mean edge length) is one the user gave: a warning in the
+  // log, in the dialog's words, and the run goes on.
+  log.Clear();
+  EXPECT_TRUE(plugin.applyFilter(action(), document, parameters(1), nullptr)) << plugin.errorMsg().toStdString();
+  EXPECT_TRUE(log_text().contains("running with the Re-triangulation edge length ℓ (EdgeLength) given"))
+      << log_text().toStdString();
 }
 
 TEST_F(FilterTest, retriangulation_joins_overlapping_spheres_into_one_outward_surface)
