@@ -24,8 +24,9 @@ class Event:
     change the restoration made and the volume dropped as debris. Other events leave them None.
     A "refused" event names why in `refusal`: "topology-without-crossing" (a topology change where
     the surface did not cross itself), "topology-beyond-crossings" (a change larger than, or away
-    from, what the crossings explain) or "remeshing-crossed" (the remeshing kept making crossings
-    of its own and nothing was rebuilt).
+    from, what the crossings explain), "remeshing-crossed" (the remeshing kept making crossings
+    of its own and nothing was rebuilt) or "nothing-kept" (the pipeline left no surface it could
+    keep, which is never the flow's: it keeps each body's volume).
     """
     kind: str
     step: int

@@ -503,6 +503,28 @@ TEST(RetriangulationHook, a_remeshing_refused_with_nothing_rebuilt_is_reported_w
     noted = noted || note.text.find("re-triangulation refused (remeshing-crossed)") != std::string::npos;
   EXPECT_TRUE(noted) << "events.log gets the refusal";
 }
+//! A re-triangulation that would leave nothing (here every component below the clean-up's face
+//! count) is refused and the surface kept: the flow keeps each body's volume, so no body of it
+//! vanishes in one step (a fuzzed coarse body whose rebuild the clean-up dropped whole made the
+//! run fail with "nothing is left" from inside the pipeline; tests/data/fuzz_run).
+TEST(RetriangulationHook, a_pipeline_that_keeps_nothing_is_refused_and_the_surface_kept)
+{
+  const Mesh sphere = analytic::icosphere(2);
+  RetriangulationSchedule schedule;
+  schedule.local = false;
+  schedule.pipeline.edge_length = mean_edge_length(sphere);
+  schedule.pipeline.min_component_faces = 1'000'000;
+  Mesh mesh = sphere;
+  const RetriangulationReport report = make_retriangulation_hook(schedule)(mesh, {.step = 1, .force = true});
+  EXPECT_TRUE(report.refused);
+  EXPECT_EQ(report.refusal, RefusalReason::nothing_kept);
+  EXPECT_EQ(refusal_name(report.refusal), "nothing-kept");
+  EXPECT_FALSE(report.changed());
+  EXPECT_NE(report.detail.find("nothing is left"), std::string::npos) << report.detail;
+  EXPECT_EQ(vertex_positions(mesh), vertex_positions(sphere)) << "a refusal keeps the surface as it was";
+  EXPECT_EQ(face_indices(mesh), face_indices(sphere));
+}
+
 //! A tetrahedron (4 faces, below the clean-up's 16) of edge `size` at `corner`, outward oriented.
 Mesh tetrahedron(double size, const Eigen::Vector3d& corner)
 {

@@ -318,6 +318,7 @@ std::string_view refusal_name(RefusalReason reason)
   case RefusalReason::topology_without_crossing: return "topology-without-crossing";
   case RefusalReason::remeshing_crossed: return "remeshing-crossed";
   case RefusalReason::topology_beyond_crossings: return "topology-beyond-crossings";
+  case RefusalReason::nothing_kept: return "nothing-kept";
   }
   return "unknown";
 }
@@ -360,9 +361,20 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     // The watch's pairs are this surface's unless a local remeshing gave it another one to count;
     // so are the look's curvature targets, found when it does not intersect.
     const bool pairs_known = verdict.watched;
-    RetriangulationResult r = surgery       ? std::move(*surgery)
-                              : pairs_known ? retriangulate(mesh, schedule.pipeline, watch->pairs(), verdict.degraded.targets)
-                                            : retriangulate(mesh, schedule.pipeline);
+    RetriangulationResult r;
+    try {
+      r = surgery       ? std::move(*surgery)
+          : pairs_known ? retriangulate(mesh, schedule.pipeline, watch->pairs(), verdict.degraded.targets)
+                        : retriangulate(mesh, schedule.pipeline);
+    } catch (const InvalidMesh& e) {
+      report.refused = true;
+      report.refusal = RefusalReason::nothing_kept;
+      report.degraded_left = degraded_elements(mesh, schedule).total();
+      report.detail = fmt::format("{}: {}refused: the re-triangulation left no surface to keep ({}), so the surface "
+                                  "keeps its triangles; {} degraded elements left",
+                                  verdict.reason, fallback, e.what(), report.degraded_left);
+      return report;
+    }
     const RetriangulationResult::Seconds local = report.pipeline_seconds; // of a local remeshing given up
     report.pipeline_seconds = r.seconds;
     report.pipeline_seconds.remesh += local.remesh;

@@ -101,6 +101,9 @@ enum class RefusalReason {
   //! Stage 1 kept making crossings of its own on a surface that did not cross itself, and nothing
   //! else was to be rebuilt: the re-triangulation did nothing (retri/pipeline.h).
   remeshing_crossed,
+  //! The pipeline left no surface it could keep (every component dropped as debris, or a rebuild
+  //! that is not a valid surface): the flow keeps each body's volume, so that is never its change.
+  nothing_kept,
 };
 
 //! The name events.log, metrics and Python use for `reason` ("topology-without-crossing", ...;
