@@ -14,8 +14,10 @@
 namespace sdflow {
 namespace {
 
-//! Most vertices the sampling of long edges adds: the check stays a fraction of a step's cost.
-constexpr std::size_t kMaxSampledVertices = 200'000;
+//! Most vertices the sampling of long edges adds to a surface of n: 4 n + 2000, so that the check
+//! stays a fraction of the run's first steps (the longest edges are split first, so a spike out to
+//! a far vertex is sampled along its length even when the bound stops the splitting).
+std::size_t sampled_vertex_bound(std::size_t n) { return n + 4 * n + 2000; }
 
 //! The longest edge of `mesh`.
 double longest_edge(const Mesh& mesh)
@@ -79,7 +81,7 @@ std::optional<ThinPart> thinnest_unresolved_part(const Mesh& mesh, const Retrian
   // re-triangulation will sample. Sample it first, on the same surface (exact_refinement.h).
   if (longest_edge(mesh) > 2 * pipeline.edge_length)
     return thinnest_at_vertices(refine_exactly(mesh, {.max_edge_length = pipeline.edge_length,
-                                                      .max_vertices = mesh.n_vertices() + kMaxSampledVertices})
+                                                      .max_vertices = sampled_vertex_bound(mesh.n_vertices())})
                                     .mesh,
                                 pipeline);
   return thinnest_at_vertices(mesh, pipeline);
