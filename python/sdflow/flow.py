@@ -18,8 +18,8 @@ class Event:
     `kind` is one of "start", "rejected", "fallback", "remeshed", "surgery", "split", "merged",
     "cleaned", "refused"; `detail` is the re-triangulation's line of events.log for "remeshed" to "cleaned" and
     "refused" (why it was refused), the reason for "fallback". A re-triangulation's events carry
-    what it measured: the face pairs that crossed before it (`crossing_pairs`), the smallest neck or
-    gap at them where the topology changed (`crossing_size`, else None), the components, genus and
+    what it measured: the face pairs that crossed before it (`crossing_pairs`), the narrowest neck or
+    gap within 2ℓ of them where the topology changed (`crossing_size`, else None), the components, genus and
     boundary loops before and after, the faces before, after and rebuilt, the relative volume
     change the restoration made and the volume dropped as debris. Other events leave them None.
     A "refused" event names why in `refusal`: "topology-without-crossing" (a topology change where

@@ -1,11 +1,13 @@
 //! The guard on a re-triangulation's topology change (flow/topology_guard.h): a change is the
 //! flow's only at the crossings of the surface before it, and only as large as they explain.
 #include "sdflow/errors.h"
+#include "sdflow/flow/crossing_width.h"
 #include "sdflow/flow/retriangulation.h"
 #include "sdflow/flow/topology_guard.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/io/io.h"
 #include "sdflow/retri/pipeline.h"
+#include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/implicit.h"
 #include "sdflow/shapes/mesher.h"
 #include "sdflow/spatial/intersect.h"
@@ -157,6 +159,14 @@ TEST(TopologyGuard, the_hook_refuses_a_handle_lost_far_from_a_pinch_and_accepts_
   EXPECT_FALSE(alone.refused) << alone.detail;
   EXPECT_TRUE(alone.split);
   EXPECT_EQ(count_topology(pinched).components, 2);
+  // What let the pinch through: a surgery within 1 ℓ of the crossing parts the neck too, and the
+  // neck measured before the re-triangulation, both in events.log's line.
+  EXPECT_NEAR(alone.measures.crossing_size, crossing_width(crossed, self_intersections(crossed), 0.5), 1e-12);
+  EXPECT_LT(alone.measures.crossing_size, 0.25 * schedule.pipeline.edge_length);
+  EXPECT_NE(alone.detail.find("of them changes it too"), std::string::npos) << alone.detail;
+  EXPECT_NE(alone.detail.find(fmt::format("the narrowest neck or gap within 2 ℓ of them {:.3g}", alone.measures.crossing_size)),
+            std::string::npos)
+      << alone.detail;
 
   const Mesh before = analytic::disjoint_union(crossed, shifted(analytic::torus(24, 8, 2, 0.12), {0, 12, 0}));
   Mesh mesh = before;
@@ -167,6 +177,59 @@ TEST(TopologyGuard, the_hook_refuses_a_handle_lost_far_from_a_pinch_and_accepts_
   EXPECT_FALSE(report.changed());
   EXPECT_EQ(vertex_positions(mesh), vertex_positions(before)) << "a refusal keeps the surface as it was";
   EXPECT_EQ(face_indices(mesh), face_indices(before));
+}
+
+//! A plate 1.2 ℓ thick (a flat ellipsoid 6 × 6 × 0.6, meshed with edges of 0.3 ℓ, as a scan is
+//! finer than a run's ℓ) with a fold on top: one vertex dragged past its neighbour, so that a few
+//! triangles turn over and cross their neighbours, as a remeshing leaves them in CGAL's
+//! elephant.off, whose trunk lost its handle to the rebuild at t = 3.5e-9.
+Mesh folded_plate(double ell)
+{
+  Mesh mesh = mesh_implicit_surface(ellipsoid_shape({.a = 3, .b = 3, .c = 1.2 * ell / 2}), {.edge_length = 0.3 * ell}).mesh;
+  const auto top = *std::max_element(mesh.vertices_begin(), mesh.vertices_end(), [&](auto a, auto b) {
+    const auto height = [&](Mesh::VertexHandle v) {
+      const Mesh::Point p = mesh.point(v);
+      return p[2] - 0.1 * (std::abs(p[0]) + std::abs(p[1]));
+    };
+    return height(a) < height(b);
+  });
+  Mesh::VertexHandle beside;
+  for (const auto w : mesh.vv_range(top))
+    if (!beside.is_valid() || mesh.point(w)[1] < mesh.point(beside)[1])
+      beside = w;
+  mesh.set_point(top, mesh.point(top) + 1.6 * (mesh.point(beside) - mesh.point(top)));
+  return mesh;
+}
+
+TEST(TopologyGuard, a_fold_in_a_thick_part_is_undone_without_changing_the_topology)
+{
+  constexpr double ell = 0.5;
+  const Mesh folded = folded_plate(ell);
+  const std::vector<FacePair> crossings = self_intersections(folded);
+  ASSERT_FALSE(crossings.empty());
+  const TopologyCount before = count_topology(folded);
+  ASSERT_EQ(before.components, 1);
+  RetriangulationSchedule schedule;
+  schedule.pipeline.edge_length = ell;
+
+  // The mechanism: the rebuild at ℓ around the fold (the local surgery declines, its 3 ℓ patch
+  // would hold the whole plate) tears the plate into two bodies, and the guard alone, which only
+  // asks that a change be at the crossings and no larger than they explain, lets that through.
+  const RetriangulationResult whole = retriangulate(folded, schedule.pipeline, crossings);
+  ASSERT_EQ(count_topology(whole.mesh).components, 2);
+  ASSERT_TRUE(explain_topology_change(folded, whole.mesh, crossings, ell, {.min_faces = 16, .min_thickness = 0.01 * ell})
+                  .explained);
+
+  // The hook undoes the fold in a small patch instead, keeping one body and no crossing.
+  Mesh mesh = folded;
+  const RetriangulationReport report = make_retriangulation_hook(schedule)(mesh, {.step = 1});
+  EXPECT_FALSE(report.refused) << report.detail;
+  EXPECT_TRUE(report.surgery);
+  EXPECT_FALSE(report.split);
+  EXPECT_EQ(count_topology(mesh), before) << report.detail;
+  EXPECT_TRUE(self_intersections(mesh).empty());
+  EXPECT_NE(report.detail.find("a fold, not a neck or gap the flow closed"), std::string::npos) << report.detail;
+  EXPECT_TRUE(std::isnan(report.measures.crossing_size));
 }
 } // namespace
 } // namespace sdflow

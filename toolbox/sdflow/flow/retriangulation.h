@@ -75,8 +75,9 @@ struct RetriangulationMeasures {
   //! Face pairs in which the surface crossed itself before it: the flow's sheets meeting (0 when
   //! degraded elements or a step that could not be taken called for it).
   long crossing_pairs = 0;
-  //! The smallest neck or gap at those crossings before it (spatial/local_thickness.h), measured
-  //! when the topology changed there: the size that let the change through. NaN otherwise.
+  //! The narrowest neck or gap within 2 ℓ of those crossings before it (flow/crossing_width.h),
+  //! measured when the topology changed there: the size at which the flow brought the change. NaN
+  //! otherwise.
   double crossing_size = std::numeric_limits<double>::quiet_NaN();
   TopologyCount before, after; //!< the surface's topology before and after
   long faces_before = 0, faces_after = 0;

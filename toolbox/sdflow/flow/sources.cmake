@@ -5,6 +5,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/carried_ordering.cpp
   sdflow/flow/checkpoint.cpp
   sdflow/flow/coarse_input.cpp
+  sdflow/flow/crossing_width.cpp
   sdflow/flow/degraded_elements.cpp
   sdflow/flow/fixed_boundary.cpp
   sdflow/flow/intersection_guard.cpp
