@@ -410,13 +410,15 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
       // drawn through its axis or a gap closed cannot be undone so: cutting out the crossing walls
       // parts them whatever the patch.
       const double ell = schedule.pipeline.edge_length;
-      const double width = crossing_width(mesh, crossings, ell);
+      // (Without crossings only the paper's pipeline, refinement_rounds = 0, gets here.)
+      const double width =
+          crossings.empty() ? std::numeric_limits<double>::infinity() : crossing_width(mesh, crossings, ell);
       measured.crossing_pairs = static_cast<long>(crossings.size());
       measured.crossing_size = width;
       const std::string measured_width = fmt::format(
           "the narrowest neck or gap within 2 ℓ of them {:.3g} = {:.3g} ℓ before the re-triangulation", width, width / ell);
       std::optional<LocalSurgery> fold;
-      if (schedule.pipeline.refinement_rounds > 0)
+      if (schedule.pipeline.refinement_rounds > 0 && !crossings.empty())
         fold = local_surgery(mesh, crossings, schedule.pipeline,
                              {.patch_radius = kFoldPatchRadius, .attempts = kFoldAttempts});
       if (fold && fold->result && count_topology(fold->result->mesh) == topology_before) {
