@@ -14,6 +14,7 @@
 #include "sdflow/flow/run_input.h"
 #include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/remesh/exact_refinement.h"
+#include "sdflow/remesh/remesh.h"
 
 #include <tbb/global_control.h>
 
@@ -60,7 +61,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // this instrumented build: an input `run` would refine beyond max_refined_vertices is skipped
     // before, not after (the same refinement as refine_coarse_input's, stopped at the bound).
     if (const auto ell = sdflow::coarse_input_edge_length(mesh, parameters.retriangulation.pipeline, "fuzz.off"))
-      if (sdflow::refine_exactly(mesh, {.max_edge_length = 4.0 / 3.0 * *ell, .max_vertices = max_refined_vertices})
+      if (sdflow::refine_exactly(mesh, {.max_edge_length = sdflow::kRemeshSplitRatio * *ell,
+                                         .max_vertices = max_refined_vertices})
               .stopped)
         return 0;
     sdflow::check_run_input(mesh, parameters, "fuzz.off", sdflow::FrontEnd::command_line,

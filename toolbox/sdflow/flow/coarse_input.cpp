@@ -5,6 +5,7 @@
 #include "sdflow/limits.h"
 #include "sdflow/log.h"
 #include "sdflow/remesh/exact_refinement.h"
+#include "sdflow/remesh/remesh.h"
 #include "sdflow/retri/input_checks.h"
 
 #include <fmt/format.h>
@@ -17,10 +18,6 @@
 
 namespace sdflow {
 namespace {
-
-//! The split bound of the refinement for a target ℓ: that of the isotropic remesher (remesh.h), so
-//! that the refined edges lie between 2/3 ℓ and 4/3 ℓ and their mean is near ℓ.
-constexpr double kSplitRatio = 4.0 / 3.0;
 
 std::string component_name(std::size_t count, std::size_t k)
 {
@@ -69,7 +66,7 @@ bool refine_coarse_input(Mesh& mesh, const RetriangulationOptions& options, std:
   const double before = mean_edge_length(mesh);
   const std::size_t vertices = mesh.n_vertices();
   ExactRefinement refined =
-      refine_exactly(mesh, {.max_edge_length = kSplitRatio * *ell,
+      refine_exactly(mesh, {.max_edge_length = kRemeshSplitRatio * *ell,
                             .max_vertices = static_cast<std::size_t>(2 * kCoarseInputMaxVertices)});
   if (refined.stopped)
     throw InvalidMesh(fmt::format(

@@ -1,6 +1,7 @@
 #include "sdflow/remesh/exact_refinement.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/geometry/angle.h"
 
 #include <fmt/format.h>
 
@@ -32,8 +33,7 @@ double length(const Mesh& mesh, Mesh::EdgeHandle e)
 //! The angle at `apex` of the triangle (apex, p, q).
 double angle_at(const Eigen::Vector3d& apex, const Eigen::Vector3d& p, const Eigen::Vector3d& q)
 {
-  const Eigen::Vector3d u = p - apex, w = q - apex;
-  return std::atan2(u.cross(w).norm(), u.dot(w));
+  return angle_between(p - apex, q - apex);
 }
 
 //! Longest-edge bisection: a priority queue keyed by length, entries checked against the current

@@ -32,8 +32,6 @@
 namespace sdflow {
 namespace {
 
-constexpr double kSplitRatio = 4.0 / 3.0;    //!< split edges longer than this × target
-constexpr double kCollapseRatio = 4.0 / 5.0; //!< collapse edges shorter than this × target
 constexpr int kSettleSweeps = 5; //!< sweeps of Remesher::settle_beside_kept_boundary at most
 //! The angle that counts in Remesher::star_quality as much as an edge at its target: 15°, which the
 //! run's hook calls degraded (flow/degraded_elements.h), then counts as an edge at half or twice it.
@@ -241,7 +239,7 @@ private:
         const auto h = mesh_.halfedge_handle(e, 0);
         const auto a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
         const double ratio = (point(mesh_, b) - point(mesh_, a)).norm() / edge_target(a, b);
-        if (ratio > kSplitRatio)
+        if (ratio > kRemeshSplitRatio)
           queue.emplace_back(ratio, e);
       }
       if (queue.empty())
@@ -261,7 +259,7 @@ private:
         const auto h = mesh_.halfedge_handle(e, 0);
         const auto a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
         const Eigen::Vector3d pa = point(mesh_, a), pb = point(mesh_, b);
-        if ((pb - pa).norm() <= kSplitRatio * edge_target(a, b))
+        if ((pb - pa).norm() <= kRemeshSplitRatio * edge_target(a, b))
           continue; // an earlier split in this pass already shortened it
         if (options_.max_vertices > 0 && mesh_.n_vertices() >= options_.max_vertices) {
           statistics_.stopped = true;
@@ -309,7 +307,7 @@ private:
       const auto v0 = e.v0(), v1 = e.v1();
       if (mesh_.is_boundary(v0) || mesh_.is_boundary(v1) || (locked_[v0.idx()] && locked_[v1.idx()]))
         continue;
-      if ((point(mesh_, v0) - point(mesh_, v1)).norm() < kCollapseRatio * edge_target(v0, v1)) {
+      if ((point(mesh_, v0) - point(mesh_, v1)).norm() < kRemeshCollapseRatio * edge_target(v0, v1)) {
         collapse_slot_[e.idx()] = static_cast<int>(short_edges.size());
         short_edges.push_back(e.idx());
       }
@@ -376,7 +374,7 @@ private:
     const auto v0 = mesh_.from_vertex_handle(h), v1 = mesh_.to_vertex_handle(h);
     for (auto v : {v0, v1})
       for (auto w : mesh_.vv_range(v))
-        if (w != v0 && w != v1 && (point(mesh_, w) - p).norm() > kSplitRatio * edge_target(v1, w))
+        if (w != v0 && w != v1 && (point(mesh_, w) - p).norm() > kRemeshSplitRatio * edge_target(v1, w))
           return false;
     // Every surviving triangle around v0 or v1 must stay well-shaped and unturned.
     for (auto v : {v0, v1}) {
@@ -398,7 +396,7 @@ private:
     return true;
   }
 
-  //! Collapses the edges shorter than kCollapseRatio × target where allowed; with
+  //! Collapses the edges shorter than kRemeshCollapseRatio × target where allowed; with
   //! `beside_kept_boundary`, only those between a locked vertex and a free one.
   void collapse_short_edges(bool beside_kept_boundary = false)
   {
@@ -417,7 +415,7 @@ private:
       const auto v0 = mesh_.from_vertex_handle(h01), v1 = mesh_.to_vertex_handle(h01);
       if (beside_kept_boundary && locked_[v0.idx()] == locked_[v1.idx()])
         continue;
-      if ((point(mesh_, v0) - point(mesh_, v1)).norm() >= kCollapseRatio * edge_target(v0, v1))
+      if ((point(mesh_, v0) - point(mesh_, v1)).norm() >= kRemeshCollapseRatio * edge_target(v0, v1))
         continue;
       // Remove the vertex of lower valence when both ways are allowed: that pulls both valences
       // toward the regular 6.

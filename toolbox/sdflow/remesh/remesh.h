@@ -22,6 +22,12 @@
 
 namespace sdflow {
 
+//! The remesher splits edges longer than this × their target: refined edges then lie between
+//! 2/3 ℓ and 4/3 ℓ (with kRemeshCollapseRatio) and their mean is near ℓ.
+inline constexpr double kRemeshSplitRatio = 4.0 / 3.0;
+//! The remesher collapses edges shorter than this × their target.
+inline constexpr double kRemeshCollapseRatio = 4.0 / 5.0;
+
 //! Maps a point near the surface to its closest point on it (or on a boundary curve).
 using PointProjection = std::function<Eigen::Vector3d(const Eigen::Vector3d&)>;
 
