@@ -1,6 +1,7 @@
 //! The strip between two loops (retri/zip_loops.h).
 #include "sdflow/errors.h"
 #include "sdflow/geometry/topology.h"
+#include "sdflow/io/validate.h"
 #include "sdflow/retri/zip_loops.h"
 
 #include <gtest/gtest.h>
@@ -61,6 +62,29 @@ TEST(ZipLoops, loops_running_opposite_ways_or_too_short_are_refused)
   const std::vector<int> outer{0, 1, 2, 3, 4, 5, 6, 7}, inner_reversed{13, 12, 11, 10, 9, 8};
   EXPECT_THROW(zip_loops(x, up, outer, inner_reversed), InvalidMesh);
   EXPECT_THROW(zip_loops(x, up, outer, {8, 9}), InvalidMesh);
+}
+
+TEST(ZipLoops, loops_touching_at_a_vertex_get_no_zero_area_triangle)
+{
+  // The inner loop's fourth vertex 2e-13 inside the outer loop's fourth, as a rebuilt rim can end on
+  // the cut: the shortest diagonal there is that vertex pair, and its triangles have zero area,
+  // which validation refuses (the re-triangulation would fail with "face … has zero area").
+  constexpr int n = 8, m = 8;
+  VertexVectors x = circles(n, m);
+  x.row(n + 3) = x.row(3) * (1 - 1e-13);
+  std::vector<int> outer(n), inner(m);
+  for (int i = 0; i < n; ++i) {
+    outer[static_cast<std::size_t>(i)] = i;
+    inner[static_cast<std::size_t>(i)] = n + i;
+  }
+  VertexVectors up = VertexVectors::Zero(n + m, 3);
+  up.col(2).setOnes();
+  const auto strip = zip_loops(x, up, outer, inner);
+  ASSERT_EQ(strip.size(), static_cast<std::size_t>(n + m));
+  const double zero_area = BuildOptions{}.zero_area_tolerance;
+  for (const auto& t : strip)
+    EXPECT_FALSE(has_zero_area(x.row(t[0]).transpose(), x.row(t[1]).transpose(), x.row(t[2]).transpose(), zero_area))
+        << "triangle " << t[0] << ", " << t[1] << ", " << t[2];
 }
 
 } // namespace

@@ -1,6 +1,7 @@
 #include "sdflow/reconstruct/advancing_front.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/io/validate.h"
 #include "sdflow/log.h"
 
 #include <fmt/format.h>
@@ -98,8 +99,8 @@ double smallest_empty_ball_radius(const VertexVectors& x, const std::array<int, 
   const Eigen::Vector3d a = x.row(f[1]).transpose() - p, b = x.row(f[2]).transpose() - p;
   const Eigen::Vector3d axb = a.cross(b);
   const double area2 = axb.squaredNorm();
-  if (!(area2 > 1e-28 * a.squaredNorm() * b.squaredNorm()))
-    return infinity; // collinear vertices
+  if (!(area2 > 0) || has_zero_area(p, p + a, p + b, BuildOptions{}.zero_area_tolerance))
+    return infinity; // collinear vertices: a triangle validation would refuse is never made
   const Eigen::Vector3d centre = p + (a.squaredNorm() * b.cross(axb) + b.squaredNorm() * axb.cross(a)) / (2 * area2);
   const double r2 = (centre - p).squaredNorm();
   const Eigen::Vector3d m = axb / std::sqrt(area2);

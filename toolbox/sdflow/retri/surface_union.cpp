@@ -2,6 +2,7 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/geometry/topology.h"
+#include "sdflow/io/validate.h"
 #include "sdflow/log.h"
 #include "sdflow/spatial/bvh.h"
 #include "sdflow/spatial/intersect.h"
@@ -164,7 +165,7 @@ std::vector<Loop> loops_of(const Mesh& mesh, int offset)
 
 //! Triangulate the band between loop a (in its boundary order) and loop b (walked against its
 //! boundary order, so both run the same way in space), always adding the shorter new rung
-//! (Christiansen & Sederberg 1978 contour tiling).
+//! (Christiansen & Sederberg 1978 contour tiling), unless that rung's triangle has zero area.
 void bridge(const Loop& a, const Loop& b, std::vector<std::array<int, 3>>& faces)
 {
   const int na = static_cast<int>(a.points.size()), nb = static_cast<int>(b.points.size());
@@ -177,10 +178,17 @@ void bridge(const Loop& a, const Loop& b, std::vector<std::array<int, 3>>& faces
     }
   // b walked backwards: position k ↦ index start_b - k.
   auto b_at = [&](int k) { return ((start_b - k) % nb + nb) % nb; };
+  const double zero_area = BuildOptions{}.zero_area_tolerance;
   for (int i = 0, k = 0; i < na || k < nb;) {
-    const bool advance_a =
-        k == nb || (i < na && (a.points[(i + 1) % na] - b.points[b_at(k)]).squaredNorm() <=
-                                  (a.points[i % na] - b.points[b_at(k + 1)]).squaredNorm());
+    bool advance_a = k == nb || (i < na && (a.points[(i + 1) % na] - b.points[b_at(k)]).squaredNorm() <=
+                                               (a.points[i % na] - b.points[b_at(k + 1)]).squaredNorm());
+    // Never a zero-area triangle (validation's test) where the other rung makes a proper one.
+    if (i < na && k < nb) {
+      const bool a_flat = has_zero_area(a.points[i % na], a.points[(i + 1) % na], b.points[b_at(k)], zero_area);
+      const bool b_flat = has_zero_area(b.points[b_at(k + 1)], b.points[b_at(k)], a.points[i % na], zero_area);
+      if (a_flat != b_flat)
+        advance_a = b_flat;
+    }
     if (advance_a) {
       faces.push_back({a.vertices[i % na], a.vertices[(i + 1) % na], b.vertices[b_at(k)]});
       ++i;

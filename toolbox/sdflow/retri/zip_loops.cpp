@@ -1,6 +1,7 @@
 #include "sdflow/retri/zip_loops.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/io/validate.h"
 
 #include <fmt/format.h>
 
@@ -46,10 +47,12 @@ std::vector<std::array<int, 3>> zip_loops(const VertexVectors& positions, const 
   const auto a = [&](std::size_t i) { return outer[i % n]; };
   const auto b = [&](std::size_t j) { return inner[(start + j) % m]; };
   const auto distance = [&](int p, int q) { return (position(positions, p) - position(positions, q)).norm(); };
-  // Does triangle pqr face along the normals at its corners?
+  // Does triangle pqr face along the normals at its corners, with an area validation accepts?
+  const double zero_area = BuildOptions{}.zero_area_tolerance;
   const auto faces_along = [&](int p, int q, int r) {
     const Eigen::Vector3d x = position(positions, p), y = position(positions, q), z = position(positions, r);
-    return (y - x).cross(z - x).dot(normals.row(p) + normals.row(q) + normals.row(r)) > 0;
+    return (y - x).cross(z - x).dot(normals.row(p) + normals.row(q) + normals.row(r)) > 0 &&
+           !has_zero_area(x, y, z, zero_area);
   };
   std::vector<std::array<int, 3>> strip;
   strip.reserve(n + m);

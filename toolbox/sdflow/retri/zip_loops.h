@@ -3,8 +3,8 @@
 //! \brief The strip of triangles between two closed polylines that bound a band of surface, by
 //! the shortest-diagonal rule for contour stitching (Christiansen & Sederberg 1978): walking both
 //! loops, each triangle advances on the loop whose next diagonal is shorter, unless that triangle
-//! would face against the surface's normals there and the other would not (a fold where a loop
-//! zigzags).
+//! would face against the surface's normals there, or have zero area, and the other would not (a
+//! fold where a loop zigzags).
 
 #include "sdflow/mesh.h"
 
