@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 #include <vector>
 
@@ -107,6 +108,20 @@ TEST(ReconstructApart, rows_out_of_range_or_in_two_groups_are_refused)
   const Reconstruction r = reconstruct_apart(s.points, s.normals, {rows(0, n / 2)});
   EXPECT_THROW(joins_groups(r, {rows(0, 10)}, 5), InvalidParameter);
   EXPECT_THROW(joins_groups(r, {{-1}}, n), InvalidParameter);
+}
+
+TEST(ReconstructApart, a_group_too_small_for_a_triangle_is_left_over)
+{
+  // Found by fuzz_run: the pieces of a cut surface can hold a stray point, and rebuilding that
+  // piece threw "1 points cannot make a triangle" out of the run's re-triangulation (exit 3).
+  const Samples s = two_spheres(0.5);
+  const auto n = static_cast<int>(s.points.rows());
+  std::vector<int> first = rows(0, n / 2 - 2), stray{n / 2 - 2}, pair{n / 2 - 1, n / 2};
+  const Reconstruction alone = reconstruct_surface(s.points(first, Eigen::all), s.normals(first, Eigen::all));
+  const Reconstruction r = reconstruct_apart(s.points, s.normals, {first, stray, pair});
+  EXPECT_EQ(r.mesh.n_faces(), alone.mesh.n_faces()) << "the small groups add nothing";
+  for (const int row : {n / 2 - 2, n / 2 - 1, n / 2})
+    EXPECT_NE(std::find(r.unused.begin(), r.unused.end(), row), r.unused.end()) << "point " << row << " left over";
 }
 
 } // namespace

@@ -40,6 +40,10 @@ Reconstruction reconstruct_apart(const VertexVectors& points, const VertexVector
   std::vector<Eigen::Vector3d> vertices;
   std::vector<std::array<int, 3>> triangles;
   for (const std::vector<int>& members : groups) {
+    if (members.size() < 3) { // too few to make a triangle: left over, as the points of no group
+      all.unused.insert(all.unused.end(), members.begin(), members.end());
+      continue;
+    }
     VertexVectors group_points(static_cast<Eigen::Index>(members.size()), 3), group_normals(group_points.rows(), 3);
     for (std::size_t m = 0; m < members.size(); ++m) {
       group_points.row(static_cast<Eigen::Index>(m)) = points.row(members[m]);

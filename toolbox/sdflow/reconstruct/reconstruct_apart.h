@@ -15,9 +15,9 @@ namespace sdflow {
 
 //! reconstruct_surface on the points (#P by 3) and unit normals (#P by 3) of each group apart (row
 //! indices, each row in at most one group), the pieces in one mesh in group order; `source` and
-//! `unused` index the rows of `points`, and the points of no group are unused. Throws
-//! InvalidParameter for a row out of range or in two groups, and what reconstruct_surface throws
-//! on a group (fewer than 3 points, collinear ones).
+//! `unused` index the rows of `points`, and the points of no group, or of a group of fewer than 3,
+//! are unused. Throws InvalidParameter for a row out of range or in two groups, and what
+//! reconstruct_surface throws on a group (collinear points).
 Reconstruction reconstruct_apart(const VertexVectors& points, const VertexVectors& normals,
                                  const std::vector<std::vector<int>>& groups,
                                  const ReconstructionOptions& options = {});

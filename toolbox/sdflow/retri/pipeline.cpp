@@ -558,6 +558,10 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
     r.seconds.normals = seconds_since(start);
 
     start = Clock::now();
+    if (oriented.points.rows() < 3)
+      throw InvalidMesh(fmt::format("re-triangulation: nothing is left to rebuild: removing the crossings and the "
+                                    "points without a usable normal left {} points",
+                                    oriented.points.rows()));
     Reconstruction rebuilt = reconstruct_surface(oriented.points, oriented.normals, options.reconstruction);
     // Stage 2 cut the surface where it crossed itself. A rebuild that joins two pieces it left
     // apart bridged a cut: the two ends of a neck pinched through its axis, less than ℓ apart,
