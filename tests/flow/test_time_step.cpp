@@ -68,6 +68,48 @@ TEST(TimeStepController, adaptive_tau_grows_when_calm_and_shrinks_on_rejection)
   EXPECT_EQ(controller.propose(2, 0.0, 1e-5), 1e-5) << "the last step must land on the end time";
 }
 
+TEST(TimeStepController, triangles_turning_over_step_after_step_collapse_tau_and_say_so)
+{
+  // One triangle turning over in the first trial of each step, the second trial accepted: τ halves
+  // every step, as on the 27-sphere packing, until it is kTurningCollapse times the τ it began at.
+  TimeStepOptions options;
+  options.adaptive.initial_tau = 1e-6;
+  TimeStepController controller(options);
+  StepCheck turned, calm;
+  turned.inverted_triangles = 1;
+  calm.displacement_ratio = 0.9 * options.adaptive.safety * options.adaptive.max_displacement;
+  int steps = 0;
+  for (; steps < 40 && !controller.turning_collapsed(); ++steps) {
+    EXPECT_FALSE(controller.judge(steps + 1, controller.propose(steps + 1, 0.0, 1.0), turned));
+    if (controller.turning_collapsed())
+      break;
+    ASSERT_TRUE(controller.judge(steps + 1, controller.propose(steps + 1, 0.0, 1.0), calm));
+  }
+  EXPECT_TRUE(controller.turning_collapsed()) << "after " << steps << " steps";
+  EXPECT_EQ(controller.state().turning_since_tau, 1e-6) << "the τ of the first trial that turned one over";
+  EXPECT_LT(controller.state().next_tau, kTurningCollapse * 1e-6);
+  EXPECT_GE(steps, 5) << "a few halvings are τ's to take, not the triangulation's";
+  controller.forget_turning();
+  EXPECT_FALSE(controller.turning_collapsed());
+
+  // τ back at the size it began at: the triangles that turned over then are forgotten.
+  TimeStepController recovering(options);
+  EXPECT_FALSE(recovering.judge(1, recovering.propose(1, 0.0, 1.0), turned));
+  StepCheck still;
+  still.displacement_ratio = 1e-9;
+  for (int step = 1; recovering.state().turning_since_tau > 0 && step < 20; ++step)
+    ASSERT_TRUE(recovering.judge(step, recovering.propose(step, 0.0, 1.0), still));
+  EXPECT_EQ(recovering.state().turning_since_tau, 0);
+  EXPECT_GE(recovering.state().next_tau, 1e-6);
+
+  // Constant τ never collapses: a turned triangle stops it at once (the rule's other branch).
+  TimeStepOptions constant;
+  constant.mode = TimeStepMode::constant;
+  constant.tau = 1e-6;
+  TimeStepController fixed(constant);
+  EXPECT_FALSE(fixed.turning_collapsed());
+}
+
 TEST(TimeStepController, displacement_bound_predicts_the_next_tau)
 {
   TimeStepOptions options;

@@ -20,7 +20,7 @@ namespace {
 static_assert(std::endian::native == std::endian::little, "checkpoints are written on little-endian machines");
 
 constexpr char magic[8] = {'S', 'D', 'F', 'L', 'O', 'W', 'C', 'K'};
-constexpr std::uint32_t version = 7;
+constexpr std::uint32_t version = 8;
 
 std::uint64_t fnv1a(const char* data, std::size_t size)
 {
@@ -183,6 +183,7 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file)
     w.put(s->fresh_fill);
   }
   w.put(c.debris_volume);
+  w.put(c.time_step.turning_since_tau);
   w.put(fnv1a(w.bytes().data(), w.bytes().size()));
   write_atomically(file, [&](std::ostream& out) { out.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size())); });
 }
@@ -255,6 +256,11 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
     c.debris_volume = r.get<double>();
     if (!std::isfinite(c.debris_volume))
       throw IoError(fmt::format("{}: checkpoint's debris volume is not finite", file.string()));
+  }
+  if (file_version >= 8) {
+    c.time_step.turning_since_tau = r.get<double>();
+    if (!(c.time_step.turning_since_tau >= 0) || !std::isfinite(c.time_step.turning_since_tau))
+      throw IoError(fmt::format("{}: checkpoint's τ at which triangles began turning over is corrupt", file.string()));
   }
   return c;
 }

@@ -173,9 +173,25 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
   const auto restart_controller = [&] {
     TimeStepState s = controller_before;
     s.rejections = 0;
+    s.turning_since_tau = 0;
     controller_ = TimeStepController(refined_time_step(p_), s);
   };
-  for (bool forced = false, taken = false;;) {
+  // Re-triangulate the surface the step starts from, once a step; true when that changed it.
+  bool forced = false;
+  const auto retriangulated = [&](std::string_view why) {
+    if (!retriangulate_ || std::exchange(forced, true))
+      return false;
+    note(next_step, time_, fmt::format("{}: re-triangulating, then trying again", why));
+    const VertexVectors before = vertex_positions(mesh_);
+    const RetriangulationReport report = call_retriangulation(mesh_, true, a.record.times);
+    note_refusal(report, events);
+    if (!report.changed())
+      return false;
+    adopt_retriangulation(report, before, events, a.record.times);
+    restart_controller();
+    return true;
+  };
+  for (bool taken = false;;) {
     try {
       if (!std::exchange(taken, true)) {
         if (first.failure)
@@ -186,19 +202,14 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
       break;
     } catch (const TimeStepTooLarge&) {
       throw; // a smaller τ is needed, not a new surface or adaptive steps in its place
+    } catch (const TrianglesTurning& e) {
+      // Not re-triangulated (refused, or done once this step already): τ shrinks on as the rule asks.
+      controller_.forget_turning();
+      retriangulated(e.what());
+      continue;
     } catch (const SolverFailure& e) {
-      if (retriangulate_ && !forced) {
-        forced = true;
-        note(next_step, time_, fmt::format("no acceptable step ({}): re-triangulating, then trying again", e.what()));
-        const VertexVectors before = vertex_positions(mesh_);
-        const RetriangulationReport report = call_retriangulation(mesh_, true, a.record.times);
-        note_refusal(report, events);
-        if (report.changed()) {
-          adopt_retriangulation(report, before, events, a.record.times);
-          restart_controller();
-          continue;
-        }
-      }
+      if (retriangulated(fmt::format("no acceptable step ({})", e.what())))
+        continue;
       if (!table || a.fell_back || controller_before.fallback_left > 0)
         throw;
       a.fell_back = true;
@@ -694,6 +705,12 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
     ++rejections;
     ++rejected_trials_;
     note(next_step, time_, fmt::format("rejected τ = {}: {}", tau, check.describe()));
+    if (check.inverted_triangles > 0 && retriangulate_ && controller_.turning_collapsed())
+      throw TrianglesTurning(fmt::format("triangles keep turning over: the next τ, {:g}, would be {:.3g} times the "
+                                         "τ = {:g} at which they began",
+                                         controller_.state().next_tau,
+                                         controller_.state().next_tau / controller_.state().turning_since_tau,
+                                         controller_.state().turning_since_tau));
   }
 }
 

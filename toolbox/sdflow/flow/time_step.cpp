@@ -253,9 +253,13 @@ bool TimeStepController::judge_adaptive(long step, double tau, const StepCheck& 
   if (!check.failed()) {
     state_.rejections = 0;
     state_.next_tau = std::min(a.max_tau, tau * std::min({a.growth, displacement_factor, error_factor}));
+    if (tau >= state_.turning_since_tau)
+      state_.turning_since_tau = 0;
     return true;
   }
   ++state_.rejections;
+  if (check.inverted_triangles > 0 && state_.turning_since_tau == 0)
+    state_.turning_since_tau = tau;
   double factor = a.shrink;
   if (check.displacement_exceeded)
     factor = std::min(factor, displacement_factor);
@@ -266,6 +270,11 @@ bool TimeStepController::judge_adaptive(long step, double tau, const StepCheck& 
     throw SolverFailure(fmt::format("step {}: unstable, no acceptable τ after {} rejections (last τ = {:g}: {})",
                                     step, state_.rejections, tau, check.describe()));
   return false;
+}
+
+bool TimeStepController::turning_collapsed() const
+{
+  return adaptive() && state_.turning_since_tau > 0 && state_.next_tau < kTurningCollapse * state_.turning_since_tau;
 }
 
 //! An accepted adaptive step of `tau` covered part of a table step: the table's count stays put

@@ -16,6 +16,13 @@
 //!   be ≤ ε, and the next τ is also scaled by at most safety · √(ε / e) (the estimate is O(τ²)).
 //! - After `max_rejections` rejections in a row, or when τ would fall below `min_tau`, the run stops
 //!   with SolverFailure: the flow cannot be continued stably from this surface.
+//! - Triangles that turn over step after step, each step accepted only at a smaller τ, are the
+//!   triangulation's fault, not τ's (a sliver whose corner the flow pushes across it): once a trial
+//!   turns one over at kTurningCollapse times the τ at which they began (turning_collapsed), the
+//!   stepper re-triangulates as for a step no τ makes acceptable (surface_diffusion.h). The τ they
+//!   began at is forgotten when an accepted step's τ is back at it. On the 27-sphere packing
+//!   (samples/compact_27.toml) τ otherwise crept from 10⁻⁶ to 10⁻¹⁴ over 26 steps, one triangle
+//!   turning over in each, before a step failed and the re-triangulation came.
 //! Start phase (adaptive steps of a run's first `start_steps` steps): while the surface has a vertex
 //! whose curvature varies faster than its edges resolve, |ΔH|_v h_v³ > kUnresolvedVariation (noise,
 //! a sharp edge, a crease, a sliver), that vertex, not the scales the run resolves, would set τ. The
@@ -117,6 +124,13 @@ public:
   using SolverFailure::SolverFailure;
 };
 
+//! Adaptive steps: triangles kept turning over while τ fell by kTurningCollapse (the rule at the
+//! top), which calls for a re-triangulation rather than a smaller τ.
+class TrianglesTurning : public SolverFailure {
+public:
+  using SolverFailure::SolverFailure;
+};
+
 //! Why a trial step was not accepted.
 struct StepCheck {
   double displacement_ratio = 0;   //!< max τ|w|/h
@@ -175,6 +189,10 @@ constexpr int kStartRetries = 6;
 //! The factor on a start step's τ when a triangle turned over.
 constexpr double kStartShrink = 0.25;
 
+//! Triangles still turning over at this fraction of the τ at which they began (about ten halvings)
+//! call for a re-triangulation instead of a smaller τ (the adaptive rule at the top).
+constexpr double kTurningCollapse = 1e-3;
+
 //! τ_s = start_damping · (ℓ/π)⁴ of the start phase for the run's edge length ℓ (> 0).
 double start_tau(const AdaptiveOptions& options, double edge_length);
 
@@ -201,6 +219,9 @@ struct TimeStepState {
   long table_lag = 0;
   //! Schedule: while adaptive steps cover a table step, the time left of it (0: the table rules).
   double fallback_left = 0;
+  //! Adaptive steps: the τ of the trial at which triangles began turning over, in the steps since an
+  //! accepted τ was last that large (0: none turned over since).
+  double turning_since_tau = 0;
 };
 
 //! Decides τ for each trial and whether to accept it.
@@ -221,6 +242,12 @@ public:
   //! it again, and the rule above shrinks it as the bounds ask (the automatic τ, from the explicit
   //! speed, would be set again by what the start steps left of the unresolved scales).
   void accept_start_step(double tau);
+
+  //! Whether the next adaptive trial's τ is below kTurningCollapse times the τ at which triangles
+  //! began turning over (TimeStepState::turning_since_tau).
+  bool turning_collapsed() const;
+  //! Forget the τ at which triangles began turning over (the triangulation changed, or could not).
+  void forget_turning() { state_.turning_since_tau = 0; }
 
   //! Schedule mode: cover the table's step for flow step `step`, which failed, with adaptive steps
   //! (the rule at the top of this file). Starts from the automatic τ.
