@@ -1,8 +1,9 @@
 #pragma once
 //! \file crossing_width.h
 //! \brief The width of the neck or gap where a surface crosses itself, measured on the surface
-//! before a re-triangulation: the size a topology change there is logged with and held against
-//! the closing width (flow/retriangulation.h).
+//! before a re-triangulation: the size a topology change there is logged with in events.log
+//! (flow/retriangulation.h). No threshold is applied to it: on a surface that already crosses
+//! itself it does not tell a fold from a pinch (docs/retriangulation.md).
 
 #include "sdflow/mesh.h"
 #include "sdflow/spatial/intersect.h"
