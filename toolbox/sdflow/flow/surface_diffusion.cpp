@@ -203,7 +203,7 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
     } catch (const TimeStepTooLarge&) {
       throw; // a smaller τ is needed, not a new surface or adaptive steps in its place
     } catch (const TrianglesTurning& e) {
-      // Not re-triangulated (refused, or done once this step already): τ shrinks on as the rule asks.
+      // Re-triangulated (once a step), the step starts again; refused, τ shrinks on as the rule asks.
       controller_.forget_turning();
       retriangulated(e.what());
       continue;
