@@ -229,8 +229,9 @@ TEST_F(HardeningSecond, a_surface_too_coarse_to_retriangulate_is_refined_or_refu
   const auto refined = run_sdflow("run --input " + path("icosahedron.off") + " --out " + path("ico_refined") +
                                   " --steps 2");
   EXPECT_EQ(refined.exit_code, 0) << refined.output;
-  expect_mentions(refined.output, "icosahedron.off: the surface (12 vertices) is too coarse to re-triangulate at its "
-                                  "mean edge length 1.05: refined it, unchanged in shape, to ");
+  expect_mentions(refined.output, "icosahedron.off: the surface (12 vertices) is too coarse for the flow at its mean "
+                                  "edge length 1.05 (a component would get fewer than 100 vertices): refined it, "
+                                  "unchanged in shape, to ");
   expect_mentions(refined.output, "give --edge-length to choose another ℓ");
   const auto given = run_sdflow("run --input " + path("icosahedron.off") + " --out " + path("ico") +
                                 " --steps 2 --edge-length 1.05");

@@ -1,8 +1,9 @@
 //! A run's input too coarse to re-triangulate at its mean edge length (flow/coarse_input.h): a cube,
 //! a tetrahedron and an octahedron as their 8, 4 and 6 vertices run with the defaults, refined
 //! exactly (the same volume to rounding) to an ℓ that stays the run's, resumed runs included; the
-//! cube relaxes to the sphere of its volume; an ℓ given too coarse is still refused; a small body
-//! beside a large one is refined within the bound, or refused beyond it.
+//! cube relaxes to the sphere of its volume; a CAD part cut into slivers is refined for the flow;
+//! an ℓ given too coarse is still refused; a small body beside a large one is refined within the
+//! bound, or refused beyond it.
 #include "io/temp_dir.h"
 #include "sdflow/errors.h"
 #include "sdflow/flow/coarse_input.h"
@@ -109,6 +110,28 @@ TEST(CoarseInput, a_cube_relaxes_to_the_sphere_of_its_volume)
   const Distances end = distances(result.mesh);
   EXPECT_LT(end.spread, 0.025);
   EXPECT_NEAR(end.mean, 1.0, 0.01);
+}
+
+// A CAD part cut into slivers (like CGAL's mpi.off) is re-triangulable at its mean edge length but
+// gets only a few dozen vertices there: run at it, the first remeshing flattened the frame's
+// section into a few triangles and its area grew (1024 → 1090) under a flow that lowers it. It is
+// refined to the flow's few hundred vertices instead, and runs with its genus, its area falling.
+TEST(CoarseInput, a_cad_part_cut_into_slivers_is_refined_for_the_flow)
+{
+  const Mesh frame = analytic::fanned_frame(4);
+  RetriangulationOptions options;
+  EXPECT_GE(estimated_vertices(surface_area(frame), mean_edge_length(frame)), retriangulation_vertex_need(options));
+  test::TempDir dir;
+  const RunParameters p = defaults(dir / "run", 0.1);
+  const Mesh start = prepared(frame, p);
+  EXPECT_GE(start.n_vertices(), static_cast<std::size_t>(kCoarseInputVertices));
+  const double area = surface_area(frame), volume = enclosed_volume(frame);
+  EXPECT_NEAR(area, 1024, 1e-9);
+  EXPECT_NEAR(enclosed_volume(start), volume, kRefinedVolume * volume);
+  const SimulationResult result = run_simulation(start, {.parameters = p});
+  EXPECT_EQ(count_topology(result.mesh), (TopologyCount{.components = 1, .genus = 1, .boundary_loops = 0}));
+  EXPECT_LT(surface_area(result.mesh), area);
+  EXPECT_NEAR(enclosed_volume(result.mesh), volume, kFlowVolumeDrift * volume);
 }
 
 // A resumed run continues with the ℓ chosen at the start (run.toml holds it as a number): stopped

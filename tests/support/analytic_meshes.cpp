@@ -227,6 +227,48 @@ Mesh regular_octahedron()
   return convex_polyhedron(x, t);
 }
 
+Mesh fanned_frame(int segments)
+{
+  constexpr double outer = 10, inner = 6, height = 4;
+  const std::array<Eigen::Vector2d, 4> corners{Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, -1), Eigen::Vector2d(1, 1),
+                                               Eigen::Vector2d(-1, 1)};
+  const int ring = 4 * segments;     // outer vertices per layer
+  const int layer = ring + 4;        // then the hole's four corners
+  VertexVectors x(2 * layer, 3);
+  for (int z = 0; z < 2; ++z) {
+    for (int k = 0; k < 4; ++k) {
+      for (int j = 0; j < segments; ++j) {
+        const Eigen::Vector2d p =
+            outer * (corners[k] + (corners[(k + 1) % 4] - corners[k]) * (static_cast<double>(j) / segments));
+        x.row(z * layer + k * segments + j) << p.x(), p.y(), z * height;
+      }
+      x.row(z * layer + ring + k) << inner * corners[k].x(), inner * corners[k].y(), z * height;
+    }
+  }
+  const auto o = [&](int z, int i) { return z * layer + (i % ring); };
+  const auto h = [&](int z, int k) { return z * layer + ring + (k % 4); };
+  std::vector<Eigen::Vector3i> t;
+  for (int k = 0; k < 4; ++k) {
+    for (int j = 0; j < segments; ++j) {
+      const int i = k * segments + j;
+      t.emplace_back(h(1, k), o(1, i), o(1, i + 1)); // top, fanned from the hole's corner
+      t.emplace_back(h(0, k), o(0, i + 1), o(0, i)); // bottom
+    }
+    t.emplace_back(h(1, k), o(1, (k + 1) * segments), h(1, k + 1));
+    t.emplace_back(h(0, k), h(0, k + 1), o(0, (k + 1) * segments));
+    t.emplace_back(h(0, k), h(1, k + 1), h(0, k + 1)); // the hole's wall
+    t.emplace_back(h(0, k), h(1, k), h(1, k + 1));
+  }
+  for (int i = 0; i < ring; ++i) { // the outer wall
+    t.emplace_back(o(0, i), o(0, i + 1), o(1, i + 1));
+    t.emplace_back(o(0, i), o(1, i + 1), o(1, i));
+  }
+  FaceIndices faces(static_cast<Eigen::Index>(t.size()), 3);
+  for (std::size_t f = 0; f < t.size(); ++f)
+    faces.row(static_cast<Eigen::Index>(f)) = t[f].transpose();
+  return make_mesh(x, faces);
+}
+
 Mesh disjoint_union(const Mesh& a, const Mesh& b)
 {
   VertexVectors x(a.n_vertices() + b.n_vertices(), 3);

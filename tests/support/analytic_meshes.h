@@ -41,6 +41,11 @@ Mesh cube(double edge = 1.0, const Eigen::Vector3d& centre = Eigen::Vector3d::Ze
 Mesh regular_tetrahedron();
 Mesh regular_octahedron();
 
+//! A CAD part as exported (like CGAL's mpi.off): a square frame of genus 1, 20 wide with a hole 12
+//! wide and height 4, each outer side cut into `segments` edges and its top and bottom faces
+//! fanned from the hole's corners into slivers; oriented outward.
+Mesh fanned_frame(int segments);
+
 //! The two surfaces as one mesh: a's vertices and faces first, then b's.
 Mesh disjoint_union(const Mesh& a, const Mesh& b);
 

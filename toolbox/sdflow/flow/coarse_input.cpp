@@ -35,12 +35,14 @@ std::optional<double> coarse_input_edge_length(const Mesh& mesh, const Retriangu
     return std::nullopt; // no ℓ to refine from: the checks say why
   const auto smallest = std::min_element(areas.begin(), areas.end());
   const double need = retriangulation_vertex_need(options);
-  if (!(*smallest > 0) || estimated_vertices(*smallest, mean) >= need)
+  if (!(*smallest > 0) || estimated_vertices(*smallest, mean) >= kCoarseFlowVertices)
     return std::nullopt;
   const double total = std::accumulate(areas.begin(), areas.end(), 0.0);
   const double wanted = edge_length_for_vertices(*smallest, kCoarseInputVertices);
   if (estimated_vertices(total, wanted) <= kCoarseInputMaxVertices)
     return wanted;
+  if (estimated_vertices(*smallest, mean) >= need)
+    return std::nullopt; // coarse for the flow, but re-triangulable as given: not refined past the bound
   const double bounded = edge_length_for_vertices(total, kCoarseInputMaxVertices);
   if (estimated_vertices(*smallest, bounded) >= 2 * need)
     return bounded;
@@ -70,17 +72,18 @@ bool refine_coarse_input(Mesh& mesh, const RetriangulationOptions& options, std:
                             .max_vertices = static_cast<std::size_t>(2 * kCoarseInputMaxVertices)});
   if (refined.stopped)
     throw InvalidMesh(fmt::format(
-        "{}: the surface is too coarse to re-triangulate at its mean edge length {:.3g}, and its triangles are too "
+        "{}: the surface is too coarse for the flow at its mean edge length {:.3g}, and its triangles are too "
         "uneven to refine to ℓ = {:.3g} within {:.0f} vertices. Give {} or shorter, or {}",
         source, before, *ell, 2 * kCoarseInputMaxVertices,
         terms.setting("retriangulation.edge_length", fmt::format("{:.3g}", *ell)),
         fmt::format(fmt::runtime(terms.refine), fmt::arg("edge_length", fmt::format("{:.3g}", *ell)))));
   mesh = std::move(refined.mesh);
   const double after = mean_edge_length(mesh);
-  logger().info("{}: the surface ({} vertices) is too coarse to re-triangulate at its mean edge length {:.3g}: "
-                "refined it, unchanged in shape, to {} vertices, whose mean edge length ℓ = {:.3g} is the run's; "
-                "give {} to choose another ℓ",
-                source, vertices, before, mesh.n_vertices(), after, terms.name("retriangulation.edge_length"));
+  logger().info("{}: the surface ({} vertices) is too coarse for the flow at its mean edge length {:.3g} (a "
+                "component would get fewer than {:.0f} vertices): refined it, unchanged in shape, to {} vertices, "
+                "whose mean edge length ℓ = {:.3g} is the run's; give {} to choose another ℓ",
+                source, vertices, before, kCoarseFlowVertices, mesh.n_vertices(), after,
+                terms.name("retriangulation.edge_length"));
   return true;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 //! \file coarse_input.h
-//! \brief A run's input too coarse to re-triangulate at its own mean edge length, the ℓ a run takes
-//! when none is given (a cube of 8 vertices, a tetrahedron, CAD parts with a few large faces):
+//! \brief A run's input too coarse for the flow at its own mean edge length, the ℓ a run takes
+//! when none is given (a cube of 8 vertices, a tetrahedron, CAD parts whose few large faces are
+//! triangulated into slivers, like CGAL's mpi.off: 90 vertices, mean edge 6.9 on legs 4 thick,
+//! kCoarseFlowVertices):
 //! the run refines it itself before step 1, exactly (remesh/exact_refinement.h: the same surface,
 //! creases and volume kept), to an ℓ that gives its smallest component a few hundred vertices,
 //! and that refined surface's mean edge length is then the run's ℓ (written to run.toml, so a
@@ -23,16 +25,23 @@ namespace sdflow {
 //! (tests/flow/test_coarse_input.cpp).
 inline constexpr double kCoarseInputVertices = 300;
 
+//! Fewer vertices than this on a component at the mean edge length make an input coarse for the
+//! flow: its edges are then longer than about 0.4 R on a sphere of radius R, and a CAD part cut into
+//! slivers (CGAL's mpi.off, about 45 at its mean edge length 6.9, legs 4 thick) lost its handle in
+//! its first remeshing. A sphere of 162 vertices is left as given.
+inline constexpr double kCoarseFlowVertices = 100;
+
 //! Most vertices the whole refined surface may get: a scene of one large and one small body is
 //! refined for the small one only as far as this allows (a run of 50 000 vertices takes minutes on
 //! two cores), the small one then getting fewer than kCoarseInputVertices but never fewer than
 //! twice the re-triangulation's need; beyond that the run is refused.
 inline constexpr double kCoarseInputMaxVertices = 50'000;
 
-//! The ℓ to refine `mesh` to when, at its mean edge length, a component would get fewer vertices
-//! than the re-triangulation with `options` needs (retriangulation_vertex_need); nullopt when every
-//! component has enough. Throws InvalidMesh (naming `source`, with what to do in `terms`) when
-//! the bounds above cannot both be met.
+//! The ℓ to refine `mesh` to when, at its mean edge length, a component would get fewer than
+//! kCoarseFlowVertices; nullopt when every component has that many, or when it would take more
+//! than kCoarseInputMaxVertices and every component has what the re-triangulation with `options`
+//! needs (retriangulation_vertex_need) at the mean edge length. Throws InvalidMesh (naming
+//! `source`, with what to do in `terms`) when the bounds above cannot both be met.
 std::optional<double> coarse_input_edge_length(const Mesh& mesh, const RetriangulationOptions& options,
                                                std::string_view source, const UserTerms& terms = {});
 
