@@ -163,9 +163,18 @@ VolumeRestoration restore_volumes_from(const Mesh& before, const Mesh& after)
         ++votes[k][old_component[face]];
       ++vertex_count[k];
     }
+    // A component merged into a much larger one (a bubble opening through the sheet above it)
+    // holds a small share of the merged component's vertices, but about as many as it had: the
+    // vote counts against either size.
+    std::vector<int> old_vertex_count(old_count, 0);
+    for (auto v : before.vertices())
+      for (auto f : before.vf_range(v)) {
+        ++old_vertex_count[old_component[f.idx()]];
+        break;
+      }
     for (int k = 0; k < new_count; ++k)
       for (int j = 0; j < old_count; ++j)
-        if (votes[k][j] > 0 && 10 * votes[k][j] >= vertex_count[k])
+        if (votes[k][j] > 0 && (10 * votes[k][j] >= vertex_count[k] || 10 * votes[k][j] >= old_vertex_count[j]))
           parent[find(old_count + k)] = find(j);
   }
 

@@ -45,7 +45,8 @@ VolumeRestoration restore_volumes(const Mesh& mesh, const std::vector<double>& t
 
 //! Offset the components of `after`, a re-triangulation of `before`, so that volume lost or gained
 //! by the re-triangulation is given back. Each component of `after` belongs to the components of
-//! `before` its vertices lie nearest to (10% of its vertices or more); components so linked form
+//! `before` its vertices lie nearest to (as many as 10% of its vertices, or of theirs: a bubble
+//! that opened through a large sheet belongs to the sheet's new surface); components so linked form
 //! groups (one body that pinched off into two, two bodies that fused), and each group gets
 //! back Σ V_before − Σ V_after (material volumes), shared among its new components in proportion
 //! to their areas: debris dropped inside a group is given back to it. A group with an open
