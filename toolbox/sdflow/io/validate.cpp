@@ -483,9 +483,10 @@ std::vector<double> signed_volumes(const std::vector<Eigen::Vector3d>& points, c
 //! How many other components enclose each closed component (0 for open ones): a point of the
 //! component is inside another when that one's winding number there (its triangles' solid
 //! angles, Van Oosterom & Strackee 1983, over 4π) is ±1 rather than 0. An open component is
-//! closed for this by a cone over its boundary edges from their vertices' centroid, which bounds
-//! the material its material volume counts (geometry/material_volume.h closes each loop by such a
-//! fan): a bubble sealed off under the spheres of a surface with a rim is a cavity of that material. The point asked is the
+//! closed for this by a cone over its boundary edges, its apex beyond the whole scene on the side
+//! the fan from the edges' centroid faces (geometry/material_volume.h closes each loop by that fan):
+//! the component is the top of a body that goes on below its rim, and a bubble sealed off under the
+//! spheres of a surface with a rim is a cavity of it, also where it reaches below the rim's plane. The point asked is the
 //! component's extreme vertices in six directions (lexicographic in the coordinates' rotations,
 //! either sign), so the answer does not depend on the order of vertices or faces. A probe on the
 //! other surface (on one of its triangles, where the solid angle jumps by 4π, as where repaired
@@ -510,10 +511,12 @@ std::vector<int> nesting_depths(const std::vector<Eigen::Vector3d>& points, cons
     p.fill(-1);
   std::vector<std::vector<int>> triangles_of(components.count);
   std::vector<Eigen::AlignedBox3d> box(components.count);
+  Eigen::AlignedBox3d scene;
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     const int c = components.of_triangle[t];
     for (const int v : triangles[t].v) {
       box[c].extend(points[v]);
+      scene.extend(points[v]);
       for (int k = 0; k < probes; ++k)
         if (probe[c][k] < 0 || key(probe[c][k], k) < key(v, k))
           probe[c][k] = v;
@@ -540,8 +543,18 @@ std::vector<int> nesting_depths(const std::vector<Eigen::Vector3d>& points, cons
         cone_edges[d].push_back(use.second);
         apex[d] += points[use.second[0]];
       }
-    if (!cone_edges[d].empty())
-      apex[d] /= static_cast<double>(cone_edges[d].size());
+    if (cone_edges[d].empty())
+      continue;
+    apex[d] /= static_cast<double>(cone_edges[d].size());
+    // The flat fan from the centroid faces out of the material through the loops; its apex is
+    // moved that way, beyond every component, so that the material below a rim's plane (a plane
+    // that sank beside the spheres on it, a bubble reaching below it) is enclosed too.
+    Eigen::Vector3d outward = Eigen::Vector3d::Zero();
+    for (const auto& [a, b] : cone_edges[d])
+      outward += (points[a] - apex[d]).cross(points[b] - apex[d]);
+    if (outward.norm() > 0)
+      apex[d] += 2 * scene.diagonal().norm() * outward.normalized();
+    box[d].extend(apex[d]);
   }
   // |4π × winding number| of component d (closed by its cone) at p, or NaN when p is on one of its
   // triangles: in its plane (to rounding) and not clearly outside it, where the solid angle jumps by 4π.
