@@ -68,6 +68,14 @@ TEST(ResolutionCheck, names_a_tail_thinner_than_the_finest_edge_and_the_edge_len
   EXPECT_LE(0.25 * thin->resolving_edge_length, thin->size);
   EXPECT_GT(0.25 * thin->resolving_edge_length, 0.9 * thin->size);
   EXPECT_FALSE(thinnest_unresolved_part(body, {.edge_length = thin->resolving_edge_length}));
+  // A uniform ℓ (the paper's practice) makes no edge much shorter than ℓ: 0.2 does not resolve the
+  // tail, and the ℓ proposed passes the check, although sampled that finely the tail's root shows
+  // thinner (0.051 against 0.060 at ℓ = 0.2).
+  const std::optional<ThinPart> uniform = thinnest_unresolved_part(body, {.edge_length = 0.2, .edges_per_radius = 0});
+  ASSERT_TRUE(uniform);
+  EXPECT_NEAR(uniform->finest_edge, 0.2, 1e-12);
+  EXPECT_LT(uniform->resolving_edge_length, uniform->size);
+  EXPECT_FALSE(thinnest_unresolved_part(body, {.edge_length = uniform->resolving_edge_length, .edges_per_radius = 0}));
   const std::string message = describe_thin_part(*thin, 0.4);
   EXPECT_NE(message.find(fmt::format("--edge-length {:.2g}", thin->resolving_edge_length)), std::string::npos)
       << message;

@@ -28,6 +28,9 @@ double longest_edge(const Mesh& mesh)
   return longest;
 }
 
+//! Checks of a proposed ℓ, each at the ℓ the one before found wanting.
+constexpr int kResolvingRounds = 4;
+
 //! `x` rounded down to two significant digits.
 double two_digits_down(double x)
 {
@@ -35,10 +38,17 @@ double two_digits_down(double x)
   return std::floor(x / unit) * unit;
 }
 
+//! The finest edge of the pipeline's sizing as a fraction of ℓ: the curvature-adapted floor, or ℓ
+//! itself when the sizing is uniform (edges_per_radius = 0, as under the paper's preset).
+double finest_edge_fraction(const RetriangulationOptions& pipeline)
+{
+  return pipeline.edges_per_radius > 0 ? pipeline.min_edge_fraction : 1.0;
+}
+
 //! thinnest_unresolved_part (resolution_check.h) measured at the vertices of `mesh` as they are.
 std::optional<ThinPart> thinnest_at_vertices(const Mesh& mesh, const RetriangulationOptions& pipeline)
 {
-  const double finest = pipeline.min_edge_fraction * pipeline.edge_length;
+  const double finest = finest_edge_fraction(pipeline) * pipeline.edge_length;
   const LocalThickness thickness =
       local_thickness(mesh, {.max_distance = 2 * finest, .gaps_between_components_only = true});
   std::vector<char> crossing(mesh.n_vertices(), 0);
@@ -65,17 +75,14 @@ std::optional<ThinPart> thinnest_at_vertices(const Mesh& mesh, const Retriangula
   }
   if (thinnest) {
     thinnest->vertices = count;
-    thinnest->resolving_edge_length = two_digits_down(thinnest->size / pipeline.min_edge_fraction);
+    thinnest->resolving_edge_length = two_digits_down(thinnest->size / finest_edge_fraction(pipeline));
   }
   return thinnest;
 }
 
-} // namespace
-
-std::optional<ThinPart> thinnest_unresolved_part(const Mesh& mesh, const RetriangulationOptions& pipeline)
+//! The thinnest part at the pipeline's ℓ, with the long edges sampled (thinnest_unresolved_part).
+std::optional<ThinPart> thinnest_sampled(const Mesh& mesh, const RetriangulationOptions& pipeline)
 {
-  if (!(pipeline.edge_length > 0) || !std::isfinite(pipeline.edge_length))
-    throw InvalidParameter(fmt::format("resolution check: ℓ must be positive, got {}", pipeline.edge_length));
   // Thickness is measured at vertices: an edge far longer than ℓ (a spike pulled out to one far
   // vertex, a CAD wire of a few long triangles) hides the thin part between its ends, which the
   // re-triangulation will sample. Sample it first, on the same surface (exact_refinement.h).
@@ -85,6 +92,26 @@ std::optional<ThinPart> thinnest_unresolved_part(const Mesh& mesh, const Retrian
                                     .mesh,
                                 pipeline);
   return thinnest_at_vertices(mesh, pipeline);
+}
+
+} // namespace
+
+std::optional<ThinPart> thinnest_unresolved_part(const Mesh& mesh, const RetriangulationOptions& pipeline)
+{
+  if (!(pipeline.edge_length > 0) || !std::isfinite(pipeline.edge_length))
+    throw InvalidParameter(fmt::format("resolution check: ℓ must be positive, got {}", pipeline.edge_length));
+  std::optional<ThinPart> thin = thinnest_sampled(mesh, pipeline);
+  // The ℓ proposed must pass the check itself: sampled finer, the surface may show a thinner spot
+  // (a tail's root, between vertices of edges between ℓ and 2ℓ long).
+  for (int round = 0; thin && round < kResolvingRounds; ++round) {
+    RetriangulationOptions proposed = pipeline;
+    proposed.edge_length = thin->resolving_edge_length;
+    const std::optional<ThinPart> finer = thinnest_sampled(mesh, proposed);
+    if (!finer)
+      break;
+    thin->resolving_edge_length = std::min(finer->resolving_edge_length, two_digits_down(0.99 * proposed.edge_length));
+  }
+  return thin;
 }
 
 std::string describe_thin_part(const ThinPart& part, double edge_length, const UserTerms& terms)
