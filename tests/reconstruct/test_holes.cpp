@@ -14,6 +14,7 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -251,6 +252,96 @@ TEST(Holes, a_nearly_straight_corner_gets_no_zero_area_triangle)
           << "face " << f.idx();
     }
     EXPECT_NO_THROW(check_geometry(result.mesh, "filled"));
+  }
+}
+
+// A hole of CGAL's turbine.off at step 263 of a run under a uniform ℓ, with one ring of faces
+// around it: a Delaunay flip of the refinement turned a quad whose other diagonal passes through
+// a corner into a zero-area triangle, the cotangent fairing's system became singular, and the run
+// stopped with "the fairing system of a patch with 233 new vertices is singular" (issue 33).
+TEST(Holes, the_refinement_makes_no_zero_area_triangle_by_a_flip)
+{
+  const Mesh ring = read_mesh(std::filesystem::path(SDFLOW_SOURCE_DIR) /
+                              "tests/data/hole_whose_refinement_flipped_to_a_zero_area_triangle.off")
+                        .mesh;
+  HoleFillingOptions options;
+  options.max_loop_length = 2.1; // the hole is 2.094 long; the ring's outer loop, 2.115, stays open
+  const FilledHoles result = fill_holes(ring, options);
+  ASSERT_EQ(result.loops.size(), 2u);
+  int filled = 0;
+  for (const auto& loop : result.loops)
+    if (loop.outcome == LoopOutcome::filled) {
+      ++filled;
+      EXPECT_GT(loop.added_vertices, 100);
+      EXPECT_FALSE(loop.uniform_fairing) << "the cotangent system should be regular";
+    }
+  EXPECT_EQ(filled, 1);
+  for (const auto f : result.mesh.faces()) {
+    std::vector<Eigen::Vector3d> corners;
+    for (const auto v : result.mesh.fv_range(f))
+      corners.push_back(to_eigen(result.mesh.point(v)));
+    EXPECT_FALSE(has_zero_area(corners[0], corners[1], corners[2], BuildOptions{}.zero_area_tolerance))
+        << "face " << f.idx();
+  }
+}
+
+// A zero-area triangle beside a hole (a loop vertex moved onto the edge its two outer neighbours
+// share) makes the cotangent weights of the fairing infinite and its system singular; the
+// re-triangulation of a run stopped with "the fairing system ... is singular" (CGAL's turbine.off
+// under a uniform ℓ, issue 33). The patch is faired with the umbrella operator instead.
+TEST(Holes, a_zero_area_triangle_at_the_hole_falls_back_to_uniform_fairing)
+{
+  Mesh annulus = flat_annulus();
+  const auto loops = checks::boundary_loops(annulus);
+  const std::vector<int>& loop = *std::min_element( // the hole's, not the rim's
+      loops.begin(), loops.end(), [](const auto& a, const auto& b) { return a.size() < b.size(); });
+  // The loop vertex onto an outer neighbour (not on the loop): their face's area becomes zero.
+  const Mesh::VertexHandle corner(loop.front());
+  std::optional<Mesh::FaceHandle> flattened;
+  for (const auto f : annulus.vf_range(corner)) {
+    std::vector<Mesh::VertexHandle> others;
+    for (const auto v : annulus.fv_range(f))
+      if (v != corner)
+        others.push_back(v);
+    if (annulus.is_boundary(others[0]) || annulus.is_boundary(others[1]))
+      continue;
+    annulus.set_point(corner, annulus.point(others[0]));
+    flattened = f;
+    break;
+  }
+  ASSERT_TRUE(flattened.has_value());
+  ASSERT_NEAR(annulus.calc_face_area(*flattened), 0.0, 1e-15);
+
+  HoleFillingOptions options;
+  options.max_loop_length = 4.0;
+  const FilledHoles result = fill_holes(annulus, options);
+  int filled = 0;
+  for (const auto& report : result.loops)
+    if (report.outcome == LoopOutcome::filled) {
+      ++filled;
+      EXPECT_GT(report.added_vertices, 0);
+      EXPECT_TRUE(report.uniform_fairing);
+    }
+  EXPECT_EQ(filled, 1);
+  // The fairing of a flat hole stays flat and inside the hole, whichever operator did it.
+  for (int v = static_cast<int>(annulus.n_vertices()); v < static_cast<int>(result.mesh.n_vertices()); ++v) {
+    const auto p = result.mesh.point(Mesh::VertexHandle(v));
+    EXPECT_TRUE(std::isfinite(p[0]) && std::isfinite(p[1]));
+    EXPECT_NEAR(p[2], 0.0, 1e-12);
+    EXPECT_LT(std::hypot(p[0], p[1]), 0.45);
+  }
+}
+
+// With a sound neighbourhood the cotangent fairing asked for is the one used.
+TEST(Holes, a_sound_hole_is_faired_with_the_weights_asked_for)
+{
+  HoleFillingOptions options;
+  options.max_loop_length = 4.0;
+  for (const auto weights : {FairingWeights::cotangent, FairingWeights::uniform}) {
+    options.weights = weights;
+    for (const auto& report : fill_holes(flat_annulus(), options).loops)
+      if (report.outcome == LoopOutcome::filled)
+        EXPECT_EQ(report.uniform_fairing, weights == FairingWeights::uniform);
   }
 }
 

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -215,6 +216,7 @@ public:
   void relax()
   {
     constexpr int max_sweeps = 100;
+    const double zero_area = BuildOptions{}.zero_area_tolerance;
     for (int sweep = 0; sweep < max_sweeps; ++sweep) {
       std::vector<Mesh::EdgeHandle> edges;
       for (auto f : faces_)
@@ -230,9 +232,11 @@ public:
         const Eigen::Vector3d b = to_eigen(mesh_.point(mesh_.to_vertex_handle(h)));
         const Eigen::Vector3d c = to_eigen(mesh_.point(mesh_.opposite_vh(h)));
         const Eigen::Vector3d d = to_eigen(mesh_.point(mesh_.opposite_he_opposite_vh(h)));
-        // Cocircular quads are left alone so that no flip can undo another.
+        // Cocircular quads are left alone so that no flip can undo another; nor is a quad whose
+        // other diagonal passes through a corner (the flip would make a zero-area triangle).
         constexpr double tolerance = 1e-12;
-        if (corner_angle(c, a, b) + corner_angle(d, a, b) > M_PI + tolerance) {
+        if (corner_angle(c, a, b) + corner_angle(d, a, b) > M_PI + tolerance && !has_zero_area(c, d, a, zero_area) &&
+            !has_zero_area(d, c, b, zero_area)) {
           mesh_.flip(e);
           flipped = true;
         }
@@ -249,10 +253,12 @@ private:
   std::vector<Mesh::FaceHandle> faces_;
 };
 
-//! Δ²x = 0 on the `free` vertices with everything else fixed: the rows of L M⁻¹ L for the free
-//! vertices, split into free and fixed columns, solved by sparse Cholesky (Liepa 2003 §4 fairs
-//! with the umbrella operator; the cotangent variant uses eq. (10)'s weights).
-void fair(Mesh& mesh, const std::vector<Mesh::VertexHandle>& free, FairingWeights weights)
+//! The positions of the `free` vertices with Δ²x = 0 there and everything else fixed: the rows of
+//! L M⁻¹ L for the free vertices, split into free and fixed columns, solved by sparse Cholesky
+//! (Liepa 2003 §4 fairs with the umbrella operator; the cotangent variant uses eq. (10)'s
+//! weights); none when the system is singular or its solution not finite.
+std::optional<Eigen::MatrixXd> faired_positions(const Mesh& mesh, const std::vector<Mesh::VertexHandle>& free,
+                                                FairingWeights weights)
 {
   const auto n_free = static_cast<int>(free.size());
   std::vector<int> unknown(mesh.n_vertices(), -1);
@@ -316,16 +322,36 @@ void fair(Mesh& mesh, const std::vector<Mesh::VertexHandle>& free, FairingWeight
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> cholesky(system);
   if (cholesky.info() == Eigen::Success)
     x = cholesky.solve(rhs);
-  if (cholesky.info() != Eigen::Success || !x.allFinite()) {
-    // Obtuse patches can make cotangent weights negative and the system indefinite.
-    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(system);
-    if (lu.info() == Eigen::Success)
-      x = lu.solve(rhs);
-    if (lu.info() != Eigen::Success || !x.allFinite())
-      throw SolverFailure(fmt::format("fill_holes: the fairing system of a patch with {} new vertices is singular", n_free));
+  if (cholesky.info() == Eigen::Success && x.allFinite())
+    return x;
+  // Obtuse patches can make cotangent weights negative and the system indefinite.
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(system);
+  if (lu.info() == Eigen::Success)
+    x = lu.solve(rhs);
+  if (lu.info() != Eigen::Success || !x.allFinite())
+    return std::nullopt;
+  return x;
+}
+
+//! Fair the `free` vertices (faired_positions) with `weights`, or with the umbrella operator when the
+//! cotangent system is singular (a zero-area triangle at the hole makes its weights infinite); the
+//! umbrella system never is, each new vertex being joined to the fixed loop. Returns whether it fell back.
+bool fair(Mesh& mesh, const std::vector<Mesh::VertexHandle>& free, FairingWeights weights)
+{
+  std::optional<Eigen::MatrixXd> x = faired_positions(mesh, free, weights);
+  const bool fell_back = !x && weights == FairingWeights::cotangent;
+  if (fell_back) {
+    logger().debug("fill_holes: the cotangent fairing system of a patch with {} new vertices is singular; "
+                   "faired with uniform weights",
+                   free.size());
+    x = faired_positions(mesh, free, FairingWeights::uniform);
   }
-  for (int i = 0; i < n_free; ++i)
-    mesh.set_point(free[i], to_point(x.row(i).transpose()));
+  if (!x)
+    throw SolverFailure(fmt::format("fill_holes: the fairing system of a patch with {} new vertices is singular",
+                                    free.size()));
+  for (std::size_t i = 0; i < free.size(); ++i)
+    mesh.set_point(free[i], to_point(x->row(static_cast<Eigen::Index>(i)).transpose()));
+  return fell_back;
 }
 
 void check_options(const HoleFillingOptions& options)
@@ -392,7 +418,7 @@ FilledHoles fill_holes(const Mesh& input, const HoleFillingOptions& options)
     for (auto v = first_new_vertex; v < static_cast<int>(mesh.n_vertices()); ++v)
       added.emplace_back(v);
     if (options.stages == HoleFillingStages::refine_and_fair && !added.empty())
-      fair(mesh, added, options.weights);
+      report.uniform_fairing = fair(mesh, added, options.weights) || options.weights == FairingWeights::uniform;
     report.added_vertices = static_cast<int>(added.size());
     report.added_faces = static_cast<int>(patch.faces().size());
     result.loops.push_back(std::move(report));

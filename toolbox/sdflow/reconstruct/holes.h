@@ -55,6 +55,9 @@ struct HoleReport {
   LoopOutcome outcome = LoopOutcome::filled;
   int added_vertices = 0;
   int added_faces = 0;
+  //! The new vertices were faired with the umbrella operator: asked for, or because the cotangent
+  //! system was singular (a zero-area triangle at the hole).
+  bool uniform_fairing = false;
 };
 
 struct FilledHoles {
