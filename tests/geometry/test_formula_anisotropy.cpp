@@ -83,8 +83,30 @@ TEST(FormulaAnisotropy, refuses_formulas_that_do_not_parse_are_not_positive_or_a
     EXPECT_NE(message.find("energy.formula \"" + c.formula + "\""), std::string::npos) << message;
     EXPECT_NE(message.find(c.reason), std::string::npos) << message;
   }
+  EXPECT_NE(refusal("").find("needs energy.formula"), std::string::npos) << "the key is missing, not a bad formula";
+  EXPECT_NE(refusal("  ").find("needs energy.formula"), std::string::npos);
   EXPECT_EQ(refusal("1 + 0.05 * (nx^4 + ny^4 + nz^4)"), "") << "a weak cubic anisotropy is convex";
   EXPECT_EQ(refusal("sqrt(nx^2 + ny^2 + 4*nz^2)"), "");
+}
+
+// A formula undefined in a band narrower than the lattice's spacing passes the construction's
+// checks; a flow whose normal enters the band is stopped by a message naming the formula and the
+// direction, not by a non-finite curvature reported as a numerical failure.
+TEST(FormulaAnisotropy, a_formula_undefined_between_the_checked_directions_is_named_where_it_fails)
+{
+  const std::string formula = "1 + 0 * sqrt(nx^2 - 1e-12)"; // undefined for |nx| < 1e-6 only
+  ASSERT_EQ(refusal(formula), "") << "the lattice has no direction in the band";
+  const FormulaAnisotropy gamma(formula);
+  EXPECT_DOUBLE_EQ(gamma.value(Eigen::Vector3d(0.6, 0, 0.8)), 1.0);
+  try {
+    gamma.value(Eigen::Vector3d(0, 0, 2));
+    FAIL() << "γ at n = (0, 0, 1) is undefined";
+  } catch (const InvalidParameter& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("energy.formula \"" + formula + "\""), std::string::npos) << message;
+    EXPECT_NE(message.find("(0.0000, 0.0000, 1.0000)"), std::string::npos) << message;
+  }
+  EXPECT_THROW(gamma.gradient(Eigen::Vector3d(0, 0.6, 0.8)), InvalidParameter);
 }
 
 } // namespace

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <mutex>
+#include <string>
 
 namespace sdflow {
 
@@ -45,6 +46,9 @@ FormulaAnisotropy::FormulaAnisotropy(const std::string& formula) : formula_(form
   const auto bad = [&](const std::string& what) {
     return InvalidParameter(fmt::format("energy.formula \"{}\": {}", formula, what));
   };
+  if (formula.find_first_not_of(" \t") == std::string::npos)
+    throw InvalidParameter("energy.kind = \"formula\" needs energy.formula, γ as a function of the unit normal's "
+                           "nx, ny, nz, for example \"1 + 0.1 * (nx^4 + ny^4 + nz^4)\"");
   try {
     parser_ = std::make_unique<Parser>(formula);
     parser_->nz = 1;
@@ -57,9 +61,7 @@ FormulaAnisotropy::FormulaAnisotropy(const std::string& formula) : formula_(form
   }
   const std::vector<Eigen::Vector3d> directions = fibonacci_directions(2000);
   for (const Eigen::Vector3d& n : directions)
-    if (const double gamma = value(n); !std::isfinite(gamma) || !(gamma > 0))
-      throw bad(fmt::format("γ must be finite and > 0 for every unit normal; at n = ({:.4f}, {:.4f}, {:.4f}) it is {}",
-                            n.x(), n.y(), n.z(), gamma));
+    value(n); // throws where γ is not finite and > 0
   for (const Eigen::Vector3d& n : directions) {
     const double gamma = value(n);
     if (const double least = least_tangent_stiffness(n); !(least >= -1e-5 * gamma))
@@ -75,7 +77,16 @@ FormulaAnisotropy::~FormulaAnisotropy() = default;
 double FormulaAnisotropy::value(const Eigen::Vector3d& p) const
 {
   const double length = p.norm();
-  return length * (*parser_)(p / length);
+  const Eigen::Vector3d n = p / length;
+  const double f = (*parser_)(n);
+  // Checked at every evaluation: a flow's normals reach directions between those of the
+  // construction's lattice, where a formula may still be undefined.
+  if (!std::isfinite(f) || !(f > 0))
+    throw InvalidParameter(fmt::format("energy.formula \"{}\": γ must be finite and > 0 for every unit normal; at "
+                                       "n = ({:.4f}, {:.4f}, {:.4f}) it is {}",
+                                       formula_, n.x(), n.y(), n.z(),
+                                       std::isnan(f) ? std::string("undefined") : fmt::format("{}", f)));
+  return length * f;
 }
 
 Eigen::Vector3d FormulaAnisotropy::gradient(const Eigen::Vector3d& p) const

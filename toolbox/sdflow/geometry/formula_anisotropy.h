@@ -13,14 +13,16 @@ namespace sdflow {
 
 class FormulaAnisotropy final : public Anisotropy {
 public:
-  //! Throws InvalidParameter naming `energy.formula` when `formula` does not parse or gives more
-  //! than one value, or when, on the 2000 directions of a Fibonacci lattice, f is not finite and
-  //! > 0 or D²γ has a negative tangent eigenvalue (below −10⁻⁵ γ: a concave γ, whose flow is
-  //! ill-posed), naming the direction.
+  //! Throws InvalidParameter naming `energy.formula` when `formula` is empty, does not parse or
+  //! gives more than one value, or when, on the 2000 directions of a Fibonacci lattice, f is not
+  //! finite and > 0 or D²γ has a negative tangent eigenvalue (below −10⁻⁵ γ: a concave γ, whose
+  //! flow is ill-posed), naming the direction.
   explicit FormulaAnisotropy(const std::string& formula);
   ~FormulaAnisotropy() override;
 
-  double value(const Eigen::Vector3d& p) const override;             //!< |p| f(p/|p|)
+  //! |p| f(p/|p|); throws InvalidParameter naming the formula and the direction where f is not
+  //! finite and > 0 (between the lattice's directions, a flow's normals can still find such a spot).
+  double value(const Eigen::Vector3d& p) const override;
   //! ∇γ by central differences of step 10⁻⁵ |p| (error about 10⁻¹⁰ relative for a smooth f).
   Eigen::Vector3d gradient(const Eigen::Vector3d& p) const override;
   //! D²γ by central differences of the gradient, step 2·10⁻⁴ |p| (about 10⁻⁷ relative), symmetrised.
