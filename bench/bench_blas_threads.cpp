@@ -1,4 +1,4 @@
-//! Where a second BLAS thread starts to pay (flow/blas_threads.h): CHOLMOD's numeric factorisation
+//! Where a second BLAS thread starts to pay (solve/blas_threads.h): CHOLMOD's numeric factorisation
 //! and whole reuse-policy steps on geodesic spheres, with the BLAS on 1 thread and on all hardware
 //! threads. `cpu_per_wall` is the process's CPU time over the wall time: near 2 with a spinning
 //! second thread that gains nothing.
@@ -7,9 +7,9 @@
 
 #include "flow_meshes.h"
 
-#include "sdflow/flow/blas_threads.h"
 #include "sdflow/flow/scheme.h"
-#include "sdflow/flow/solver.h"
+#include "sdflow/solve/blas_threads.h"
+#include "sdflow/solve/solver.h"
 
 #include <benchmark/benchmark.h>
 

@@ -1,7 +1,7 @@
 //! The flow step's cost on geodesic spheres of 10k, 100k and 400k vertices (docs/design.md §2):
 //! operators, assembly, CHOLMOD factorisation and solve, and a full step amortised over a run.
 //! FactorApplication and StaleFactorCg compare CHOLMOD's double factor with its single-precision
-//! copy (flow/single_precision_factor.h): one application, and CG with a stale factor.
+//! copy (solve/single_precision_factor.h): one application, and CG with a stale factor.
 //!   bench_flow --benchmark_filter=Step --benchmark_repetitions=3
 //! PaperQrStep is the paper's solver on the same spheres (slow: minutes at 10k vertices).
 //! Step benchmarks report times per step (`factorisations` and `cg_iterations` per run); the others
@@ -9,12 +9,12 @@
 
 #include "flow_meshes.h"
 
-#include "sdflow/flow/blas_threads.h"
-#include "sdflow/flow/carried_ordering.h"
+#include "sdflow/solve/blas_threads.h"
+#include "sdflow/solve/carried_ordering.h"
 #include "sdflow/flow/scheme.h"
-#include "sdflow/flow/single_precision_factor.h"
-#include "sdflow/flow/supernodal_cholesky.h"
-#include "sdflow/flow/solver.h"
+#include "sdflow/solve/single_precision_factor.h"
+#include "sdflow/solve/supernodal_cholesky.h"
+#include "sdflow/solve/solver.h"
 #include "sdflow/geometry/laplacian.h"
 #include "sdflow/remesh/local_remesh.h"
 #include "sdflow/remesh/remesh.h"

@@ -9,8 +9,8 @@
 #include "verbs.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/flow/simulation.h"
 #include "sdflow/io/io.h"
+#include "sdflow/run/simulation.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

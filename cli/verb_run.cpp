@@ -1,4 +1,4 @@
-//! `sdflow run`: evolve a surface by surface diffusion flow into a run directory (flow/simulation.h).
+//! `sdflow run`: evolve a surface by surface diffusion flow into a run directory (run/simulation.h).
 //!   sdflow run --input MESH --out DIR [--steps N] [--end-time T] [a flag for every scenario key]
 //!   sdflow run SCENARIO.toml [flags]     (flags override the file's keys)
 //!   sdflow run --resume DIR [--steps N] [--end-time T] [the other flags the schema marks resumable]
@@ -15,11 +15,11 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/flow/parameter_schema.h"
-#include "sdflow/flow/run_input.h"
-#include "sdflow/flow/simulation.h"
 #include "sdflow/io/io.h"
 #include "sdflow/limits.h"
 #include "sdflow/log.h"
+#include "sdflow/run/run_input.h"
+#include "sdflow/run/simulation.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

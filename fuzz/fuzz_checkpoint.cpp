@@ -1,7 +1,7 @@
-//! libFuzzer harness: the checkpoint reader (flow/checkpoint.h) that `run --resume` trusts.
+//! libFuzzer harness: the checkpoint reader (run/checkpoint.h) that `run --resume` trusts.
 #include "fuzz_common.h"
 
-#include "sdflow/flow/checkpoint.h"
+#include "sdflow/run/checkpoint.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {

@@ -1,5 +1,5 @@
 //! libFuzzer harness: two steps of `sdflow run` with its defaults (re-triangulation on) on a small
-//! mesh read from OFF text, after what `run` does before step 1 (check_run_input, flow/run_input.h:
+//! mesh read from OFF text, after what `run` does before step 1 (check_run_input, run/run_input.h:
 //! the checks, and the exact refinement of a surface too coarse for the default ℓ). A refusal with
 //! a reason (an sdflow::Error) is fine, and so is a SolverFailure of the flow itself. Findings,
 //! besides a crash, a sanitizer report or another exception: a failure from inside the
@@ -9,12 +9,12 @@
 //! -timeout catches a slow one (scripts/fuzz.sh).
 #include "fuzz_common.h"
 
-#include "sdflow/flow/coarse_input.h"
 #include "sdflow/flow/parameters.h"
-#include "sdflow/flow/run_input.h"
 #include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/remesh/exact_refinement.h"
 #include "sdflow/remesh/remesh.h"
+#include "sdflow/run/coarse_input.h"
+#include "sdflow/run/run_input.h"
 
 #include <tbb/global_control.h>
 

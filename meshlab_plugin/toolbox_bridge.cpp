@@ -3,7 +3,7 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/parameter_schema.h"
 #include "sdflow/flow/parameters.h"
-#include "sdflow/flow/run_input.h"
+#include "sdflow/run/run_input.h"
 #include "sdflow/flow/scheme.h"
 #include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/geometry/curvature.h"

@@ -83,7 +83,7 @@ double natural_time_step(double mean_edge_length);
 //! curvature (the H the run steps with). All connected components evolve together, each stepped on
 //! its own (Appendix A of the paper); with `settings.retriangulate` the run re-triangulates as
 //! `sdflow run --retriangulate` does. The surface gets the checks of `sdflow run` first
-//! (check_run_input, sdflow/flow/run_input.h), named in the dialog's terms: InvalidMesh for bodies
+//! (check_run_input, sdflow/run/run_input.h), named in the dialog's terms: InvalidMesh for bodies
 //! that overlap or a surface too coarse to re-triangulate at the ℓ given, before any step (with ℓ = 0,
 //! a surface too coarse at its mean edge length is refined exactly first, coarse_input.h).
 ShadedSurface surface_diffusion(const Surface& input, const std::string& name, const DiffusionSettings& settings,

@@ -338,7 +338,7 @@ TEST_F(FilterTest, retriangulation_leaving_nothing_fails_with_the_reason_and_lea
   EXPECT_EQ(model->cm.vert[7].cP(), before);
 }
 
-// The filter makes the run's checks before step 1 (check_run_input, sdflow/flow/run_input.h) and
+// The filter makes the run's checks before step 1 (check_run_input, sdflow/run/run_input.h) and
 // says what to do in the dialog's words: bodies that overlap are joined by the re-triangulate
 // filter first; a part thinner than the re-triangulation resolves names the EdgeLength that does.
 TEST_F(FilterTest, run_input_is_refused_before_step_1_in_the_dialogs_words)

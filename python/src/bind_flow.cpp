@@ -1,18 +1,18 @@
 //! The flow: parameters read by the scenario reader (flow/parameters.h), the flow in memory
 //! (SurfaceDiffusion, flow/surface_diffusion.h) and runs recorded in a run directory
-//! (run_simulation / resume_simulation, flow/simulation.h), with the GIL released while they work.
+//! (run_simulation / resume_simulation, run/simulation.h), with the GIL released while they work.
 
 #include "arrays.h"
 #include "bindings.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/flow/run_input.h"
-#include "sdflow/flow/simulation.h"
 #include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/io/io.h"
 #include "sdflow/io/repair.h"
 #include "sdflow/limits.h"
 #include "sdflow/log.h"
+#include "sdflow/run/run_input.h"
+#include "sdflow/run/simulation.h"
 
 #include <fmt/format.h>
 #include <pybind11/stl.h>

@@ -251,7 +251,7 @@ def test_parameter_names_and_defaults(torus, tmp_path):
 
 
 def test_run_and_flow_refuse_overlapping_bodies_before_step_1_and_say_what_joins_them(cli, tmp_path):
-    """The checks of `sdflow run` (flow/run_input.h) in Python's words: two spheres that overlap
+    """The checks of `sdflow run` (run/run_input.h) in Python's words: two spheres that overlap
     are refused before step 1 instead of failing inside the re-triangulation, and what the
     message advises runs."""
     path = os.path.join(FUZZ_RUN, "two_overlapping_spheres_read_as_body_and_cavity.off")

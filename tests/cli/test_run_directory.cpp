@@ -2,9 +2,9 @@
 //! `run --resume` do with it: fresh, running (locked), killed before or after its first checkpoint,
 //! stopped by SIGINT / SIGTERM, disk full, finished. Issue 13, defects 7, 10 and 11.
 #include "io/temp_dir.h"
-#include "sdflow/flow/checkpoint.h"
-#include "sdflow/flow/simulation.h"
 #include "sdflow/io/io.h"
+#include "sdflow/run/checkpoint.h"
+#include "sdflow/run/simulation.h"
 #include "support/analytic_meshes.h"
 #include "support/run_command.h"
 

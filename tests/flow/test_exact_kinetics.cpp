@@ -6,7 +6,7 @@
 #include "io/temp_dir.h"
 #include "sdflow/axisymmetric/evolution.h"
 #include "sdflow/axisymmetric/initial_curves.h"
-#include "sdflow/flow/simulation.h"
+#include "sdflow/run/simulation.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/expression.h"
 #include "sdflow/shapes/mesher.h"

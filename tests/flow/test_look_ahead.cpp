@@ -2,8 +2,8 @@
 //! surface_diffusion.h): a flow that looks ahead takes the steps, notes and checkpoints of one that
 //! does not, bit for bit, through remeshings, rejections and a pinch-off.
 #include "io/temp_dir.h"
-#include "sdflow/flow/checkpoint.h"
 #include "sdflow/flow/surface_diffusion.h"
+#include "sdflow/run/checkpoint.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/mesher.h"
 

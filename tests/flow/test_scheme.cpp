@@ -1,10 +1,10 @@
 //! The semi-implicit step (scheme.h) and its solvers (solver.h) on analytic surfaces.
 #include "sdflow/errors.h"
 #include "sdflow/flow/scheme.h"
-#include "sdflow/flow/solver.h"
 #include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/geometry/laplacian.h"
 #include "sdflow/geometry/measures.h"
+#include "sdflow/solve/solver.h"
 #include "support/analytic_meshes.h"
 
 #include <fmt/format.h>

@@ -2,11 +2,11 @@
 //! its state restored bit for bit, its notes.
 #include "io/temp_dir.h"
 #include "sdflow/errors.h"
-#include "sdflow/flow/simulation.h"
 #include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/io/io.h"
+#include "sdflow/run/simulation.h"
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/mesher.h"
 #include "sdflow/spatial/intersect.h"

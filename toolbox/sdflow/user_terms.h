@@ -2,7 +2,7 @@
 //! \file user_terms.h
 //! \brief The words a refusal uses for what the user gives and what to do about it. The defaults
 //! are `sdflow`'s flags and commands; the Python module and the MeshLab plugin pass their own
-//! (run_input_terms, flow/run_input.h), so that one check speaks to every front end.
+//! (run_input_terms, run/run_input.h), so that one check speaks to every front end.
 
 #include <functional>
 #include <string>

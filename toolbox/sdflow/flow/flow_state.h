@@ -3,9 +3,9 @@
 //! \brief Everything a flow needs to continue bit for bit (SurfaceDiffusion::state and its
 //! restoring constructor; a run directory's checkpoint stores it).
 
-#include "sdflow/flow/solver.h"
 #include "sdflow/flow/time_step.h"
 #include "sdflow/mesh.h"
+#include "sdflow/solve/solver.h"
 
 #include <Eigen/Core>
 

@@ -18,8 +18,8 @@
 
 #include "sdflow/flow/retriangulation.h"
 #include "sdflow/flow/scheme.h"
-#include "sdflow/flow/solver.h"
 #include "sdflow/flow/time_step.h"
+#include "sdflow/solve/solver.h"
 
 #include <Eigen/Core>
 

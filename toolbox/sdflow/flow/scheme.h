@@ -7,13 +7,13 @@
 
 #include "sdflow/flow/boundary_condition.h"
 #include "sdflow/flow/flow_boundary.h"
-#include "sdflow/flow/solver.h"
 #include "sdflow/flow/surface_energy.h"
 #include "sdflow/flow/surface_energy_options.h"
 #include "sdflow/geometry/cotangent_cache.h"
 #include "sdflow/geometry/curvature.h"
 #include "sdflow/geometry/normals.h"
 #include "sdflow/mesh.h"
+#include "sdflow/solve/solver.h"
 
 #include <Eigen/Core>
 

@@ -1,10 +1,6 @@
 target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/anisotropic_energy.cpp
-  sdflow/flow/blas_threads.cpp
   sdflow/flow/boundary_condition.cpp
-  sdflow/flow/carried_ordering.cpp
-  sdflow/flow/checkpoint.cpp
-  sdflow/flow/coarse_input.cpp
   sdflow/flow/crossing_width.cpp
   sdflow/flow/degraded_elements.cpp
   sdflow/flow/fixed_boundary.cpp
@@ -13,22 +9,14 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/parameter_schema.cpp
   sdflow/flow/parameters.cpp
   sdflow/flow/refinement.cpp
-  sdflow/flow/resolution_check.cpp
   sdflow/flow/retriangulation.cpp
-  sdflow/flow/run_input.cpp
-  sdflow/flow/run_lock.cpp
   sdflow/flow/schema_retriangulation.cpp
   sdflow/flow/schema_run.cpp
   sdflow/flow/schema_scheme.cpp
   sdflow/flow/schema_time_step.cpp
   sdflow/flow/scheme.cpp
-  sdflow/flow/simulation.cpp
-  sdflow/flow/single_precision_factor.cpp
   sdflow/flow/step_event.cpp
   sdflow/flow/substrate_boundary.cpp
-  sdflow/flow/solver.cpp
-  sdflow/flow/supernodal_cholesky.cpp
-  sdflow/flow/suitesparse_output.cpp
   sdflow/flow/surface_diffusion.cpp
   sdflow/flow/surface_energy_options.cpp
   sdflow/flow/time_step.cpp

@@ -1,12 +1,12 @@
 #include "sdflow/flow/surface_diffusion.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/flow/blas_threads.h"
 #include "sdflow/flow/refinement.h"
 #include "sdflow/flow/volume.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/log.h"
+#include "sdflow/solve/blas_threads.h"
 #include "sdflow/spatial/nearest_points.h"
 #include "sdflow/stopwatch.h"
 

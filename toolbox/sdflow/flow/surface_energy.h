@@ -5,9 +5,9 @@
 //! (ΔX = 2HN, §1). A new energy is a new implementation of SurfaceEnergy, chosen by scheme_parts
 //! (scheme.h); `flow_operators` and the step call only these.
 
-#include "sdflow/flow/solver.h"
 #include "sdflow/geometry/laplacian.h"
 #include "sdflow/mesh.h"
+#include "sdflow/solve/solver.h"
 
 #include <Eigen/Core>
 

@@ -208,7 +208,7 @@ constexpr double kRefinementRadius = 2;
 //! The finest target a refinement asks for, as a fraction of the sizing's finest edge
 //! (min_edge_fraction · ℓ): half of it, two edges across the thinnest part a run admits. The run
 //! checks before step 1 that every part and every gap between bodies is at least that finest edge
-//! wide (flow/resolution_check.h); a smaller local thickness is a concave crease's outward gap or a
+//! wide (run/resolution_check.h); a smaller local thickness is a concave crease's outward gap or a
 //! sharp edge's wedge, which tends to 0 there and which no edge length resolves (the floor was ℓ/64,
 //! a fraction of ℓ alone, 64 times the vertices where it applied).
 constexpr double kFinestRefinement = 0.5;

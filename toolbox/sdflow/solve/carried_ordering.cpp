@@ -1,4 +1,4 @@
-#include "sdflow/flow/carried_ordering.h"
+#include "sdflow/solve/carried_ordering.h"
 
 #include "sdflow/errors.h"
 

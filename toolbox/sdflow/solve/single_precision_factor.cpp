@@ -1,4 +1,4 @@
-#include "sdflow/flow/single_precision_factor.h"
+#include "sdflow/solve/single_precision_factor.h"
 
 #include "sdflow/errors.h"
 

@@ -1,9 +1,9 @@
-//! The single-precision copy of CHOLMOD's supernodal factor (flow/single_precision_factor.h) on the
+//! The single-precision copy of CHOLMOD's supernodal factor (solve/single_precision_factor.h) on the
 //! flow step's matrix of a unit sphere: float accuracy, CG to double accuracy, refusals.
 #include "sdflow/errors.h"
 #include "sdflow/flow/scheme.h"
-#include "sdflow/flow/single_precision_factor.h"
-#include "sdflow/flow/solver.h"
+#include "sdflow/solve/single_precision_factor.h"
+#include "sdflow/solve/solver.h"
 #include "support/analytic_meshes.h"
 
 #include <Eigen/CholmodSupport>

@@ -1,4 +1,4 @@
-#include "sdflow/flow/checkpoint.h"
+#include "sdflow/run/checkpoint.h"
 
 #include "sdflow/errors.h"
 #include "sdflow/io/io.h"

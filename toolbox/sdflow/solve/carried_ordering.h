@@ -6,8 +6,8 @@
 //! and where two coupled new vertices land in disjoint subtrees of the old elimination tree (a
 //! separator the re-triangulation broke), one is lifted to the subtrees' common ancestor.
 
-#include "sdflow/flow/supernodal_cholesky.h"
 #include "sdflow/geometry/laplacian.h"
+#include "sdflow/solve/supernodal_cholesky.h"
 
 #include <span>
 #include <vector>

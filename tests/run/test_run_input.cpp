@@ -1,9 +1,9 @@
-//! The one validation of a run's input (flow/run_input.h) that `sdflow run`, the Python module and
+//! The one validation of a run's input (run/run_input.h) that `sdflow run`, the Python module and
 //! the MeshLab filter make before step 1: each refusal names the surface's problem and, in each
 //! front end's words, the parameter to change or what to do; what it advises is taken.
 #include "sdflow/errors.h"
-#include "sdflow/flow/run_input.h"
 #include "sdflow/geometry/measures.h"
+#include "sdflow/run/run_input.h"
 #include "support/analytic_meshes.h"
 
 #include <gtest/gtest.h>

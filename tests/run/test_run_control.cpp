@@ -3,9 +3,9 @@
 //! locked directory is refused.
 #include "io/temp_dir.h"
 #include "sdflow/errors.h"
-#include "sdflow/flow/checkpoint.h"
-#include "sdflow/flow/run_lock.h"
-#include "sdflow/flow/simulation.h"
+#include "sdflow/run/checkpoint.h"
+#include "sdflow/run/run_lock.h"
+#include "sdflow/run/simulation.h"
 #include "support/analytic_meshes.h"
 
 #include <gtest/gtest.h>

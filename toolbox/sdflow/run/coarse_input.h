@@ -22,7 +22,7 @@ namespace sdflow {
 //! Vertices the smallest component gets: 15 times the re-triangulation's need (20, input_checks.h),
 //! so that its neighbourhoods have margin, and enough for the flow of a body to mean something: a
 //! sphere of 300 vertices has edges of 0.22 R, and a cube relaxes on it to its sphere of equal volume
-//! (tests/flow/test_coarse_input.cpp).
+//! (tests/run/test_coarse_input.cpp).
 inline constexpr double kCoarseInputVertices = 300;
 
 //! Fewer vertices than this on a component at the mean edge length make an input coarse for the

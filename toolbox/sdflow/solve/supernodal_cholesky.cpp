@@ -1,7 +1,7 @@
-#include "sdflow/flow/supernodal_cholesky.h"
+#include "sdflow/solve/supernodal_cholesky.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/flow/suitesparse_output.h"
+#include "sdflow/solve/suitesparse_output.h"
 
 #include <Eigen/CholmodSupport>
 #include <fmt/format.h>

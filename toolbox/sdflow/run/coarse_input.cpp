@@ -1,4 +1,4 @@
-#include "sdflow/flow/coarse_input.h"
+#include "sdflow/run/coarse_input.h"
 
 #include "sdflow/errors.h"
 #include "sdflow/geometry/measures.h"

@@ -5,8 +5,8 @@
 //! optionally reused across steps as a conjugate-gradient preconditioner, or the paper's sparse QR
 //! (SuiteSparseQR, Davis 2011) on the non-symmetric form (I + τβΔ²) w = ΔH as a reference.
 
-#include "sdflow/flow/blas_threads.h"
 #include "sdflow/geometry/laplacian.h"
+#include "sdflow/solve/blas_threads.h"
 
 #include <Eigen/Core>
 

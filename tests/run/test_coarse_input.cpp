@@ -1,4 +1,4 @@
-//! A run's input too coarse to re-triangulate at its mean edge length (flow/coarse_input.h): a cube,
+//! A run's input too coarse to re-triangulate at its mean edge length (run/coarse_input.h): a cube,
 //! a tetrahedron and an octahedron as their 8, 4 and 6 vertices run with the defaults, refined
 //! exactly (the same volume to rounding) to an ℓ that stays the run's, resumed runs included; the
 //! cube relaxes to the sphere of its volume; a CAD part cut into slivers is refined for the flow;
@@ -6,14 +6,14 @@
 //! bound, or refused beyond it.
 #include "io/temp_dir.h"
 #include "sdflow/errors.h"
-#include "sdflow/flow/coarse_input.h"
 #include "sdflow/flow/refinement.h"
-#include "sdflow/flow/run_input.h"
-#include "sdflow/flow/simulation.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/limits.h"
 #include "sdflow/retri/input_checks.h"
+#include "sdflow/run/coarse_input.h"
+#include "sdflow/run/run_input.h"
+#include "sdflow/run/simulation.h"
 #include "support/analytic_meshes.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "sdflow/flow/run_lock.h"
+#include "sdflow/run/run_lock.h"
 
 #include "sdflow/errors.h"
 

@@ -1,4 +1,4 @@
-#include "sdflow/flow/blas_threads.h"
+#include "sdflow/solve/blas_threads.h"
 
 #include "sdflow/errors.h"
 

@@ -3,12 +3,12 @@
 //! resolves it in each front end's words; a part the run resolves is evolved, not cut off.
 #include "io/temp_dir.h"
 #include "sdflow/errors.h"
-#include "sdflow/flow/resolution_check.h"
-#include "sdflow/flow/run_input.h"
-#include "sdflow/flow/simulation.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/io/io.h"
+#include "sdflow/run/resolution_check.h"
+#include "sdflow/run/run_input.h"
+#include "sdflow/run/simulation.h"
 #include "support/analytic_meshes.h"
 
 #include <fmt/format.h>

@@ -1,12 +1,12 @@
-#include "sdflow/flow/simulation.h"
+#include "sdflow/run/simulation.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/flow/checkpoint.h"
-#include "sdflow/flow/run_lock.h"
 #include "sdflow/io/io.h"
 #include "sdflow/io/repair.h"
 #include "sdflow/io/vtk.h"
 #include "sdflow/log.h"
+#include "sdflow/run/checkpoint.h"
+#include "sdflow/run/run_lock.h"
 #include "sdflow/stopwatch.h"
 
 #include <fmt/format.h>

@@ -1,4 +1,4 @@
-#include "sdflow/flow/suitesparse_output.h"
+#include "sdflow/solve/suitesparse_output.h"
 
 #include "sdflow/log.h"
 

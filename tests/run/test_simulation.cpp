@@ -1,10 +1,10 @@
 //! The run driver (simulation.h): run directory, stability, conservation, resumption, the hook.
 #include "io/temp_dir.h"
 #include "sdflow/errors.h"
-#include "sdflow/flow/checkpoint.h"
-#include "sdflow/flow/simulation.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/io/io.h"
+#include "sdflow/run/checkpoint.h"
+#include "sdflow/run/simulation.h"
 #include "support/analytic_meshes.h"
 
 #include <fmt/ranges.h>

@@ -3,12 +3,12 @@
 //! of a carried ordering against a fresh one, and the solver's use of it.
 
 #include "sdflow/errors.h"
-#include "sdflow/flow/carried_ordering.h"
 #include "sdflow/flow/scheme.h"
-#include "sdflow/flow/solver.h"
-#include "sdflow/flow/supernodal_cholesky.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/remesh/remesh.h"
+#include "sdflow/solve/carried_ordering.h"
+#include "sdflow/solve/solver.h"
+#include "sdflow/solve/supernodal_cholesky.h"
 #include "sdflow/spatial/nearest_points.h"
 #include "support/analytic_meshes.h"
 

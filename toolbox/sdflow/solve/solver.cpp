@@ -1,11 +1,11 @@
-#include "sdflow/flow/solver.h"
+#include "sdflow/solve/solver.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/flow/carried_ordering.h"
-#include "sdflow/flow/single_precision_factor.h"
-#include "sdflow/flow/suitesparse_output.h"
-#include "sdflow/flow/supernodal_cholesky.h"
 #include "sdflow/log.h"
+#include "sdflow/solve/carried_ordering.h"
+#include "sdflow/solve/single_precision_factor.h"
+#include "sdflow/solve/suitesparse_output.h"
+#include "sdflow/solve/supernodal_cholesky.h"
 #include "sdflow/stopwatch.h"
 
 #include <Eigen/SPQRSupport>

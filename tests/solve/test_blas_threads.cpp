@@ -1,8 +1,8 @@
-//! The factorisation's thread policy (flow/blas_threads.h): one thread below the crossover and for
+//! The factorisation's thread policy (solve/blas_threads.h): one thread below the crossover and for
 //! solves, the environment's cap above it, and OpenBLAS and CHOLMOD's OpenMP loops actually told.
-#include "sdflow/flow/blas_threads.h"
 #include "sdflow/flow/scheme.h"
-#include "sdflow/flow/solver.h"
+#include "sdflow/solve/blas_threads.h"
+#include "sdflow/solve/solver.h"
 #include "support/analytic_meshes.h"
 
 #include <gtest/gtest.h>

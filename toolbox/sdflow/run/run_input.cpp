@@ -1,12 +1,12 @@
-#include "sdflow/flow/run_input.h"
+#include "sdflow/run/run_input.h"
 
 #include "sdflow/check/span.h"
-#include "sdflow/flow/coarse_input.h"
 #include "sdflow/flow/parameter_schema.h"
-#include "sdflow/flow/resolution_check.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/log.h"
 #include "sdflow/retri/input_checks.h"
+#include "sdflow/run/coarse_input.h"
+#include "sdflow/run/resolution_check.h"
 
 #include <fmt/format.h>
 

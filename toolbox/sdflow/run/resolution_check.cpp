@@ -1,4 +1,4 @@
-#include "sdflow/flow/resolution_check.h"
+#include "sdflow/run/resolution_check.h"
 
 #include "sdflow/errors.h"
 #include "sdflow/remesh/exact_refinement.h"

@@ -1,0 +1,6 @@
+target_sources(sdflow_tests PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/test_coarse_input.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_resolution_check.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_run_control.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_run_input.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_simulation.cpp)
