@@ -1,4 +1,5 @@
 target_sources(sdflow_tests PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/test_anchored_solver.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_anisotropic_energy.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_anisotropic_flow.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_boundary_condition.cpp

@@ -1,4 +1,5 @@
 target_sources(sdflow_toolbox PRIVATE
+  sdflow/flow/anchored_solver.cpp
   sdflow/flow/anisotropic_energy.cpp
   sdflow/flow/boundary_condition.cpp
   sdflow/flow/crossing_width.cpp

@@ -104,10 +104,11 @@ SurfaceDiffusion::SurfaceDiffusion(const FlowState& state, RunParameters paramet
   debris_volume_ = state.debris_volume;
   // Refactorise the anchors' systems: the preconditioners are then the ones the uninterrupted flow
   // would be using, so the CG iterates (and every later decision) are identical.
-  restore_solver(solver_, state.solver, state.triangles);
-  restore_solver(half_solver_, state.half_solver, state.triangles);
-  anchor_ = state.solver.anchor;
-  half_anchor_ = state.half_solver.anchor;
+  const auto anchor_operators = [&](const VertexVectors& positions) {
+    return flow_operators(make_mesh(positions, state.triangles), p_.scheme, parts_, &*cache_);
+  };
+  solver_.restore(state.solver, anchor_operators);
+  half_solver_.restore(state.half_solver, anchor_operators);
   op_ = flow_operators(mesh_, p_.scheme, parts_, &*cache_);
 }
 
@@ -197,7 +198,7 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
         if (first.failure)
           std::rethrow_exception(first.failure);
       } else {
-        a.tau = trial_step(next_step, a.trial, a.record, a.rejections, a.volumes);
+        a.tau = trial_step({}, next_step, a.trial, a.record, a.rejections, a.volumes);
       }
       break;
     } catch (const TimeStepTooLarge&) {
@@ -363,25 +364,6 @@ void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
   retriangulate_ = make_retriangulation_hook(refined_schedule);
 }
 
-void SurfaceDiffusion::restore_solver(FlowSolver& solver, const SolverRecord& record, const FaceIndices& triangles)
-{
-  if (!record.anchor) {
-    solver.restore(record.counters);
-    return;
-  }
-  const Mesh anchor = make_mesh(record.anchor->positions, triangles);
-  const FlowOperators anchor_op = flow_operators(anchor, p_.scheme, parts_, &*cache_);
-  solver.restore(anchor_op.system(record.anchor->tau_beta), record.counters);
-}
-
-//! The anchor of a factorisation just made; none for CG, which keeps no factor to make again.
-std::optional<FactorAnchor> SurfaceDiffusion::factor_anchor(const VertexVectors& positions, double tau_beta) const
-{
-  if (p_.solver.kind != SolverKind::cholmod)
-    return std::nullopt;
-  return FactorAnchor{positions, tau_beta};
-}
-
 //! The hook's failure stops the flow like an unstable step: the surface stays the last accepted one.
 RetriangulationReport SurfaceDiffusion::call_retriangulation(Mesh& mesh, bool force, StepTimes& times,
                                                              std::function<void()> changing)
@@ -431,7 +413,7 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
   debris_volume_ += report.measures.debris_volume;
   // The canonical mesh, the operators' cache of its connectivity and, for the carried orderings,
   // the old vertex nearest each new one are made side by side from the same positions and corners.
-  const bool carried = solver_.carries_ordering() || half_solver_.carries_ordering();
+  const bool carried = solver_.solver().carries_ordering() || half_solver_.solver().carries_ordering();
   const VertexVectors after = vertex_positions(mesh_);
   triangles_ = face_indices(mesh_);
   std::vector<int> nearest_old;
@@ -449,8 +431,6 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
   solver_.carry_ordering(nearest_old, op_.laplacian);
   half_solver_.carry_ordering(nearest_old, op_.laplacian);
   times.factorisation += watch.seconds();
-  anchor_.reset();
-  half_anchor_.reset();
   previous_w_.resize(0);
   earlier_w_.resize(0);
   last_w_ = Eigen::VectorXd::Zero(mesh_.n_vertices());
@@ -467,12 +447,12 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
 
 //! Step `next_step`'s first trials, until the controller accepts one or gives up (then `failure`
 //! holds what it threw), with the note that the τ schedule has ended if it has; its notes held back.
-SurfaceDiffusion::FirstTrial SurfaceDiffusion::first_trial(long next_step)
+SurfaceDiffusion::FirstTrial SurfaceDiffusion::first_trial(long next_step, const std::atomic<bool>* cancel)
 {
   FirstTrial f;
   f.step = next_step;
   f.controller_before = controller_.state();
-  held_notes_ = &f.notes;
+  const TrialContext context{.held_notes = &f.notes, .cancel = cancel};
   try {
     const auto& schedule = p_.time_step.schedule.entries();
     if (p_.time_step.mode == TimeStepMode::schedule && !controller_.adaptive() &&
@@ -480,20 +460,19 @@ SurfaceDiffusion::FirstTrial SurfaceDiffusion::first_trial(long next_step)
       note(next_step, time_,
            fmt::format("the τ schedule ends at step {}: the steps after it repeat its last τ = {}", next_step - 1,
                        schedule.back().tau),
-           true);
-    f.tau = trial_step(next_step, f.trial, f.record, f.rejections, f.volumes);
+           true, context.held_notes);
+    f.tau = trial_step(context, next_step, f.trial, f.record, f.rejections, f.volumes);
   } catch (...) {
     f.failure = std::current_exception();
   }
-  held_notes_ = nullptr;
   return f;
 }
 
 SurfaceDiffusion::TrialBookkeeping SurfaceDiffusion::bookkeeping() const
 {
   return {.controller = controller_.state(),
-          .solver = {solver_.state(), anchor_},
-          .half_solver = {half_solver_.state(), half_anchor_},
+          .solver = solver_.record(),
+          .half_solver = half_solver_.record(),
           .rejected_trials = rejected_trials_,
           .factorisations = factorisations_};
 }
@@ -502,10 +481,8 @@ SurfaceDiffusion::TrialBookkeeping SurfaceDiffusion::bookkeeping() const
 void SurfaceDiffusion::rewind(const TrialBookkeeping& before)
 {
   controller_ = TimeStepController(refined_time_step(p_), before.controller);
-  solver_.rewind(before.solver.counters);
-  half_solver_.rewind(before.half_solver.counters);
-  anchor_ = before.solver.anchor;
-  half_anchor_ = before.half_solver.anchor;
+  solver_.rewind(before.solver);
+  half_solver_.rewind(before.half_solver);
   rejected_trials_ = before.rejected_trials;
   factorisations_ = before.factorisations;
 }
@@ -537,7 +514,6 @@ double SurfaceDiffusion::look_and_try_ahead(const VertexVectors& before, std::ve
   std::exception_ptr hook_failure;
   FirstTrial first;
   std::atomic<bool> dropped = false; // set by the hook once it re-triangulates: the trial stops
-  cancel_trials_ = &dropped;
   double look_seconds = 0, trial_seconds = 0;
   const Stopwatch both;
   tbb::parallel_invoke(
@@ -553,11 +529,10 @@ double SurfaceDiffusion::look_and_try_ahead(const VertexVectors& before, std::ve
     },
     [&] {
       const Stopwatch trial;
-      first = first_trial(step_ + 1);
+      first = first_trial(step_ + 1, &dropped);
       trial_seconds = trial.seconds();
     });
   const double wall = both.seconds();
-  cancel_trials_ = nullptr;
   if (!hook_failure && !dropped && !report.changed() && report.degraded_left < 0) {
     first.beside_look_seconds = std::clamp(look_seconds + trial_seconds - wall, 0.0, trial_seconds);
     first.alone_seconds = std::clamp(wall - look_seconds, 0.0, trial_seconds - first.beside_look_seconds);
@@ -570,8 +545,8 @@ double SurfaceDiffusion::look_and_try_ahead(const VertexVectors& before, std::ve
   if (hook_failure || !report.changed()) {
     // The trial's factors may be newer than its rewound bookkeeping: the next solves factorise
     // afresh. (The flow's own hook changes the surface whenever it decides to, or fails.)
-    solver_.restore(solver_.state());
-    half_solver_.restore(half_solver_.state());
+    solver_.solver().restore(solver_.solver().state());
+    half_solver_.solver().restore(half_solver_.solver().state());
     if (hook_failure)
       std::rethrow_exception(hook_failure);
   }
@@ -585,8 +560,8 @@ double SurfaceDiffusion::look_and_try_ahead(const VertexVectors& before, std::ve
 
 //! Trials of step `next_step` until the controller accepts one (returned: its τ); throws
 //! SolverFailure as the controller does.
-double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecord& record, int& rejections,
-                                    std::vector<double>& volumes)
+double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step, StepResult& trial,
+                                    StepRecord& record, int& rejections, std::vector<double>& volumes)
 {
   StepTimes& times = record.times;
   Stopwatch watch;
@@ -627,7 +602,7 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
   int start_retries = 0;
   const std::array<Eigen::VectorXd, 2> guesses = warm_starts(previous_w_, earlier_w_);
   for (;;) {
-    if (cancel_trials_ && cancel_trials_->load())
+    if (context.cancel && context.cancel->load())
       throw TrialsCancelled();
     // An adaptive τ stays within the boundary condition's bound (a contact line's, substrate_boundary.h)
     // and the surface's own time scale (largest_tau above).
@@ -638,9 +613,10 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
                          largest_tau);
     // A start step is backward Euler: with the scheme's β = ½ a mode far shorter than its time
     // scale would come out flipped, not damped (its factor (1 − τk⁴/2)/(1 + τk⁴/2) tends to −1).
-    trial = start                   ? solve_step(mesh_, op_, tau, kStartBeta, solver_, guesses)
-            : p_.scheme.extrapolate ? extrapolated_step(mesh_, op_, tau, p_.scheme, solver_, half_solver_, &*cache_, guesses)
-                                    : solve_step(mesh_, op_, tau, p_.scheme.beta, solver_, guesses);
+    trial = start ? solve_step(mesh_, op_, tau, kStartBeta, solver_.solver(), guesses)
+            : p_.scheme.extrapolate
+                ? extrapolated_step(mesh_, op_, tau, p_.scheme, solver_.solver(), half_solver_.solver(), &*cache_, guesses)
+                : solve_step(mesh_, op_, tau, p_.scheme.beta, solver_.solver(), guesses);
     record.cg_iterations += trial.solve.iterations;
     factorisations_ += trial.factorisations;
     times.operators += trial.operators_seconds;
@@ -649,9 +625,9 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
     times.solve += trial.solve.seconds.solve;
     watch.restart();
     if (trial.solve.factorised)
-      anchor_ = factor_anchor(trial.factorised_positions, trial.factorised_tau_beta);
+      solver_.factorised(trial.factorised_positions, trial.factorised_tau_beta);
     if (trial.half_factorised)
-      half_anchor_ = factor_anchor(trial.half_factorised_positions, trial.half_factorised_tau_beta);
+      half_solver_.factorised(trial.half_factorised_positions, trial.half_factorised_tau_beta);
     if (trial.factorisations > 0) {
       record.factorised = true;
       logger().debug("step {}: {} factorisations (τ = {})", next_step, trial.factorisations, tau);
@@ -692,7 +668,8 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
       note(next_step, time_,
            fmt::format("rejected start step τ = {}: {}, normal displacement {:.3g} of the local edge length where "
                        "the surface is resolved",
-                       tau, check.describe(), resolved_ratio));
+                       tau, check.describe(), resolved_ratio),
+           false, context.held_notes);
       start_trial_tau = tau * (resolved_ratio > adaptive.max_displacement
                                    ? std::min(adaptive.shrink, adaptive.safety * adaptive.max_displacement / resolved_ratio)
                                    : kStartShrink);
@@ -704,7 +681,7 @@ double SurfaceDiffusion::trial_step(long next_step, StepResult& trial, StepRecor
       return tau;
     ++rejections;
     ++rejected_trials_;
-    note(next_step, time_, fmt::format("rejected τ = {}: {}", tau, check.describe()));
+    note(next_step, time_, fmt::format("rejected τ = {}: {}", tau, check.describe()), false, context.held_notes);
     if (check.inverted_triangles > 0 && retriangulate_ && controller_.turning_collapsed())
       throw TrianglesTurning(fmt::format("triangles keep turning over: the next τ, {:g}, would be {:.3g} times the "
                                          "τ = {:g} at which they began",
@@ -721,11 +698,11 @@ void SurfaceDiffusion::renew_operators(StepTimes& times)
   times.operators += watch.seconds();
 }
 
-void SurfaceDiffusion::note(long step, double time, std::string text, bool warning)
+void SurfaceDiffusion::note(long step, double time, std::string text, bool warning, std::vector<FlowNote>* held)
 {
   FlowNote n{.step = step, .time = time, .text = std::move(text), .warning = warning};
-  if (held_notes_)
-    held_notes_->push_back(std::move(n));
+  if (held)
+    held->push_back(std::move(n));
   else
     publish(std::move(n));
 }

@@ -14,6 +14,7 @@
 //! const Mesh& result = flow.mesh();
 //! ```
 
+#include "sdflow/flow/anchored_solver.h"
 #include "sdflow/flow/flow_state.h"
 #include "sdflow/flow/intersection_guard.h"
 #include "sdflow/flow/parameters.h"
@@ -180,6 +181,14 @@ private:
     TrialBookkeeping before;
   };
 
+  //! Where a step's trials report while they run: a first trial holds its notes back for the step
+  //! that takes it, and the trials taken beside the look at the surface stop once `cancel` is set
+  //! (look_and_try_ahead).
+  struct TrialContext {
+    std::vector<FlowNote>* held_notes = nullptr; //!< null: the notes are published at once
+    const std::atomic<bool>* cancel = nullptr;   //!< null: the trials run to their end
+  };
+
   //! The step's accepted trial and what it took (accepted_trial).
   struct Accepted {
     StepRecord record;
@@ -195,7 +204,7 @@ private:
   double retriangulate_after_step(std::vector<StepEvent>& events, StepTimes& times);
   TrialBookkeeping bookkeeping() const;
   void rewind(const TrialBookkeeping& before);
-  FirstTrial first_trial(long next_step);
+  FirstTrial first_trial(long next_step, const std::atomic<bool>* cancel = nullptr);
   bool can_look_ahead() const;
   //! Returns the wall seconds of the next step's trial that ran alone after the look ended (that
   //! step's total counts them), 0 when the trial was dropped.
@@ -206,9 +215,6 @@ private:
   //! topology_ of mesh_: its components, which are closed, the total genus.
   void renew_topology();
   void prepare_retriangulation(RetriangulationHook hook);
-  //! `solver` as `record` left it, its anchor's system factorised again (on `triangles`).
-  void restore_solver(FlowSolver& solver, const SolverRecord& record, const FaceIndices& triangles);
-  std::optional<FactorAnchor> factor_anchor(const VertexVectors& positions, double tau_beta) const;
   RetriangulationReport call_retriangulation(Mesh& mesh, bool force, StepTimes& times,
                                              std::function<void()> changing = {});
   //! A refused re-triangulation (RetriangulationReport::refused) becomes an event and a warning.
@@ -216,15 +222,16 @@ private:
   void adopt_retriangulation(const RetriangulationReport& report, const VertexVectors& before,
                              std::vector<StepEvent>& events, StepTimes& times);
   void renew_operators(StepTimes& times);
-  double trial_step(long next_step, StepResult& trial, StepRecord& record, int& rejections,
-                    std::vector<double>& volumes);
-  void note(long step, double time, std::string text, bool warning = false);
+  double trial_step(const TrialContext& context, long next_step, StepResult& trial, StepRecord& record,
+                    int& rejections, std::vector<double>& volumes);
+  //! A note published at once, or held in `held` (TrialContext::held_notes) when that is not null.
+  void note(long step, double time, std::string text, bool warning = false, std::vector<FlowNote>* held = nullptr);
 
   RunParameters p_;
   RetriangulationHook retriangulate_;
   bool own_hook_ = false; // the hook made from the schedule, which changes the mesh only to re-triangulate it
   std::optional<SelfIntersectionGuard> guard_; // without a hook: stops the flow at a self-intersection
-  FlowSolver solver_, half_solver_; // the half steps of extrapolated steps keep a factor of their own
+  AnchoredSolver solver_, half_solver_; // the half steps of extrapolated steps keep a factor of their own
   TimeStepController controller_;
   Mesh mesh_;
   FaceIndices triangles_;
@@ -239,12 +246,9 @@ private:
   double debris_volume_ = 0;      // FlowMetrics::debris_volume
   bool topology_changed_ = false; // with stop_at_topology_change: finished after this step
   Eigen::VectorXd previous_w_, earlier_w_, last_w_; // w of the last two accepted steps, and the velocity
-  std::optional<FactorAnchor> anchor_, half_anchor_; // of solver_'s and half_solver_'s factorisations
   long rejected_trials_ = 0, factorisations_ = 0;
   std::vector<FlowNote> notes_;
-  std::vector<FlowNote>* held_notes_ = nullptr; // set while a first trial holds its notes back
   std::optional<LookAhead> ahead_;
-  const std::atomic<bool>* cancel_trials_ = nullptr; // while trials run ahead: set, they stop
 };
 
 } // namespace sdflow
