@@ -38,10 +38,11 @@ QStringList choices(const std::vector<std::string>& names)
 
 //! The parameters of "Surface diffusion N steps" (toolbox_bridge.h derives them from sdflow's
 //! schema of run parameters), as MeshLab's.
-void add_diffusion_parameters(RichParameterList& parameters, double mean_edge_length)
+void add_diffusion_parameters(RichParameterList& parameters, double mean_edge_length, bool anisotropic)
 {
   using Kind = sdflow::meshlab::DialogParameter::Kind;
-  for (const sdflow::meshlab::DialogParameter& d : sdflow::meshlab::diffusion_parameters(mean_edge_length)) {
+  for (const sdflow::meshlab::DialogParameter& d :
+       sdflow::meshlab::diffusion_parameters(mean_edge_length, anisotropic)) {
     const QString name = QString::fromStdString(d.name), label = QString::fromStdString(d.label),
                   help = QString::fromStdString(d.help);
     switch (d.kind) {
@@ -57,15 +58,18 @@ void add_diffusion_parameters(RichParameterList& parameters, double mean_edge_le
     case Kind::choice:
       parameters.addParam(RichEnum(name, d.choice, choices(d.choices), label, help));
       break;
+    case Kind::text:
+      parameters.addParam(RichString(name, QString::fromStdString(d.text), label, help));
+      break;
     }
   }
 }
 
-sdflow::meshlab::DiffusionSettings diffusion_settings(const RichParameterList& parameters)
+sdflow::meshlab::DiffusionSettings diffusion_settings(const RichParameterList& parameters, bool anisotropic)
 {
   using Kind = sdflow::meshlab::DialogParameter::Kind;
   sdflow::meshlab::DiffusionSettings settings;
-  for (const sdflow::meshlab::DialogParameter& d : sdflow::meshlab::diffusion_parameters(0)) {
+  for (const sdflow::meshlab::DialogParameter& d : sdflow::meshlab::diffusion_parameters(0, anisotropic)) {
     const QString name = QString::fromStdString(d.name);
     sdflow::meshlab::DialogValue& value = settings[d.name];
     switch (d.kind) {
@@ -73,6 +77,7 @@ sdflow::meshlab::DiffusionSettings diffusion_settings(const RichParameterList& p
     case Kind::real: value.number = sdflow::meshlab::intended_double(parameters.getFloat(name)); break;
     case Kind::boolean: value.flag = parameters.getBool(name); break;
     case Kind::choice: value.choice = parameters.getEnum(name); break;
+    case Kind::text: value.text = parameters.getString(name).toStdString(); break;
     }
   }
   return settings;
@@ -93,7 +98,8 @@ sdflow::meshlab::RetriangulationSettings retriangulation_settings(const RichPara
 
 FilterSdflowPlugin::FilterSdflowPlugin()
 {
-  typeList << FP_SURFACE_DIFFUSION << FP_RETRIANGULATE;
+  // In the enum's order: meshlabserver 2020.09 crashed running a script's filter when they differed.
+  typeList << FP_SURFACE_DIFFUSION << FP_RETRIANGULATE << FP_ANISOTROPIC_DIFFUSION;
   for (FilterIDType type : types())
     actionList << new QAction(filterName(type), this);
 }
@@ -105,6 +111,8 @@ QString FilterSdflowPlugin::filterName(FilterIDType filter) const
   switch (filter) {
   case FP_SURFACE_DIFFUSION:
     return "Surface diffusion N steps";
+  case FP_ANISOTROPIC_DIFFUSION:
+    return "Anisotropic surface diffusion N steps";
   case FP_RETRIANGULATE:
     return "Surface diffusion: re-triangulate";
   }
@@ -143,6 +151,17 @@ QString FilterSdflowPlugin::filterInfo(FilterIDType filter) const
            "for triangulated surfaces\"</b>; <i>M. Meyer, M. Desbrun, P. Schr&ouml;der, A. H. Barr</i>, "
            "<b>\"Discrete differential-geometry operators for triangulated 2-manifolds\"</b>, "
            "Visualization and Mathematics III, 2003.";
+  case FP_ANISOTROPIC_DIFFUSION:
+    return "<i>Surface diffusion N steps</i> with a surface energy &int; &gamma;(n) dA that depends on the "
+           "direction of the normal (a crystal's): the flow lowers it toward the <b>Wulff shape</b> of "
+           "&gamma; instead of the sphere. <i>Surface energy</i> chooses &gamma;: isotropic (&gamma; = 1, the "
+           "other filter's flow), ellipsoidal (&gamma; = &radic;(g1 nx&sup2; + g2 ny&sup2; + g3 nz&sup2;), whose "
+           "Wulff shape is the ellipsoid of semi-axes &prop; &radic;g), a sum of rotated ellipsoidal terms "
+           "(cubic-like anisotropies) or a formula in nx, ny, nz, exactly as <tt>sdflow run --energy</tt> "
+           "does. The other parameters, the result and the checks are those of <i>Surface diffusion N "
+           "steps</i>.<br><br>"
+           "See: <i>J. W. Barrett, H. Garcke, R. N&uuml;rnberg</i>, J. Comput. Phys. 227, 2008 (the "
+           "ellipsoidal forms of &gamma;).";
   case FP_RETRIANGULATE:
     return "Re-triangulates the surface by the pipeline of section 3.2.1 of the paper, the one <i>Surface "
            "diffusion N steps</i> applies between steps: components that intersect each other are joined into the "
@@ -165,6 +184,7 @@ MeshFilterInterface::FilterClass FilterSdflowPlugin::getClass(QAction* action)
 {
   switch (ID(action)) {
   case FP_SURFACE_DIFFUSION:
+  case FP_ANISOTROPIC_DIFFUSION:
   case FP_RETRIANGULATE:
     // A curvature-driven fairing flow: it belongs beside MeshLab's Laplacian, Taubin and HC
     // smoothing filters; its re-triangulation stays next to it.
@@ -188,7 +208,8 @@ void FilterSdflowPlugin::initParameterSet(QAction* action, MeshModel& model, Ric
   const double mean_edge_length = sdflow::meshlab::mean_edge_length(sdflow::meshlab::to_surface(model.cm));
   switch (ID(action)) {
   case FP_SURFACE_DIFFUSION:
-    add_diffusion_parameters(parameters, mean_edge_length);
+  case FP_ANISOTROPIC_DIFFUSION:
+    add_diffusion_parameters(parameters, mean_edge_length, ID(action) == FP_ANISOTROPIC_DIFFUSION);
     break;
   case FP_RETRIANGULATE: {
     const sdflow::meshlab::RetriangulationSettings defaults = sdflow::meshlab::default_retriangulation_settings();
@@ -228,7 +249,9 @@ bool FilterSdflowPlugin::applyFilter(QAction* action, MeshDocument& document, co
     sdflow::meshlab::ShadedSurface result;
     switch (ID(action)) {
     case FP_SURFACE_DIFFUSION:
-      result = sdflow::meshlab::surface_diffusion(input, label, diffusion_settings(parameters), reporter);
+    case FP_ANISOTROPIC_DIFFUSION:
+      result = sdflow::meshlab::surface_diffusion(
+          input, label, diffusion_settings(parameters, ID(action) == FP_ANISOTROPIC_DIFFUSION), reporter);
       break;
     case FP_RETRIANGULATE:
       result = sdflow::meshlab::retriangulate_surface(input, label, retriangulation_settings(parameters), reporter);

@@ -13,10 +13,13 @@
 #include "sdflow/retri/pipeline.h"
 #include "sdflow/io/validate.h"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/sinks/base_sink.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <stdexcept>
 #include <mutex>
@@ -125,14 +128,14 @@ double mean_edge_length(const Surface& input)
 
 double natural_time_step(const double mean_edge_length) { return std::pow(mean_edge_length, 4); }
 
-std::vector<DialogParameter> diffusion_parameters(const double mean_edge_length)
+std::vector<DialogParameter> diffusion_parameters(const double mean_edge_length, const bool anisotropic)
 {
   using Kind = DialogParameter::Kind;
   using Default = MeshlabParameter::Default;
   std::vector<DialogParameter> list;
   for (const ParameterEntry& e : parameter_schema()) {
     const MeshlabParameter& m = e.meshlab;
-    if (m.name.empty())
+    if (m.name.empty() || (m.anisotropic && !anisotropic))
       continue;
     DialogParameter d{.name = m.name, .label = m.label, .help = m.help.empty() ? e.help : m.help};
     const ParameterValue value = m.value ? *m.value : e.get(RunParameters{});
@@ -155,6 +158,12 @@ std::vector<DialogParameter> diffusion_parameters(const double mean_edge_length)
       d.choices = e.choices;
       d.choice = static_cast<int>(std::find(e.choices.begin(), e.choices.end(), std::get<std::string>(value)) -
                                   e.choices.begin());
+    } else if (e.type == ParameterType::text) {
+      d.kind = Kind::text;
+      d.text = std::get<std::string>(value);
+    } else if (e.type == ParameterType::reals) {
+      d.kind = Kind::text;
+      d.text = fmt::format("{}", fmt::join(std::get<std::vector<double>>(value), ", "));
     } else {
       throw std::logic_error("the dialog has no parameter of type " + type_name(e.type) + " (" + e.key + ")");
     }
@@ -174,6 +183,26 @@ std::string numbered(const std::vector<std::string>& names)
   return list;
 }
 
+//! The numbers of a dialog's text, separated by commas or spaces ("1, 1, 4"); throws
+//! InvalidParameter naming the parameter at the first word that is not a number.
+std::vector<double> dialog_numbers(const MeshlabParameter& m, const std::string& text)
+{
+  std::vector<double> numbers;
+  std::size_t at = 0;
+  while ((at = text.find_first_not_of(", \t", at)) != std::string::npos) {
+    const std::size_t end = std::min(text.find_first_of(", \t", at), text.size());
+    const std::string word = text.substr(at, end - at);
+    double number = 0;
+    const auto [last, error] = std::from_chars(word.data(), word.data() + word.size(), number);
+    if (error != std::errc() || last != word.data() + word.size())
+      throw InvalidParameter(fmt::format("{} ({}) must be numbers separated by commas, got \"{}\" in \"{}\"", m.label,
+                                         m.name, word, text));
+    numbers.push_back(number);
+    at = end;
+  }
+  return numbers;
+}
+
 //! The value of `e` the dialog's `value` stands for.
 ParameterValue dialog_value(const ParameterEntry& e, const DialogValue& value)
 {
@@ -188,6 +217,8 @@ ParameterValue dialog_value(const ParameterEntry& e, const DialogValue& value)
     if (value.choice < 0 || value.choice >= static_cast<int>(e.choices.size()))
       throw InvalidParameter(fmt::format("{} must be {}, got {}", m.name, numbered(e.choices), value.choice));
     return e.choices[value.choice];
+  case ParameterType::text: return value.text;
+  case ParameterType::reals: return dialog_numbers(m, value.text);
   default: break;
   }
   throw std::logic_error("the dialog has no parameter of type " + type_name(e.type));

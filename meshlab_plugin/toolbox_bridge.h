@@ -29,7 +29,8 @@ struct Reporter {
 //! is derived from the run parameters' schema (sdflow/flow/parameter_schema.h): each is one key of
 //! a scenario and one flag of `sdflow run`.
 struct DialogParameter {
-  enum class Kind { integer, real, boolean, choice };
+  //! `text` is a line of text: a formula, or numbers separated by commas (a list of reals).
+  enum class Kind { integer, real, boolean, choice, text };
   Kind kind = Kind::real;
   std::string name;                 //!< the .mlx name: "EdgeLength"
   std::string label;                //!< "Re-triangulation edge length ℓ"
@@ -38,18 +39,21 @@ struct DialogParameter {
   bool flag = false;                //!< default of a boolean
   int choice = 0;                   //!< default of a choice: an index into `choices`
   std::vector<std::string> choices; //!< the names of a choice (`sdflow run --curvature` takes them)
+  std::string text;                 //!< default of a text
 };
 
 //! The parameters of "Surface diffusion N steps", with defaults for a mesh of this mean edge length
-//! (the re-triangulation's ℓ, and h⁴ for the constant τ).
-std::vector<DialogParameter> diffusion_parameters(double mean_edge_length);
+//! (the re-triangulation's ℓ, and h⁴ for the constant τ); with `anisotropic`, those of
+//! "Anisotropic surface diffusion N steps": the same and the surface energy's.
+std::vector<DialogParameter> diffusion_parameters(double mean_edge_length, bool anisotropic = false);
 
-//! A value the dialog gives a parameter, by its kind: `number` (integer, real), `flag` (boolean) or
-//! `choice` (an index; meshlabserver passes a script's index unchecked).
+//! A value the dialog gives a parameter, by its kind: `number` (integer, real), `flag` (boolean),
+//! `choice` (an index; meshlabserver passes a script's index unchecked) or `text`.
 struct DialogValue {
   double number = 0;
   bool flag = false;
   int choice = 0;
+  std::string text;
 };
 
 //! Settings of "Surface diffusion N steps": its parameters' values by name (diffusion_parameters).

@@ -6,9 +6,29 @@
 # prints the <filter> element with every parameter (meshlabserver asserts on a missing one).
 # CURVATURE and MASS are indices of the choices (0: the defaults); an enum parameter needs its
 # choices in the script, or meshlabserver drops it and aborts as on a missing one.
+#   anisotropic_filter_mlx ENERGY G FORMULA, then the eleven above
+# prints "Anisotropic surface diffusion N steps" with the same and the surface energy's: ENERGY an
+# index of isotropic, ellipsoidal, sum, formula; G numbers separated by commas.
 diffusion_filter_mlx() {
+  printf ' <filter name="Surface diffusion N steps">\n'
+  diffusion_parameters_mlx "$@"
+  printf ' </filter>\n'
+}
+
+anisotropic_filter_mlx() {
+  printf ' <filter name="Anisotropic surface diffusion N steps">\n'
+  diffusion_parameters_mlx "${@:4}"
   cat <<MLX
- <filter name="Surface diffusion N steps">
+  <Param type="RichEnum" name="Energy" value="$1" enum_cardinality="4" enum_val0="isotropic" enum_val1="ellipsoidal"
+         enum_val2="sum" enum_val3="formula"/>
+  <Param type="RichString" name="EnergyG" value="$2"/>
+  <Param type="RichString" name="EnergyFormula" value="$3"/>
+ </filter>
+MLX
+}
+
+diffusion_parameters_mlx() {
+  cat <<MLX
   <Param type="RichInt" name="Steps" value="$1"/>
   <Param type="RichBool" name="AutomaticTau" value="$2"/>
   <Param type="RichFloat" name="Tau" value="$3"/>
@@ -21,6 +41,5 @@ diffusion_filter_mlx() {
          enum_val1="normal_integral" enum_val2="normal_integral_angle_sum"/>
   <Param type="RichEnum" name="Mass" value="${10}" enum_cardinality="2" enum_val0="voronoi" enum_val1="volume_gradient"/>
   <Param type="RichBool" name="Extrapolate" value="${11}"/>
- </filter>
 MLX
 }

@@ -100,17 +100,25 @@ run_meshlabserver() {
 }
 
 # Runs the filter with SETTINGS (those of write_diffusion_script after the file name) on
-# $work/input.ply, and `sdflow run` with FLAGS..., then compares the two final surfaces.
-#   compare_with_cli NAME "SETTINGS" FLAGS...
+# $work/input.ply, and `sdflow run` with FLAGS..., then compares the two final surfaces; after
+# `-- anisotropic ENERGY G FORMULA`, the anisotropic filter with those (anisotropic_filter_mlx).
+#   compare_with_cli NAME "SETTINGS" FLAGS... [-- anisotropic ENERGY G FORMULA]
 compare_with_cli() {
   local name=$1 settings=$2; shift 2
-  local steps
+  local steps flags=() energy=()
   steps=$(cut -d' ' -f1 <<< "$settings")
-  # shellcheck disable=SC2086 # the settings are words on purpose
-  write_diffusion_script "$work/$name.mlx" $settings
+  # FLAGS... -- anisotropic ENERGY G FORMULA: the anisotropic filter with those energy settings.
+  while [[ $# -gt 0 && $1 != -- ]]; do flags+=("$1"); shift; done
+  [[ $# -eq 0 ]] || { shift 2; energy=("$@"); }
+  {
+    printf '<!DOCTYPE FilterScript>\n<FilterScript>\n'
+    # shellcheck disable=SC2086 # the settings are words on purpose
+    if [[ ${#energy[@]} -eq 0 ]]; then diffusion_filter_mlx $settings; else anisotropic_filter_mlx "${energy[@]}" $settings; fi
+    printf '</FilterScript>\n'
+  } > "$work/$name.mlx"
   run_meshlabserver -l "$work/$name.log" -i "$work/input.ply" -o "$work/$name.meshlab.ply" -s "$work/$name.mlx"
   [[ $status -eq 0 && -s "$work/$name.meshlab.ply" ]] || fail "$name: meshlabserver failed ($status): $(cat "$work/$name.log")"
-  "$sdflow" --quiet run --input "$work/input.ply" --out "$work/$name.run" --steps "$steps" "$@" > /dev/null \
+  "$sdflow" --quiet run --input "$work/input.ply" --out "$work/$name.run" --steps "$steps" "${flags[@]}" > /dev/null \
     || fail "$name: sdflow run failed"
   local final
   final=$(ls "$work/$name.run"/snapshots/step_*.ply | tail -n 1)
@@ -154,6 +162,13 @@ same-as-cli)
   for name in normal_integral angle_sum volume_gradient extrapolated; do
     expect_different constant "$name"
   done
+  # The anisotropic filter: an ellipsoidal γ, and the same γ written as a formula.
+  compare_with_cli ellipsoidal "8 false 0.05 0.5 true false false 0.1 0 0 false" --tau 0.05 --beta 0.5 \
+    --conserve-volume --no-retriangulate --energy ellipsoidal --energy-g 1,1,4 -- anisotropic 1 "1, 1, 4" "1"
+  compare_with_cli formula "8 false 0.05 0.5 true false false 0.1 0 0 false" --tau 0.05 --beta 0.5 \
+    --conserve-volume --no-retriangulate --energy formula --energy-formula "1 + 0.05 * (nx^4 + ny^4 + nz^4)" \
+    -- anisotropic 3 "1" "1 + 0.05 * (nx^4 + ny^4 + nz^4)"
+  expect_different constant ellipsoidal
   echo "headless_test same-as-cli: the plugin's surfaces equal sdflow run's"
   ;;
 retriangulate-same-as-cli)

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <vector>
 
 namespace {
@@ -28,12 +29,13 @@ protected:
 
   QAction* action() { return plugin.AC(FilterSdflowPlugin::FP_SURFACE_DIFFUSION); }
   QAction* retriangulate_action() { return plugin.AC(FilterSdflowPlugin::FP_RETRIANGULATE); }
+  QAction* anisotropic_action() { return plugin.AC(FilterSdflowPlugin::FP_ANISOTROPIC_DIFFUSION); }
 
-  //! The filter's default parameters for the current mesh, with `steps` steps.
-  RichParameterList parameters(int steps)
+  //! The default parameters of `filter` (the flow's unless given) for the current mesh, with `steps` steps.
+  RichParameterList parameters(int steps, QAction* filter = nullptr)
   {
     RichParameterList list;
-    plugin.initParameterSet(action(), *document.mm(), list);
+    plugin.initParameterSet(filter ? filter : action(), *document.mm(), list);
     list.setValue("Steps", IntValue(steps));
     return list;
   }
@@ -239,11 +241,96 @@ TEST_F(FilterTest, diffusion_parameters_are_the_run_schemas_and_each_is_taken)
     case Kind::real: changed.setValue(name, FloatValue(changed.getFloat(name) * 0.5f)); break;
     case Kind::boolean: changed.setValue(name, BoolValue(!d.flag)); break;
     case Kind::choice: changed.setValue(name, EnumValue(static_cast<int>(d.choices.size()) - 1)); break;
+    case Kind::text: ADD_FAILURE() << "the isotropic flow has no text parameter"; break;
     }
     if (d.name == "Tau") // used only with a constant τ
       changed.setValue("AutomaticTau", BoolValue(false));
     EXPECT_TRUE(plugin.applyFilter(action(), document, changed, nullptr)) << log_text().toStdString();
   }
+}
+
+TEST_F(FilterTest, the_anisotropic_flow_has_the_flows_parameters_and_the_surface_energys)
+{
+  using Kind = sdflow::meshlab::DialogParameter::Kind;
+  add_sphere();
+  EXPECT_EQ(plugin.filterName(anisotropic_action()), QString("Anisotropic surface diffusion N steps"));
+  EXPECT_EQ(plugin.getClass(anisotropic_action()), plugin.getClass(action()));
+  std::vector<std::string> isotropic, anisotropic;
+  for (const sdflow::meshlab::DialogParameter& d : sdflow::meshlab::diffusion_parameters(1.0))
+    isotropic.push_back(d.name);
+  const std::vector<sdflow::meshlab::DialogParameter> expected = sdflow::meshlab::diffusion_parameters(1.0, true);
+  for (const sdflow::meshlab::DialogParameter& d : expected)
+    anisotropic.push_back(d.name);
+  std::sort(isotropic.begin(), isotropic.end());
+  std::sort(anisotropic.begin(), anisotropic.end());
+  std::vector<std::string> added;
+  std::set_difference(anisotropic.begin(), anisotropic.end(), isotropic.begin(), isotropic.end(),
+                      std::back_inserter(added));
+  EXPECT_EQ(added, (std::vector<std::string>{"Energy", "EnergyFormula", "EnergyG"}));
+  EXPECT_EQ(anisotropic.size(), isotropic.size() + added.size()) << "every parameter of the flow, and these";
+  const RichParameterList list = parameters(2, anisotropic_action());
+  ASSERT_EQ(list.size(), expected.size());
+  EXPECT_EQ(dynamic_cast<const RichEnum&>(list.getParameterByName("Energy")).enumvalues,
+            QStringList({"isotropic", "ellipsoidal", "sum", "formula"}));
+  EXPECT_EQ(list.getEnum("Energy"), 0); // the isotropic flow unless chosen
+  for (const sdflow::meshlab::DialogParameter& d : expected) {
+    if (d.kind != Kind::text)
+      continue;
+    SCOPED_TRACE(d.name);
+    EXPECT_EQ(list.getString(QString::fromStdString(d.name)).toStdString(), d.text);
+    EXPECT_FALSE(d.text.empty()) << "a default that runs when its energy is chosen";
+  }
+}
+
+// The surface energy's parameters reach the flow: an ellipsoidal γ with g = (4, 1, 1), whose Wulff
+// shape has semi-axes ∝ √g = (2, 1, 1), lengthens the sphere along x; the same γ written as a
+// formula gives the same surface; text that is not numbers is refused, naming the parameter, with
+// the mesh left as it was.
+TEST_F(FilterTest, the_surface_energy_reaches_the_flow_from_the_dialog)
+{
+  const auto extent = [this](int axis) {
+    float low = 1e9f, high = -1e9f;
+    for (const CVertexO& v : document.mm()->cm.vert) {
+      low = std::min(low, v.cP()[axis]);
+      high = std::max(high, v.cP()[axis]);
+    }
+    return double(high - low);
+  };
+  const auto flowed = [this](const std::vector<std::pair<QString, Value*>>& settings) {
+    add_sphere();
+    RichParameterList list = parameters(10, anisotropic_action());
+    list.setValue("Retriangulate", BoolValue(false));
+    list.setValue("AutomaticTau", BoolValue(false));
+    list.setValue("Tau", FloatValue(1e-2f));
+    for (const auto& [name, value] : settings)
+      list.setValue(name, *value);
+    const bool applied = plugin.applyFilter(anisotropic_action(), document, list, nullptr);
+    std::vector<Point3m> positions;
+    for (const CVertexO& v : document.mm()->cm.vert)
+      positions.push_back(v.cP());
+    return std::make_pair(applied, positions);
+  };
+  EnumValue ellipsoidal(1), formula(3);
+  StringValue g("4, 1, 1"), written_out("sqrt(4*nx^2 + ny^2 + nz^2)");
+  const auto [ellipsoid_applied, ellipsoid] = flowed({{"Energy", &ellipsoidal}, {"EnergyG", &g}});
+  ASSERT_TRUE(ellipsoid_applied) << log_text().toStdString();
+  EXPECT_GT(extent(0), 1.002 * extent(1)) << "the Wulff shape is longer along x";
+  const auto [formula_applied, by_formula] = flowed({{"Energy", &formula}, {"EnergyFormula", &written_out}});
+  ASSERT_TRUE(formula_applied) << log_text().toStdString();
+  EXPECT_LT(largest_difference(ellipsoid, by_formula), 1e-5) << "the same γ, written out";
+  const auto [isotropic_applied, isotropic] = flowed({});
+  ASSERT_TRUE(isotropic_applied) << log_text().toStdString();
+  EXPECT_GT(largest_difference(ellipsoid, isotropic), 1e-3);
+
+  MeshModel* model = add_sphere();
+  const Point3m before = model->cm.vert[7].cP();
+  RichParameterList list = parameters(3, anisotropic_action());
+  list.setValue("Energy", EnumValue(1));
+  list.setValue("EnergyG", StringValue("4, one, 1"));
+  EXPECT_FALSE(plugin.applyFilter(anisotropic_action(), document, list, nullptr));
+  EXPECT_TRUE(plugin.errorMsg().contains("(EnergyG) must be numbers separated by commas, got \"one\""))
+      << plugin.errorMsg().toStdString();
+  EXPECT_EQ(model->cm.vert[7].cP(), before);
 }
 
 TEST_F(FilterTest, each_scheme_option_changes_the_flow)

@@ -297,6 +297,8 @@ std::string meshlab_parameter_table_markdown()
       flag += ", `" + shorthand.flag + "`";
     if (e.type == ParameterType::boolean)
       flag += ", `--no-" + e.flag.substr(2) + "`";
+    if (e.meshlab.anisotropic)
+      cell += " (*Anisotropic surface diffusion N steps* only)";
     s += fmt::format("| {} (`{}`) | {} | {} |\n", e.meshlab.label, e.meshlab.name, cell, flag);
   }
   return s;

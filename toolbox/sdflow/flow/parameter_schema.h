@@ -99,6 +99,9 @@ struct MeshlabParameter {
   //! too (`fixed_boundary = true`, the older boolean key of `boundary`).
   std::optional<std::pair<std::string, std::string>> boolean_choices;
   ParameterRange range; //!< the dialog's own range, where narrower (Steps ≥ 1)
+  //! Offered only by "Anisotropic surface diffusion N steps": meshlabserver refuses a filter script
+  //! that lacks one of a filter's parameters, so the isotropic filter keeps its list.
+  bool anisotropic = false;
 };
 
 struct ParameterEntry {

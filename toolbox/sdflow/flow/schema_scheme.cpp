@@ -191,6 +191,12 @@ void add_energy_entries(std::vector<ParameterEntry>& s)
     e.set = [](RunParameters& p, const ParameterValue& v) {
       p.scheme.energy.kind = surface_energy_kind(std::get<std::string>(v));
     };
+    e.meshlab = {.name = "Energy", .label = "Surface energy γ(n)",
+                 .help = "isotropic: γ = 1, the area (the paper's flow); ellipsoidal: γ = √(g1 nx² + g2 ny² + g3 "
+                         "nz²), with the three numbers of γ's g; sum: of rotated ellipsoidal terms, six numbers "
+                         "per term in γ's g (g1, g2, g3 and rotations about x, y, z in degrees); formula: γ's "
+                         "formula. The flow then lowers ∫ γ dA toward the Wulff shape.",
+                 .anisotropic = true};
     e.paper = std::string("isotropic");
   }
   {
@@ -199,6 +205,11 @@ void add_energy_entries(std::vector<ParameterEntry>& s)
                            "[[g1, g2, g3, rx, ry, rz], ...], the term √(nᵀ R diag(g) Rᵀ n) with R = Rz·Ry·Rx by the "
                            "angles in degrees (flag: the numbers in one comma-separated list)"));
     bind<std::vector<double>>(e, &RunParameters::scheme, &SchemeOptions::energy, &SurfaceEnergyOptions::g);
+    e.meshlab = {.name = "EnergyG", .label = "γ's g",
+                 .help = "The numbers of an ellipsoidal γ (g1, g2, g3, each > 0: its Wulff shape has semi-axes "
+                         "∝ √g) or of a sum (six per term), separated by commas",
+                 .value = std::vector<double>{1, 1, 4},
+                 .anisotropic = true};
     e.in_use = [](const RunParameters& p) {
       return p.scheme.energy.kind == SurfaceEnergyKind::ellipsoidal || p.scheme.energy.kind == SurfaceEnergyKind::sum;
     };
@@ -209,6 +220,11 @@ void add_energy_entries(std::vector<ParameterEntry>& s)
                            "\"1 + 0.05 * (nx^4 + ny^4 + nz^4)\"; it must be positive and convex (checked on 2000 "
                            "directions), its derivatives are taken by differences"));
     bind<std::string>(e, &RunParameters::scheme, &SchemeOptions::energy, &SurfaceEnergyOptions::formula);
+    e.meshlab = {.name = "EnergyFormula", .label = "γ's formula",
+                 .help = "γ(nx, ny, nz) on unit normals, in muparser syntax, for the energy `formula`: positive "
+                         "and convex, e.g. 1 + 0.05 * (nx^4 + ny^4 + nz^4)",
+                 .value = std::string("1 + 0.05 * (nx^4 + ny^4 + nz^4)"),
+                 .anisotropic = true};
     e.in_use = [](const RunParameters& p) { return p.scheme.energy.kind == SurfaceEnergyKind::formula; };
   }
 }
