@@ -229,6 +229,18 @@ TEST(Holes, figure_eight_loop_is_reported_not_filled)
   EXPECT_EQ(boundary_edges, 6);
 }
 
+//! Every face of `mesh` passes validation's zero-area test.
+void expect_no_zero_area_face(const Mesh& mesh)
+{
+  for (const auto f : mesh.faces()) {
+    std::vector<Eigen::Vector3d> corners;
+    for (const auto v : mesh.fv_range(f))
+      corners.push_back(to_eigen(mesh.point(v)));
+    EXPECT_FALSE(has_zero_area(corners[0], corners[1], corners[2], BuildOptions{}.zero_area_tolerance))
+        << "face " << f.idx();
+  }
+}
+
 // A hole whose corner lies 2e-12 off the line through its neighbours: the minimum-weight
 // triangulation took that corner and its neighbours for a triangle (area 5e-13 times its longest
 // edge squared), which validation refuses as zero-area, so the re-triangulation failed with "face
@@ -244,13 +256,7 @@ TEST(Holes, a_nearly_straight_corner_gets_no_zero_area_triangle)
     for (const auto& loop : result.loops)
       EXPECT_EQ(loop.outcome, LoopOutcome::filled);
     EXPECT_TRUE(component_topology(result.mesh).front().closed());
-    for (const auto f : result.mesh.faces()) {
-      std::vector<Eigen::Vector3d> corners;
-      for (const auto v : result.mesh.fv_range(f))
-        corners.push_back(to_eigen(result.mesh.point(v)));
-      EXPECT_FALSE(has_zero_area(corners[0], corners[1], corners[2], BuildOptions{}.zero_area_tolerance))
-          << "face " << f.idx();
-    }
+    expect_no_zero_area_face(result.mesh);
     EXPECT_NO_THROW(check_geometry(result.mesh, "filled"));
   }
 }
@@ -276,13 +282,7 @@ TEST(Holes, the_refinement_makes_no_zero_area_triangle_by_a_flip)
       EXPECT_FALSE(loop.uniform_fairing) << "the cotangent system should be regular";
     }
   EXPECT_EQ(filled, 1);
-  for (const auto f : result.mesh.faces()) {
-    std::vector<Eigen::Vector3d> corners;
-    for (const auto v : result.mesh.fv_range(f))
-      corners.push_back(to_eigen(result.mesh.point(v)));
-    EXPECT_FALSE(has_zero_area(corners[0], corners[1], corners[2], BuildOptions{}.zero_area_tolerance))
-        << "face " << f.idx();
-  }
+  expect_no_zero_area_face(result.mesh);
 }
 
 // A zero-area triangle beside a hole (a loop vertex moved onto the edge its two outer neighbours
