@@ -66,8 +66,8 @@ TEST(RunControl, a_run_stopped_while_adaptive_steps_cover_a_table_step_resumes_b
                          .stop_requested = [&] { return steps_seen >= 9; }});
   const Checkpoint checkpoint = read_checkpoint(dir / "stopped/checkpoint.bin");
   ASSERT_EQ(checkpoint.step, 9);
-  EXPECT_GT(checkpoint.time_step.table_lag, 0) << "not stopped among the adaptive steps";
-  EXPECT_GT(checkpoint.time_step.fallback_left, 0);
+  EXPECT_GT(checkpoint.bookkeeping.controller.table_lag, 0) << "not stopped among the adaptive steps";
+  EXPECT_GT(checkpoint.bookkeeping.controller.fallback_left, 0);
   resume_simulation({.parameters = table_run(dir / "stopped")});
   EXPECT_EQ(test::read_file(dir / "stopped/metrics.csv"), test::read_file(dir / "whole/metrics.csv"));
 }

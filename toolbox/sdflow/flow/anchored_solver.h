@@ -1,12 +1,12 @@
 #pragma once
 //! \file anchored_solver.h
 //! \brief A step's solver together with the anchor of the factor it reuses (FactorAnchor,
-//! flow_state.h): the surface and τβ of its last numeric factorisation. A flow resumed from a state
+//! step_bookkeeping.h): the surface and τβ of its last numeric factorisation. A flow resumed from a state
 //! factorises the anchor's system again, so that its preconditioner, and every later CG iterate,
 //! are those of the flow that saved the state (docs/design.md §8).
 
-#include "sdflow/flow/flow_state.h"
 #include "sdflow/flow/scheme.h"
+#include "sdflow/flow/step_bookkeeping.h"
 #include "sdflow/solve/solver.h"
 
 #include <functional>

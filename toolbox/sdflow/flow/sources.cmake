@@ -7,6 +7,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/fixed_boundary.cpp
   sdflow/flow/intersection_guard.cpp
   sdflow/flow/isotropic_energy.cpp
+  sdflow/flow/look_ahead.cpp
   sdflow/flow/parameter_schema.cpp
   sdflow/flow/parameters.cpp
   sdflow/flow/refinement.cpp
@@ -17,9 +18,11 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/schema_time_step.cpp
   sdflow/flow/scheme.cpp
   sdflow/flow/step_event.cpp
+  sdflow/flow/step_record.cpp
   sdflow/flow/substrate_boundary.cpp
   sdflow/flow/surface_diffusion.cpp
   sdflow/flow/surface_energy_options.cpp
   sdflow/flow/time_step.cpp
   sdflow/flow/topology_guard.cpp
+  sdflow/flow/trial_solvers.cpp
   sdflow/flow/volume.cpp)

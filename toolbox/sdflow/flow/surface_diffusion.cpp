@@ -6,13 +6,11 @@
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/log.h"
-#include "sdflow/solve/blas_threads.h"
 #include "sdflow/spatial/nearest_points.h"
 #include "sdflow/stopwatch.h"
 
 #include <fmt/format.h>
 #include <tbb/parallel_invoke.h>
-#include <tbb/task_arena.h>
 
 #include <Eigen/Geometry>
 
@@ -67,11 +65,8 @@ double natural_largest_tau(const Mesh& mesh)
 
 } // namespace
 
-std::string FlowNote::line() const { return fmt::format("step {} t={}: {}", step, time, text); }
-
 SurfaceDiffusion::SurfaceDiffusion(const Mesh& initial, RunParameters parameters, RetriangulationHook retriangulate)
-    : p_(with_refinement(std::move(parameters), initial)), solver_(p_.solver), half_solver_(p_.solver),
-      controller_(refined_time_step(p_))
+    : p_(with_refinement(std::move(parameters), initial)), trials_(refined_time_step(p_), p_.solver)
 {
   validate_flow_parameters(p_);
   parts_ = scheme_parts(p_.scheme);
@@ -85,8 +80,8 @@ SurfaceDiffusion::SurfaceDiffusion(const Mesh& initial, RunParameters parameters
 
 SurfaceDiffusion::SurfaceDiffusion(const FlowState& state, RunParameters parameters,
                                    RetriangulationHook retriangulate)
-    : p_(with_refinement(std::move(parameters), make_mesh(state.positions, state.triangles))), solver_(p_.solver),
-      half_solver_(p_.solver), controller_(refined_time_step(p_), state.time_step)
+    : p_(with_refinement(std::move(parameters), make_mesh(state.positions, state.triangles))),
+      trials_(refined_time_step(p_), p_.solver, state.bookkeeping.controller)
 {
   validate_flow_parameters(p_);
   parts_ = scheme_parts(p_.scheme);
@@ -107,8 +102,7 @@ SurfaceDiffusion::SurfaceDiffusion(const FlowState& state, RunParameters paramet
   const auto anchor_operators = [&](const VertexVectors& positions) {
     return flow_operators(make_mesh(positions, state.triangles), p_.scheme, parts_, &*cache_);
   };
-  solver_.restore(state.solver, anchor_operators);
-  half_solver_.restore(state.half_solver, anchor_operators);
+  trials_.restore_solvers(state.bookkeeping, anchor_operators);
   op_ = flow_operators(mesh_, p_.scheme, parts_, &*cache_);
 }
 
@@ -125,9 +119,9 @@ StepRecord SurfaceDiffusion::step()
   const double cpu_start = process_cpu_seconds();
   const long next_step = step_ + 1;
   // The first trial: the one taken while the hook looked at the surface, else one now.
-  const bool taken_ahead = ahead_ && ahead_->first.step == next_step;
-  FirstTrial first = taken_ahead ? std::move(ahead_->first) : first_trial(next_step);
-  ahead_.reset();
+  std::optional<FirstTrial> ahead = ahead_.take(next_step);
+  const bool taken_ahead = ahead.has_value();
+  FirstTrial first = taken_ahead ? std::move(*ahead) : first_trial(next_step);
   for (FlowNote& n : first.notes)
     publish(std::move(n));
   std::vector<StepEvent> events;
@@ -175,7 +169,7 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
     TimeStepState s = controller_before;
     s.rejections = 0;
     s.turning_since_tau = 0;
-    controller_ = TimeStepController(refined_time_step(p_), s);
+    trials_.restart_controller(s);
   };
   // Re-triangulate the surface the step starts from, once a step; true when that changed it.
   bool forced = false;
@@ -205,7 +199,7 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
       throw; // a smaller τ is needed, not a new surface or adaptive steps in its place
     } catch (const TrianglesTurning& e) {
       // Re-triangulated (once a step), the step starts again; refused, τ shrinks on as the rule asks.
-      controller_.forget_turning();
+      trials_.controller().forget_turning();
       retriangulated(e.what());
       continue;
     } catch (const SolverFailure& e) {
@@ -215,9 +209,9 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
         throw;
       a.fell_back = true;
       restart_controller();
-      controller_.fall_back_to_adaptive(next_step);
+      trials_.controller().fall_back_to_adaptive(next_step);
       std::string reason = fmt::format("the table's step {} cannot be taken ({}): adaptive steps cover its τ = {}",
-                                       controller_.table_step(next_step), e.what(), controller_.state().fallback_left);
+                                       trials_.controller().table_step(next_step), e.what(), trials_.controller().state().fallback_left);
       note(next_step, time_, reason, true);
       events.push_back({.kind = StepEventKind::fallback, .detail = std::move(reason)});
     }
@@ -253,9 +247,9 @@ void SurfaceDiffusion::take(Accepted& a, long next_step, const TimeStepState& co
   }
   step_ = next_step;
   time_ += a.tau;
-  if ((a.fell_back || controller_before.fallback_left > 0) && !controller_.adaptive())
+  if ((a.fell_back || controller_before.fallback_left > 0) && !trials_.controller().adaptive())
     note(step_, time_, fmt::format("adaptive steps covered the table up to its step {}: the table resumes",
-                                   controller_.table_step(step_)));
+                                   trials_.controller().table_step(step_)));
   earlier_w_ = std::exchange(previous_w_, a.trial.w);
   last_w_ = a.trial.w;
 }
@@ -270,10 +264,26 @@ double SurfaceDiffusion::retriangulate_after_step(std::vector<StepEvent>& events
     return 0;
   }
   const VertexVectors before = vertex_positions(mesh_);
-  if (can_look_ahead())
-    return look_and_try_ahead(before, events, times);
-  const RetriangulationReport report = call_retriangulation(mesh_, false, times);
-  note_refusal(report, events);
+  RetriangulationReport report;
+  if (can_look_ahead()) {
+    renew_operators(times); // the trial's operators: those of the surface as it stands
+    LookAhead::Outcome look = ahead_.look_beside_trial(
+        mesh_, trials_,
+        [&](Mesh& copy, std::function<void()> changing) {
+          return call_retriangulation(copy, false, times, std::move(changing));
+        },
+        [&](const std::atomic<bool>* cancel) { return first_trial(step_ + 1, cancel); });
+    if (look.held)
+      return look.alone_seconds;
+    note_refusal(look.report, events);
+    if (look.failure)
+      std::rethrow_exception(look.failure);
+    mesh_ = std::move(look.surface);
+    report = std::move(look.report);
+  } else {
+    report = call_retriangulation(mesh_, false, times);
+    note_refusal(report, events);
+  }
   if (report.changed())
     adopt_retriangulation(report, before, events, times);
   else
@@ -311,10 +321,7 @@ FlowState SurfaceDiffusion::state() const
   s.tolerated_degraded = tolerated_degraded_;
   s.debris_volume = debris_volume_;
   // The next step's trial taken ahead is not part of it.
-  const TrialBookkeeping b = ahead_ ? ahead_->before : bookkeeping();
-  s.time_step = b.controller;
-  s.solver = b.solver;
-  s.half_solver = b.half_solver;
+  s.bookkeeping = ahead_.holds() ? ahead_.before().bookkeeping : trials_.bookkeeping();
   return s;
 }
 
@@ -413,7 +420,7 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
   debris_volume_ += report.measures.debris_volume;
   // The canonical mesh, the operators' cache of its connectivity and, for the carried orderings,
   // the old vertex nearest each new one are made side by side from the same positions and corners.
-  const bool carried = solver_.solver().carries_ordering() || half_solver_.solver().carries_ordering();
+  const bool carried = trials_.carries_ordering();
   const VertexVectors after = vertex_positions(mesh_);
   triangles_ = face_indices(mesh_);
   std::vector<int> nearest_old;
@@ -428,8 +435,7 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
   topology_changed_ =
       topology_changed_ || (p_.stop_at_topology_change && (topology_.count != components || topology_.genus != genus));
   const Stopwatch watch;
-  solver_.carry_ordering(nearest_old, op_.laplacian);
-  half_solver_.carry_ordering(nearest_old, op_.laplacian);
+  trials_.carry_ordering(nearest_old, op_.laplacian);
   times.factorisation += watch.seconds();
   previous_w_.resize(0);
   earlier_w_.resize(0);
@@ -447,16 +453,16 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
 
 //! Step `next_step`'s first trials, until the controller accepts one or gives up (then `failure`
 //! holds what it threw), with the note that the τ schedule has ended if it has; its notes held back.
-SurfaceDiffusion::FirstTrial SurfaceDiffusion::first_trial(long next_step, const std::atomic<bool>* cancel)
+FirstTrial SurfaceDiffusion::first_trial(long next_step, const std::atomic<bool>* cancel)
 {
   FirstTrial f;
   f.step = next_step;
-  f.controller_before = controller_.state();
+  f.controller_before = trials_.controller().state();
   const TrialContext context{.held_notes = &f.notes, .cancel = cancel};
   try {
     const auto& schedule = p_.time_step.schedule.entries();
-    if (p_.time_step.mode == TimeStepMode::schedule && !controller_.adaptive() &&
-        controller_.table_step(next_step) == schedule.back().last_step + 1)
+    if (p_.time_step.mode == TimeStepMode::schedule && !trials_.controller().adaptive() &&
+        trials_.controller().table_step(next_step) == schedule.back().last_step + 1)
       note(next_step, time_,
            fmt::format("the τ schedule ends at step {}: the steps after it repeat its last τ = {}", next_step - 1,
                        schedule.back().tau),
@@ -468,94 +474,13 @@ SurfaceDiffusion::FirstTrial SurfaceDiffusion::first_trial(long next_step, const
   return f;
 }
 
-SurfaceDiffusion::TrialBookkeeping SurfaceDiffusion::bookkeeping() const
-{
-  return {.controller = controller_.state(),
-          .solver = solver_.record(),
-          .half_solver = half_solver_.record(),
-          .rejected_trials = rejected_trials_,
-          .factorisations = factorisations_};
-}
-
-//! The bookkeeping back to `before`; the solvers keep their factors (the caller drops them).
-void SurfaceDiffusion::rewind(const TrialBookkeeping& before)
-{
-  controller_ = TimeStepController(refined_time_step(p_), before.controller);
-  solver_.rewind(before.solver);
-  half_solver_.rewind(before.half_solver);
-  rejected_trials_ = before.rejected_trials;
-  factorisations_ = before.factorisations;
-}
-
-//! Whether the next step's first trial may run beside the look at the surface: with the flow's own
-//! hook, which changes the surface only by re-triangulating it (with remeshing on, every run of
-//! the pipeline reports a change), when the hook looks after this step, a next step is due, TBB
-//! has a second thread, and the factorisation would run on one (two would compete with the look).
+//! Whether the next step's first trial may run beside the look at the surface: when the parameters
+//! let it (LookAhead::possible), with the flow's own hook, which changes the surface only by
+//! re-triangulating it, when the hook looks after this step and a next step is due.
 bool SurfaceDiffusion::can_look_ahead() const
 {
-  const RetriangulationSchedule& s = p_.retriangulation;
-  return p_.look_ahead && own_hook_ && s.pipeline.remesh_iterations > 0 && step_ % s.every == 0 && !finished() &&
-         tbb::this_task_arena::max_concurrency() > 1 &&
-         blas_threads_for(static_cast<long>(mesh_.n_vertices()), p_.solver.blas) == 1;
-}
-
-//! The hook's look at the surface (on a copy, the mesh being read by the trial) on one core while
-//! the next step's first trial runs on the other. A trial reads only what a look that leaves the
-//! surface alone leaves unchanged, so the one taken ahead is the one step() would take: it is kept
-//! for it. When the hook re-triangulates, the trial is dropped, its bookkeeping rewound, and the
-//! new surface adopted as without looking ahead.
-double SurfaceDiffusion::look_and_try_ahead(const VertexVectors& before, std::vector<StepEvent>& events,
-                                            StepTimes& times)
-{
-  renew_operators(times); // the trial's operators: those of the surface as it stands
-  TrialBookkeeping kept = bookkeeping();
-  Mesh looked;
-  RetriangulationReport report;
-  std::exception_ptr hook_failure;
-  FirstTrial first;
-  std::atomic<bool> dropped = false; // set by the hook once it re-triangulates: the trial stops
-  double look_seconds = 0, trial_seconds = 0;
-  const Stopwatch both;
-  tbb::parallel_invoke(
-    [&] {
-      const Stopwatch look;
-      try {
-        looked = mesh_;
-        report = call_retriangulation(looked, false, times, [&] { dropped = true; });
-      } catch (...) {
-        hook_failure = std::current_exception();
-      }
-      look_seconds = look.seconds();
-    },
-    [&] {
-      const Stopwatch trial;
-      first = first_trial(step_ + 1, &dropped);
-      trial_seconds = trial.seconds();
-    });
-  const double wall = both.seconds();
-  if (!hook_failure && !dropped && !report.changed() && report.degraded_left < 0) {
-    first.beside_look_seconds = std::clamp(look_seconds + trial_seconds - wall, 0.0, trial_seconds);
-    first.alone_seconds = std::clamp(wall - look_seconds, 0.0, trial_seconds - first.beside_look_seconds);
-    const double alone = first.alone_seconds;
-    ahead_ = LookAhead{std::move(first), std::move(kept)};
-    return alone;
-  }
-  rewind(kept);
-  note_refusal(report, events);
-  if (hook_failure || !report.changed()) {
-    // The trial's factors may be newer than its rewound bookkeeping: the next solves factorise
-    // afresh. (The flow's own hook changes the surface whenever it decides to, or fails.)
-    solver_.solver().restore(solver_.solver().state());
-    half_solver_.solver().restore(half_solver_.solver().state());
-    if (hook_failure)
-      std::rethrow_exception(hook_failure);
-  }
-  mesh_ = std::move(looked);
-  if (report.changed())
-    adopt_retriangulation(report, before, events, times);
-  else
-    renew_operators(times);
-  return 0;
+  return LookAhead::possible(p_, static_cast<long>(mesh_.n_vertices())) && own_hook_ &&
+         step_ % p_.retriangulation.every == 0 && !finished();
 }
 
 //! Trials of step `next_step` until the controller accepts one (returned: its τ); throws
@@ -577,8 +502,9 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
   const bool new_triangulation = step_ > 0 && previous_w_.size() == 0 && adaptive.start_steps > 0;
   const bool may_start = p_.time_step.mode == TimeStepMode::adaptive && adaptive.initial_tau == 0 &&
                          (next_step <= adaptive.start_steps || new_triangulation);
+  TimeStepController& controller = trials_.controller();
   const bool need_automatic_tau =
-      controller_.adaptive() && controller_.state().next_tau == 0 && adaptive.initial_tau == 0;
+      controller.adaptive() && controller.state().next_tau == 0 && adaptive.initial_tau == 0;
   const Eigen::VectorXd explicit_speed =
       need_automatic_tau || may_start ? Eigen::VectorXd(op_.rhs.cwiseQuotient(op_.areas).cwiseAbs())
                                       : Eigen::VectorXd();
@@ -592,12 +518,12 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
   // times a step to 10¹¹ by step 500, where the β = ½ scheme damps no mode (each factor tends to
   // −1); the volume drifted by 1.8% and the factorisation lost the mass term (issue 33).
   const double largest_tau =
-      controller_.adaptive() ? natural_largest_tau(mesh_) : std::numeric_limits<double>::infinity();
+      controller.adaptive() ? natural_largest_tau(mesh_) : std::numeric_limits<double>::infinity();
   // On a new triangulation mid-run, no longer a step than the rule would take: the step stays as
   // accurate as the others, only its stiffest modes are damped rather than flipped.
   double start_trial_tau = !may_start          ? 0.0
                            : new_triangulation ? std::min(start_tau(adaptive, start_length_),
-                                                          controller_.propose(next_step, automatic, time_left))
+                                                          controller.propose(next_step, automatic, time_left))
                                                : start_tau(adaptive, start_length_);
   int start_retries = 0;
   const std::array<Eigen::VectorXd, 2> guesses = warm_starts(previous_w_, earlier_w_);
@@ -608,26 +534,22 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
     // and the surface's own time scale (largest_tau above).
     const double tau =
         start ? std::min(start_trial_tau, time_left)
-              : std::min(controller_.propose(next_step, automatic,
-                                             controller_.adaptive() ? std::min(time_left, op_.tau_limit) : time_left),
+              : std::min(controller.propose(next_step, automatic,
+                                             controller.adaptive() ? std::min(time_left, op_.tau_limit) : time_left),
                          largest_tau);
     // A start step is backward Euler: with the scheme's β = ½ a mode far shorter than its time
     // scale would come out flipped, not damped (its factor (1 − τk⁴/2)/(1 + τk⁴/2) tends to −1).
-    trial = start ? solve_step(mesh_, op_, tau, kStartBeta, solver_.solver(), guesses)
+    trial = start ? solve_step(mesh_, op_, tau, kStartBeta, trials_.whole().solver(), guesses)
             : p_.scheme.extrapolate
-                ? extrapolated_step(mesh_, op_, tau, p_.scheme, solver_.solver(), half_solver_.solver(), &*cache_, guesses)
-                : solve_step(mesh_, op_, tau, p_.scheme.beta, solver_.solver(), guesses);
+                ? extrapolated_step(mesh_, op_, tau, p_.scheme, trials_.whole().solver(), trials_.half().solver(), &*cache_, guesses)
+                : solve_step(mesh_, op_, tau, p_.scheme.beta, trials_.whole().solver(), guesses);
     record.cg_iterations += trial.solve.iterations;
-    factorisations_ += trial.factorisations;
+    trials_.solved(trial);
     times.operators += trial.operators_seconds;
     times.assembly += trial.solve.seconds.assembly;
     times.factorisation += trial.solve.seconds.factorisation;
     times.solve += trial.solve.seconds.solve;
     watch.restart();
-    if (trial.solve.factorised)
-      solver_.factorised(trial.factorised_positions, trial.factorised_tau_beta);
-    if (trial.half_factorised)
-      half_solver_.factorised(trial.half_factorised_positions, trial.half_factorised_tau_beta);
     if (trial.factorisations > 0) {
       record.factorised = true;
       logger().debug("step {}: {} factorisations (τ = {})", next_step, trial.factorisations, tau);
@@ -648,10 +570,10 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
                                    .triangles = triangles_,
                                    .edge_lengths = edge_lengths,
                                    .volume_change = volume_change},
-                                  adaptive, controller_.adaptive());
+                                  adaptive, controller.adaptive());
     logger().debug("step {}: the trial of τ = {} changes a component's material volume by {:.3g} (relative)", next_step,
                    tau, volume_change);
-    if (check.volume_exceeded && !controller_.adaptive())
+    if (check.volume_exceeded && !controller.adaptive())
       check.adaptive_tau = automatic_tau(op_.rhs.cwiseQuotient(op_.areas).cwiseAbs(), op_.held, edge_lengths, adaptive);
     times.acceptance += watch.seconds();
     if (start) {
@@ -659,12 +581,12 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
       // what the mesh cannot follow, and the volumes are restored after the step.
       const double resolved_ratio = resolved_displacement_ratio(tau, trial.w, edge_lengths, resolved);
       if (!check.non_finite && check.inverted_triangles == 0 && resolved_ratio <= adaptive.max_displacement) {
-        controller_.accept_start_step(tau);
+        controller.accept_start_step(tau);
         record.start = true;
         return tau;
       }
       ++rejections;
-      ++rejected_trials_;
+      trials_.rejected();
       note(next_step, time_,
            fmt::format("rejected start step τ = {}: {}, normal displacement {:.3g} of the local edge length where "
                        "the surface is resolved",
@@ -677,17 +599,17 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
       start = ++start_retries <= kStartRetries && start_trial_tau > automatic;
       continue;
     }
-    if (controller_.judge(next_step, tau, check))
+    if (controller.judge(next_step, tau, check))
       return tau;
     ++rejections;
-    ++rejected_trials_;
+    trials_.rejected();
     note(next_step, time_, fmt::format("rejected τ = {}: {}", tau, check.describe()), false, context.held_notes);
-    if (check.inverted_triangles > 0 && retriangulate_ && controller_.turning_collapsed())
+    if (check.inverted_triangles > 0 && retriangulate_ && controller.turning_collapsed())
       throw TrianglesTurning(fmt::format("triangles keep turning over: the next τ, {:g}, would be {:.3g} times the "
                                          "τ = {:g} at which they began",
-                                         controller_.state().next_tau,
-                                         controller_.state().next_tau / controller_.state().turning_since_tau,
-                                         controller_.state().turning_since_tau));
+                                         controller.state().next_tau,
+                                         controller.state().next_tau / controller.state().turning_since_tau,
+                                         controller.state().turning_since_tau));
   }
 }
 

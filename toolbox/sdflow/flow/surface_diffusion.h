@@ -14,13 +14,14 @@
 //! const Mesh& result = flow.mesh();
 //! ```
 
-#include "sdflow/flow/anchored_solver.h"
 #include "sdflow/flow/flow_state.h"
 #include "sdflow/flow/intersection_guard.h"
+#include "sdflow/flow/look_ahead.h"
 #include "sdflow/flow/parameters.h"
 #include "sdflow/flow/retriangulation.h"
 #include "sdflow/flow/scheme.h"
-#include "sdflow/flow/step_event.h"
+#include "sdflow/flow/step_record.h"
+#include "sdflow/flow/trial_solvers.h"
 #include "sdflow/geometry/cotangent_cache.h"
 #include "sdflow/geometry/material_volume.h"
 #include "sdflow/mesh.h"
@@ -33,70 +34,6 @@
 #include <vector>
 
 namespace sdflow {
-
-//! A line of a flow's log: a rejected trial, a re-triangulation, a warning, at the step and time
-//! where it happened (a run directory keeps them in events.log).
-struct FlowNote {
-  long step = 0;
-  double time = 0;
-  std::string text;
-  bool warning = false;
-  std::string line() const; //!< "step N t=T: text"
-};
-
-//! Wall time of one step by stage, in seconds, over all its trials (a run's timings.csv).
-struct StepTimes {
-  double operators = 0;      //!< N, H, L, M of each new surface (scheme.h, flow_operators)
-  double assembly = 0;       //!< M + τβ L M⁻¹ L (solver.h)
-  double factorisation = 0;  //!< CHOLMOD's analysis and numeric factorisation
-  double solve = 0;          //!< triangular solves, CG, residuals
-  double acceptance = 0;     //!< the time-step rule's checks (turned triangles, volumes)
-  double retriangulation_check = 0; //!< the hook's look for self-intersections and degraded elements
-  RetriangulationResult::Seconds pipeline; //!< the re-triangulation pipeline's stages, when it ran
-  double volume_restoration = 0; //!< components given back their volume after re-triangulating
-  //! Seconds counted by two of the stages above at once, as they ran side by side on two threads:
-  //! the pipeline's (RetriangulationResult::Seconds::side_by_side) and, for a step whose first
-  //! trial was taken ahead, the time that trial ran beside the previous step's look at the surface.
-  //! The stages sum to at most total + side_by_side.
-  double side_by_side = 0;
-  //! The whole step. A step whose first trial was taken ahead counts the part of that trial that
-  //! ran after the previous step's look had ended; that step's total leaves it out.
-  double total = 0;
-  double cpu = 0;            //!< CPU seconds of the whole step, all threads (process_cpu_seconds)
-};
-
-//! One accepted step.
-struct StepRecord {
-  long step = 0;
-  double time = 0;
-  double tau = 0;
-  int rejections = 0;      //!< trials rejected before the accepted one
-  int cg_iterations = 0;
-  bool factorised = false;
-  //! Its first trial ran beside the last step's look at the surface (RunParameters::look_ahead):
-  //! its stage times then overlap that step's, and its `total` leaves them out.
-  bool taken_ahead = false;
-  //! A start step (time_step.h): τ_s taken on stability alone, the volumes restored after it.
-  bool start = false;
-  //! What happened besides the step, in order (step_event.h); event_names() joins them as
-  //! metrics.csv writes them.
-  std::vector<StepEvent> events;
-  StepTimes times;
-};
-
-//! The measures of one row of metrics.csv (the step, time, τ and event aside).
-struct FlowMetrics {
-  long vertices = 0, faces = 0;
-  int components = 0, genus = 0;
-  double area = 0;
-  double volume = 0; //!< material volume (material_volume.h): closed by flat caps over boundary loops
-  //! Material volume of the components dropped whole as debris so far (RetriangulationReport::
-  //! dropped_volume): volume + debris_volume is the material's, which a run conserves.
-  double debris_volume = 0;
-  double mean_curvature = 0, curvature_deviation_pct = 0; //!< H̃ and δH (measures.h)
-  double d1 = 0, d2 = 0;                                  //!< from the reference sphere
-  double energy = 0; //!< ∫ γ dA, the value of the flow's surface energy (the area for the isotropic one)
-};
 
 class SurfaceDiffusion {
 public:
@@ -137,8 +74,8 @@ public:
   FlowState state() const;
   //! Trial steps rejected, and numeric factorisations made, since construction (up to the last
   //! accepted step).
-  long rejected_trials() const { return ahead_ ? ahead_->before.rejected_trials : rejected_trials_; }
-  long factorisations() const { return ahead_ ? ahead_->before.factorisations : factorisations_; }
+  long rejected_trials() const { return counts().rejected_trials; }
+  long factorisations() const { return counts().factorisations; }
 
   //! The notes made since the last call (also sent to the log as they are made), in order; kept
   //! when step() throws, so the reason can follow them.
@@ -153,37 +90,9 @@ private:
     int genus = 0;
   };
 
-  //! What trials change in the flow besides their results.
-  struct TrialBookkeeping {
-    TimeStepState controller;
-    SolverRecord solver, half_solver;
-    long rejected_trials = 0, factorisations = 0;
-  };
-  //! A step's first trial and what came of it: its τ, or the exception it threw; the notes it made,
-  //! held until the step takes it.
-  struct FirstTrial {
-    long step = 0;
-    TimeStepState controller_before;
-    StepRecord record;
-    StepResult trial;
-    double tau = 0;
-    int rejections = 0;
-    std::vector<double> volumes;
-    std::exception_ptr failure;
-    std::vector<FlowNote> notes;
-    //! Taken ahead: its wall time while the look ran too, and after the look had ended.
-    double beside_look_seconds = 0, alone_seconds = 0;
-  };
-  //! The next step's first trial, taken while the hook looked at the surface, and the bookkeeping
-  //! before it (what state() reports until the step takes it).
-  struct LookAhead {
-    FirstTrial first;
-    TrialBookkeeping before;
-  };
-
   //! Where a step's trials report while they run: a first trial holds its notes back for the step
   //! that takes it, and the trials taken beside the look at the surface stop once `cancel` is set
-  //! (look_and_try_ahead).
+  //! (LookAhead::look_beside_trial).
   struct TrialContext {
     std::vector<FlowNote>* held_notes = nullptr; //!< null: the notes are published at once
     const std::atomic<bool>* cancel = nullptr;   //!< null: the trials run to their end
@@ -202,13 +111,10 @@ private:
   Accepted accepted_trial(FirstTrial& first, std::vector<StepEvent>& events);
   void take(Accepted& accepted, long next_step, const TimeStepState& controller_before);
   double retriangulate_after_step(std::vector<StepEvent>& events, StepTimes& times);
-  TrialBookkeeping bookkeeping() const;
-  void rewind(const TrialBookkeeping& before);
+  //! The counts without the trial taken ahead, if one is held.
+  const TrialCounts& counts() const { return ahead_.holds() ? ahead_.before().counts : trials_.counts(); }
   FirstTrial first_trial(long next_step, const std::atomic<bool>* cancel = nullptr);
   bool can_look_ahead() const;
-  //! Returns the wall seconds of the next step's trial that ran alone after the look ended (that
-  //! step's total counts them), 0 when the trial was dropped.
-  double look_and_try_ahead(const VertexVectors& before, std::vector<StepEvent>& events, StepTimes& times);
   void publish(FlowNote note);
   //! triangles_, the operators' cache and topology_ of mesh_.
   void renew_connectivity();
@@ -231,8 +137,7 @@ private:
   RetriangulationHook retriangulate_;
   bool own_hook_ = false; // the hook made from the schedule, which changes the mesh only to re-triangulate it
   std::optional<SelfIntersectionGuard> guard_; // without a hook: stops the flow at a self-intersection
-  AnchoredSolver solver_, half_solver_; // the half steps of extrapolated steps keep a factor of their own
-  TimeStepController controller_;
+  TrialSolvers trials_;
   Mesh mesh_;
   FaceIndices triangles_;
   Topology topology_;
@@ -246,9 +151,8 @@ private:
   double debris_volume_ = 0;      // FlowMetrics::debris_volume
   bool topology_changed_ = false; // with stop_at_topology_change: finished after this step
   Eigen::VectorXd previous_w_, earlier_w_, last_w_; // w of the last two accepted steps, and the velocity
-  long rejected_trials_ = 0, factorisations_ = 0;
   std::vector<FlowNote> notes_;
-  std::optional<LookAhead> ahead_;
+  LookAhead ahead_;
 };
 
 } // namespace sdflow

@@ -156,6 +156,7 @@ SolverRecord get_solver(Reader& r, const std::filesystem::path& file)
 
 void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file)
 {
+  const StepBookkeeping& b = c.bookkeeping;
   Writer w;
   w.bytes().append(magic, sizeof magic);
   w.put(version);
@@ -165,25 +166,25 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file)
   w.put<std::uint64_t>(static_cast<std::uint64_t>(c.triangles.rows()));
   w.bytes().append(reinterpret_cast<const char*>(c.triangles.data()), c.triangles.size() * sizeof(int));
   w.put_doubles(c.previous_w.data(), static_cast<std::size_t>(c.previous_w.size()));
-  w.put(c.time_step.next_tau);
-  w.put<std::int32_t>(c.time_step.rejections);
-  put_solver(w, c.solver);
+  w.put(b.controller.next_tau);
+  w.put<std::int32_t>(b.controller.rejections);
+  put_solver(w, b.solver);
   w.put<std::uint64_t>(c.snapshots.size());
   for (const auto& s : c.snapshots) {
     w.put(s.time);
     w.put_string(s.file.generic_string());
   }
   w.put<std::int64_t>(c.tolerated_degraded);
-  put_solver(w, c.half_solver);
-  w.put<std::int64_t>(c.time_step.table_lag);
-  w.put(c.time_step.fallback_left);
+  put_solver(w, b.half_solver);
+  w.put<std::int64_t>(b.controller.table_lag);
+  w.put(b.controller.fallback_left);
   w.put_doubles(c.earlier_w.data(), static_cast<std::size_t>(c.earlier_w.size()));
-  for (const SolverState* s : {&c.solver.counters, &c.half_solver.counters}) {
+  for (const SolverState* s : {&b.solver.counters, &b.half_solver.counters}) {
     w.put_ints(s->ordering);
     w.put(s->fresh_fill);
   }
   w.put(c.debris_volume);
-  w.put(c.time_step.turning_since_tau);
+  w.put(b.controller.turning_since_tau);
   w.put(fnv1a(w.bytes().data(), w.bytes().size()));
   write_atomically(file, [&](std::ostream& out) { out.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size())); });
 }
@@ -208,6 +209,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
     throw IoError(fmt::format("{}: checkpoint version {} (this sdflow reads versions 1 to {})", file.string(),
                               file_version, version));
   Checkpoint c;
+  StepBookkeeping& b = c.bookkeeping;
   c.step = r.get<std::int64_t>();
   c.time = r.get<double>();
   c.positions = to_vectors(r.get_doubles(), file);
@@ -219,9 +221,9 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
     c.triangles.data()[i] = r.get<int>();
   const std::vector<double> w = r.get_doubles();
   c.previous_w = Eigen::Map<const Eigen::VectorXd>(w.data(), static_cast<Eigen::Index>(w.size()));
-  c.time_step.next_tau = r.get<double>();
-  c.time_step.rejections = r.get<std::int32_t>();
-  c.solver = get_solver(r, file);
+  b.controller.next_tau = r.get<double>();
+  b.controller.rejections = r.get<std::int32_t>();
+  b.solver = get_solver(r, file);
   const auto snapshot_count = r.get<std::uint64_t>();
   for (std::uint64_t i = 0; i < snapshot_count; ++i) {
     SeriesEntry s;
@@ -232,12 +234,12 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
   if (file_version >= 2)
     c.tolerated_degraded = r.get<std::int64_t>();
   if (file_version >= 3)
-    c.half_solver = get_solver(r, file);
+    b.half_solver = get_solver(r, file);
   if (file_version >= 4) {
-    c.time_step.table_lag = r.get<std::int64_t>();
-    c.time_step.fallback_left = r.get<double>();
-    if (c.time_step.table_lag < 0 || c.time_step.table_lag > c.step || !(c.time_step.fallback_left >= 0) ||
-        !std::isfinite(c.time_step.fallback_left))
+    b.controller.table_lag = r.get<std::int64_t>();
+    b.controller.fallback_left = r.get<double>();
+    if (b.controller.table_lag < 0 || b.controller.table_lag > c.step || !(b.controller.fallback_left >= 0) ||
+        !std::isfinite(b.controller.fallback_left))
       throw IoError(fmt::format("{}: checkpoint's τ table position is corrupt", file.string()));
   }
   if (file_version >= 5) {
@@ -245,7 +247,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
     c.earlier_w = Eigen::Map<const Eigen::VectorXd>(earlier.data(), static_cast<Eigen::Index>(earlier.size()));
   }
   if (file_version >= 6)
-    for (SolverState* s : {&c.solver.counters, &c.half_solver.counters}) {
+    for (SolverState* s : {&b.solver.counters, &b.half_solver.counters}) {
       s->ordering = r.get_ints();
       s->fresh_fill = r.get<double>();
       if (!s->ordering.empty() && s->ordering.size() != static_cast<std::size_t>(c.positions.rows()))
@@ -258,8 +260,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& file)
       throw IoError(fmt::format("{}: checkpoint's debris volume is not finite", file.string()));
   }
   if (file_version >= 8) {
-    c.time_step.turning_since_tau = r.get<double>();
-    if (!(c.time_step.turning_since_tau >= 0) || !std::isfinite(c.time_step.turning_since_tau))
+    b.controller.turning_since_tau = r.get<double>();
+    if (!(b.controller.turning_since_tau >= 0) || !std::isfinite(b.controller.turning_since_tau))
       throw IoError(fmt::format("{}: checkpoint's τ at which triangles began turning over is corrupt", file.string()));
   }
   return c;
