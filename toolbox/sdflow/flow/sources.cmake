@@ -5,6 +5,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/crossing_width.cpp
   sdflow/flow/degraded_elements.cpp
   sdflow/flow/fixed_boundary.cpp
+  sdflow/flow/flow_hook.cpp
   sdflow/flow/intersection_guard.cpp
   sdflow/flow/isotropic_energy.cpp
   sdflow/flow/look_ahead.cpp

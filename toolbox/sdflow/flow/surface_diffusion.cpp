@@ -70,12 +70,12 @@ SurfaceDiffusion::SurfaceDiffusion(const Mesh& initial, RunParameters parameters
 {
   validate_flow_parameters(p_);
   parts_ = scheme_parts(p_.scheme);
-  mesh_ = canonical(initial);
-  parts_.boundary->check_surface(mesh_);
+  surface_.mesh = canonical(initial);
+  parts_.boundary->check_surface(surface_.mesh);
   renew_connectivity();
-  prepare_retriangulation(std::move(retriangulate));
-  last_w_ = Eigen::VectorXd::Zero(mesh_.n_vertices());
-  op_ = flow_operators(mesh_, p_.scheme, parts_, &*cache_);
+  prepare_retriangulation(std::move(retriangulate), 0);
+  w_.last = Eigen::VectorXd::Zero(surface_.mesh.n_vertices());
+  op_ = flow_operators(surface_.mesh, p_.scheme, parts_, &*surface_.cache);
 }
 
 SurfaceDiffusion::SurfaceDiffusion(const FlowState& state, RunParameters parameters,
@@ -87,23 +87,22 @@ SurfaceDiffusion::SurfaceDiffusion(const FlowState& state, RunParameters paramet
   parts_ = scheme_parts(p_.scheme);
   step_ = state.step;
   time_ = state.time;
-  mesh_ = make_mesh(state.positions, state.triangles);
+  surface_.mesh = make_mesh(state.positions, state.triangles);
   renew_connectivity();
-  prepare_retriangulation(std::move(retriangulate));
-  previous_w_ = state.previous_w;
-  earlier_w_ = state.earlier_w;
-  last_w_ = state.previous_w.size() == static_cast<Eigen::Index>(mesh_.n_vertices())
+  prepare_retriangulation(std::move(retriangulate), state.tolerated_degraded);
+  w_.previous = state.previous_w;
+  w_.earlier = state.earlier_w;
+  w_.last = state.previous_w.size() == static_cast<Eigen::Index>(surface_.mesh.n_vertices())
                 ? state.previous_w
-                : Eigen::VectorXd::Zero(mesh_.n_vertices());
-  tolerated_degraded_ = state.tolerated_degraded;
+                : Eigen::VectorXd::Zero(surface_.mesh.n_vertices());
   debris_volume_ = state.debris_volume;
   // Refactorise the anchors' systems: the preconditioners are then the ones the uninterrupted flow
   // would be using, so the CG iterates (and every later decision) are identical.
   const auto anchor_operators = [&](const VertexVectors& positions) {
-    return flow_operators(make_mesh(positions, state.triangles), p_.scheme, parts_, &*cache_);
+    return flow_operators(make_mesh(positions, state.triangles), p_.scheme, parts_, &*surface_.cache);
   };
   trials_.restore_solvers(state.bookkeeping, anchor_operators);
-  op_ = flow_operators(mesh_, p_.scheme, parts_, &*cache_);
+  op_ = flow_operators(surface_.mesh, p_.scheme, parts_, &*surface_.cache);
 }
 
 bool SurfaceDiffusion::finished() const
@@ -160,6 +159,7 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
   const long next_step = first.step;
   const TimeStepState controller_before = first.controller_before;
   const bool table = p_.time_step.mode == TimeStepMode::schedule;
+  TimeStepController& controller = trials_.controller(); // the same object after restart_controller()
   Accepted a{.record = std::move(first.record),
              .trial = std::move(first.trial),
              .tau = first.tau,
@@ -174,11 +174,11 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
   // Re-triangulate the surface the step starts from, once a step; true when that changed it.
   bool forced = false;
   const auto retriangulated = [&](std::string_view why) {
-    if (!retriangulate_ || std::exchange(forced, true))
+    if (!hook_.retriangulates() || std::exchange(forced, true))
       return false;
     note(next_step, time_, fmt::format("{}: re-triangulating, then trying again", why));
-    const VertexVectors before = vertex_positions(mesh_);
-    const RetriangulationReport report = call_retriangulation(mesh_, true, a.record.times);
+    const VertexVectors before = vertex_positions(surface_.mesh);
+    const RetriangulationReport report = call_retriangulation(surface_.mesh, true, a.record.times);
     note_refusal(report, events);
     if (!report.changed())
       return false;
@@ -199,7 +199,7 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
       throw; // a smaller τ is needed, not a new surface or adaptive steps in its place
     } catch (const TrianglesTurning& e) {
       // Re-triangulated (once a step), the step starts again; refused, τ shrinks on as the rule asks.
-      trials_.controller().forget_turning();
+      controller.forget_turning();
       retriangulated(e.what());
       continue;
     } catch (const SolverFailure& e) {
@@ -209,9 +209,9 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
         throw;
       a.fell_back = true;
       restart_controller();
-      trials_.controller().fall_back_to_adaptive(next_step);
+      controller.fall_back_to_adaptive(next_step);
       std::string reason = fmt::format("the table's step {} cannot be taken ({}): adaptive steps cover its τ = {}",
-                                       trials_.controller().table_step(next_step), e.what(), trials_.controller().state().fallback_left);
+                                       controller.table_step(next_step), e.what(), controller.state().fallback_left);
       note(next_step, time_, reason, true);
       events.push_back({.kind = StepEventKind::fallback, .detail = std::move(reason)});
     }
@@ -228,19 +228,21 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
 void SurfaceDiffusion::take(Accepted& a, long next_step, const TimeStepState& controller_before)
 {
   VertexVectors accepted; // the last accepted surface, kept while the guard looks at the new one
-  if (guard_)
-    accepted = vertex_positions(mesh_);
-  set_vertex_positions(mesh_, a.trial.positions);
+  if (hook_.guards())
+    accepted = vertex_positions(surface_.mesh);
+  set_vertex_positions(surface_.mesh, a.trial.positions);
   if (p_.conserve_volume || a.record.start)
     set_vertex_positions(
-        mesh_, restore_volumes(mesh_, a.volumes, {triangles_, topology_.face_component, topology_.closed}, *op_.parts.boundary)
-                   .positions);
-  if (guard_) {
+        surface_.mesh, restore_volumes(surface_.mesh, a.volumes,
+                                       {surface_.triangles, surface_.topology.face_component, surface_.topology.closed},
+                                       *op_.parts.boundary)
+                           .positions);
+  if (hook_.guards()) {
     const Stopwatch check;
     try {
-      guard_->check(mesh_, next_step, time_ + a.tau);
+      hook_.check(surface_.mesh, next_step, time_ + a.tau);
     } catch (const SolverFailure&) {
-      set_vertex_positions(mesh_, accepted);
+      set_vertex_positions(surface_.mesh, accepted);
       throw;
     }
     a.record.times.retriangulation_check += check.seconds();
@@ -250,8 +252,8 @@ void SurfaceDiffusion::take(Accepted& a, long next_step, const TimeStepState& co
   if ((a.fell_back || controller_before.fallback_left > 0) && !trials_.controller().adaptive())
     note(step_, time_, fmt::format("adaptive steps covered the table up to its step {}: the table resumes",
                                    trials_.controller().table_step(step_)));
-  earlier_w_ = std::exchange(previous_w_, a.trial.w);
-  last_w_ = a.trial.w;
+  w_.earlier = std::exchange(w_.previous, a.trial.w);
+  w_.last = a.trial.w;
 }
 
 //! The hook's look at the surface just reached (beside the next step's first trial when it may
@@ -259,29 +261,29 @@ void SurfaceDiffusion::take(Accepted& a, long next_step, const TimeStepState& co
 //! which ran after the look (the next step counts them), 0 if none.
 double SurfaceDiffusion::retriangulate_after_step(std::vector<StepEvent>& events, StepTimes& times)
 {
-  if (!retriangulate_) {
+  if (!hook_.retriangulates()) {
     renew_operators(times);
     return 0;
   }
-  const VertexVectors before = vertex_positions(mesh_);
+  const VertexVectors before = vertex_positions(surface_.mesh);
   RetriangulationReport report;
   if (can_look_ahead()) {
     renew_operators(times); // the trial's operators: those of the surface as it stands
-    LookAhead::Outcome look = ahead_.look_beside_trial(
-        mesh_, trials_,
+    LookAhead::Outcome outcome = ahead_.look_beside_trial(
+        surface_.mesh, trials_,
         [&](Mesh& copy, std::function<void()> changing) {
           return call_retriangulation(copy, false, times, std::move(changing));
         },
         [&](const std::atomic<bool>* cancel) { return first_trial(step_ + 1, cancel); });
-    if (look.held)
-      return look.alone_seconds;
-    note_refusal(look.report, events);
-    if (look.failure)
-      std::rethrow_exception(look.failure);
-    mesh_ = std::move(look.surface);
-    report = std::move(look.report);
+    if (outcome.held)
+      return outcome.alone_seconds;
+    note_refusal(outcome.report, events);
+    if (outcome.failure)
+      std::rethrow_exception(outcome.failure);
+    surface_.mesh = std::move(outcome.surface);
+    report = std::move(outcome.report);
   } else {
-    report = call_retriangulation(mesh_, false, times);
+    report = call_retriangulation(surface_.mesh, false, times);
     note_refusal(report, events);
   }
   if (report.changed())
@@ -294,19 +296,20 @@ double SurfaceDiffusion::retriangulate_after_step(std::vector<StepEvent>& events
 FlowMetrics SurfaceDiffusion::metrics() const
 {
   const CurvatureDeviation h = curvature_deviation(op_.curvature, op_.areas);
-  const SphereDeviation d = sphere_deviation(mesh_, op_.areas, p_.reference_centre, p_.reference_radius);
-  return {.vertices = static_cast<long>(mesh_.n_vertices()),
-          .faces = static_cast<long>(mesh_.n_faces()),
-          .components = topology_.count,
-          .genus = topology_.genus,
-          .area = surface_area(mesh_),
-          .volume = material_volume(mesh_),
+  const Mesh& mesh = surface_.mesh;
+  const SphereDeviation d = sphere_deviation(mesh, op_.areas, p_.reference_centre, p_.reference_radius);
+  return {.vertices = static_cast<long>(mesh.n_vertices()),
+          .faces = static_cast<long>(mesh.n_faces()),
+          .components = surface_.topology.count,
+          .genus = surface_.topology.genus,
+          .area = surface_area(mesh),
+          .volume = material_volume(mesh),
           .debris_volume = debris_volume_,
           .mean_curvature = h.mean,
           .curvature_deviation_pct = h.deviation_pct,
           .d1 = d.d1,
           .d2 = d.d2,
-          .energy = op_.parts.energy->value(mesh_)};
+          .energy = op_.parts.energy->value(mesh)};
 }
 
 FlowState SurfaceDiffusion::state() const
@@ -314,11 +317,11 @@ FlowState SurfaceDiffusion::state() const
   FlowState s;
   s.step = step_;
   s.time = time_;
-  s.positions = vertex_positions(mesh_);
-  s.triangles = triangles_;
-  s.previous_w = previous_w_;
-  s.earlier_w = earlier_w_;
-  s.tolerated_degraded = tolerated_degraded_;
+  s.positions = vertex_positions(surface_.mesh);
+  s.triangles = surface_.triangles;
+  s.previous_w = w_.previous;
+  s.earlier_w = w_.earlier;
+  s.tolerated_degraded = hook_.tolerated_degraded();
   s.debris_volume = debris_volume_;
   // The next step's trial taken ahead is not part of it.
   s.bookkeeping = ahead_.holds() ? ahead_.before().bookkeeping : trials_.bookkeeping();
@@ -329,38 +332,35 @@ std::vector<FlowNote> SurfaceDiffusion::take_notes() { return std::exchange(note
 
 void SurfaceDiffusion::renew_connectivity()
 {
-  triangles_ = face_indices(mesh_);
-  cache_.emplace(mesh_);
+  surface_.triangles = face_indices(surface_.mesh);
+  surface_.cache.emplace(surface_.mesh);
   renew_topology();
 }
 
 void SurfaceDiffusion::renew_topology()
 {
-  topology_ = {};
-  topology_.face_component = face_component_ids(mesh_, &topology_.count);
-  for (const auto& c : component_topology(mesh_)) {
-    topology_.closed.push_back(c.closed());
-    topology_.genus += c.genus;
+  surface_.topology = {};
+  surface_.topology.face_component = face_component_ids(surface_.mesh, &surface_.topology.count);
+  for (const auto& c : component_topology(surface_.mesh)) {
+    surface_.topology.closed.push_back(c.closed());
+    surface_.topology.genus += c.genus;
   }
-  topology_.loops = boundary_loop_vertices(mesh_, topology_.face_component);
+  surface_.topology.loops = boundary_loop_vertices(surface_.mesh, surface_.topology.face_component);
 }
 
-//! The hook: the caller's, or the one of the parameters' schedule with its ℓ fixed now; without
-//! either, the guard that stops the flow at a self-intersection (intersection_guard.h).
-void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
+void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook, long tolerated_degraded)
 {
-  own_hook_ = !hook;
   // The start phase's ℓ: the run's re-triangulation length when it has one (fixed in run.toml, so
   // a resumed run finds the same), else the mean edge length.
   start_length_ = p_.retriangulation.pipeline.edge_length > 0 ? p_.retriangulation.pipeline.edge_length
-                                                              : mean_edge_length(mesh_);
+                                                              : mean_edge_length(surface_.mesh);
   if (hook) {
-    retriangulate_ = std::move(hook);
+    hook_ = FlowHook(std::move(hook), false, tolerated_degraded);
     return;
   }
   RetriangulationSchedule& schedule = p_.retriangulation;
   if (!schedule.enabled) {
-    guard_.emplace(mesh_);
+    hook_ = FlowHook(surface_.mesh, tolerated_degraded);
     return;
   }
   if (!(schedule.pipeline.edge_length > 0))
@@ -368,35 +368,13 @@ void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook)
   schedule.pipeline.keep_boundary = parts_.boundary->keeps_rim();
   RetriangulationSchedule refined_schedule = schedule;
   refined_schedule.pipeline = refined(schedule.pipeline, p_.refinement);
-  retriangulate_ = make_retriangulation_hook(refined_schedule);
+  hook_ = FlowHook(make_retriangulation_hook(refined_schedule), true, tolerated_degraded);
 }
 
-//! The hook's failure stops the flow like an unstable step: the surface stays the last accepted one.
 RetriangulationReport SurfaceDiffusion::call_retriangulation(Mesh& mesh, bool force, StepTimes& times,
                                                              std::function<void()> changing)
 {
-  try {
-    RetriangulationReport report = retriangulate_(mesh, {step_, time_, tolerated_degraded_, force, std::move(changing)});
-    if (report.degraded_left >= 0)
-      tolerated_degraded_ = report.degraded_left;
-    times.retriangulation_check += report.check_seconds;
-    times.volume_restoration += report.volume_seconds;
-    auto& p = times.pipeline;
-    const auto& q = report.pipeline_seconds;
-    p.merge += q.merge;
-    p.remesh += q.remesh;
-    p.intersections += q.intersections;
-    p.normals += q.normals;
-    p.reconstruction += q.reconstruction;
-    p.holes += q.holes;
-    p.components += q.components;
-    times.side_by_side += q.side_by_side;
-    return report;
-  } catch (const SolverFailure&) {
-    throw;
-  } catch (const Error& e) {
-    throw SolverFailure(fmt::format("re-triangulation after step {} failed: {}", step_, e.what()));
-  }
+  return hook_.look(mesh, step_, time_, force, times, std::move(changing));
 }
 
 //! Take the re-triangulated mesh: new connectivity and operators, fresh factorisations with the
@@ -416,16 +394,16 @@ void SurfaceDiffusion::note_refusal(const RetriangulationReport& report, std::ve
 void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report, const VertexVectors& before,
                                              std::vector<StepEvent>& events, StepTimes& times)
 {
-  const int components = topology_.count, genus = topology_.genus;
+  const int components = surface_.topology.count, genus = surface_.topology.genus;
   debris_volume_ += report.measures.debris_volume;
   // The canonical mesh, the operators' cache of its connectivity and, for the carried orderings,
   // the old vertex nearest each new one are made side by side from the same positions and corners.
   const bool carried = trials_.carries_ordering();
-  const VertexVectors after = vertex_positions(mesh_);
-  triangles_ = face_indices(mesh_);
+  const VertexVectors after = vertex_positions(surface_.mesh);
+  surface_.triangles = face_indices(surface_.mesh);
   std::vector<int> nearest_old;
-  tbb::parallel_invoke([&] { mesh_ = make_mesh(after, triangles_); },
-                       [&] { cache_.emplace(after.rows(), triangles_); },
+  tbb::parallel_invoke([&] { surface_.mesh = make_mesh(after, surface_.triangles); },
+                       [&] { surface_.cache.emplace(after.rows(), surface_.triangles); },
                        [&] {
                          if (carried)
                            nearest_old = nearest_points(before, after);
@@ -433,13 +411,14 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
   renew_topology();
   renew_operators(times);
   topology_changed_ =
-      topology_changed_ || (p_.stop_at_topology_change && (topology_.count != components || topology_.genus != genus));
+      topology_changed_ ||
+      (p_.stop_at_topology_change && (surface_.topology.count != components || surface_.topology.genus != genus));
   const Stopwatch watch;
   trials_.carry_ordering(nearest_old, op_.laplacian);
   times.factorisation += watch.seconds();
-  previous_w_.resize(0);
-  earlier_w_.resize(0);
-  last_w_ = Eigen::VectorXd::Zero(mesh_.n_vertices());
+  w_.previous.resize(0);
+  w_.earlier.resize(0);
+  w_.last = Eigen::VectorXd::Zero(surface_.mesh.n_vertices());
   std::vector<StepEvent> these;
   for (const auto& [flag, kind] :
        {std::pair{report.remeshed, StepEventKind::remeshed}, std::pair{report.surgery, StepEventKind::surgery},
@@ -479,7 +458,7 @@ FirstTrial SurfaceDiffusion::first_trial(long next_step, const std::atomic<bool>
 //! re-triangulating it, when the hook looks after this step and a next step is due.
 bool SurfaceDiffusion::can_look_ahead() const
 {
-  return LookAhead::possible(p_, static_cast<long>(mesh_.n_vertices())) && own_hook_ &&
+  return LookAhead::possible(p_, static_cast<long>(surface_.mesh.n_vertices())) && hook_.own() &&
          step_ % p_.retriangulation.every == 0 && !finished();
 }
 
@@ -490,16 +469,17 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
 {
   StepTimes& times = record.times;
   Stopwatch watch;
-  const VertexVectors positions = vertex_positions(mesh_);
-  const Eigen::VectorXd edge_lengths = vertex_mean_edge_lengths(mesh_);
-  volumes = material_volumes(positions, triangles_, topology_.face_component, topology_.count, topology_.loops);
+  const VertexVectors positions = vertex_positions(surface_.mesh);
+  const Eigen::VectorXd edge_lengths = vertex_mean_edge_lengths(surface_.mesh);
+  const Topology& topology = surface_.topology;
+  volumes = material_volumes(positions, surface_.triangles, topology.face_component, topology.count, topology.loops);
   times.acceptance += watch.seconds();
   const AdaptiveOptions adaptive = refined(p_.time_step.adaptive, p_.refinement);
   // The start phase (time_step.h) decides on the surface's unresolved variation, every start step:
   // a run's first steps, and the first step on each new triangulation (whose warm starts were
   // reset), where the fresh triangles carry variation the mesh does not resolve that the scheme's
   // β = ½ would flip instead of damping, so that τ would collapse trial after trial.
-  const bool new_triangulation = step_ > 0 && previous_w_.size() == 0 && adaptive.start_steps > 0;
+  const bool new_triangulation = step_ > 0 && w_.previous.size() == 0 && adaptive.start_steps > 0;
   const bool may_start = p_.time_step.mode == TimeStepMode::adaptive && adaptive.initial_tau == 0 &&
                          (next_step <= adaptive.start_steps || new_triangulation);
   TimeStepController& controller = trials_.controller();
@@ -518,7 +498,7 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
   // times a step to 10¹¹ by step 500, where the β = ½ scheme damps no mode (each factor tends to
   // −1); the volume drifted by 1.8% and the factorisation lost the mass term (issue 33).
   const double largest_tau =
-      controller.adaptive() ? natural_largest_tau(mesh_) : std::numeric_limits<double>::infinity();
+      controller.adaptive() ? natural_largest_tau(surface_.mesh) : std::numeric_limits<double>::infinity();
   // On a new triangulation mid-run, no longer a step than the rule would take: the step stays as
   // accurate as the others, only its stiffest modes are damped rather than flipped.
   double start_trial_tau = !may_start          ? 0.0
@@ -526,7 +506,7 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
                                                           controller.propose(next_step, automatic, time_left))
                                                : start_tau(adaptive, start_length_);
   int start_retries = 0;
-  const std::array<Eigen::VectorXd, 2> guesses = warm_starts(previous_w_, earlier_w_);
+  const std::array<Eigen::VectorXd, 2> guesses = warm_starts(w_.previous, w_.earlier);
   for (;;) {
     if (context.cancel && context.cancel->load())
       throw TrialsCancelled();
@@ -539,10 +519,11 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
                          largest_tau);
     // A start step is backward Euler: with the scheme's β = ½ a mode far shorter than its time
     // scale would come out flipped, not damped (its factor (1 − τk⁴/2)/(1 + τk⁴/2) tends to −1).
-    trial = start ? solve_step(mesh_, op_, tau, kStartBeta, trials_.whole().solver(), guesses)
+    trial = start ? solve_step(surface_.mesh, op_, tau, kStartBeta, trials_.whole().solver(), guesses)
             : p_.scheme.extrapolate
-                ? extrapolated_step(mesh_, op_, tau, p_.scheme, trials_.whole().solver(), trials_.half().solver(), &*cache_, guesses)
-                : solve_step(mesh_, op_, tau, p_.scheme.beta, trials_.whole().solver(), guesses);
+                ? extrapolated_step(surface_.mesh, op_, tau, p_.scheme, trials_.whole().solver(),
+                                    trials_.half().solver(), &*surface_.cache, guesses)
+                : solve_step(surface_.mesh, op_, tau, p_.scheme.beta, trials_.whole().solver(), guesses);
     record.cg_iterations += trial.solve.iterations;
     trials_.solved(trial);
     times.operators += trial.operators_seconds;
@@ -557,8 +538,8 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
     double volume_change = 0;
     if (trial.positions.allFinite()) {
       const std::vector<double> after =
-          material_volumes(trial.positions, triangles_, topology_.face_component, topology_.count, topology_.loops);
-      for (int k = 0; k < topology_.count; ++k)
+          material_volumes(trial.positions, surface_.triangles, topology.face_component, topology.count, topology.loops);
+      for (int k = 0; k < topology.count; ++k)
         if (volumes[k] != 0)
           volume_change = std::max(volume_change, std::abs(after[k] - volumes[k]) / std::abs(volumes[k]));
     }
@@ -567,7 +548,7 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
                                    .next = trial.positions,
                                    .w = trial.w,
                                    .error = trial.error,
-                                   .triangles = triangles_,
+                                   .triangles = surface_.triangles,
                                    .edge_lengths = edge_lengths,
                                    .volume_change = volume_change},
                                   adaptive, controller.adaptive());
@@ -604,7 +585,7 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
     ++rejections;
     trials_.rejected();
     note(next_step, time_, fmt::format("rejected τ = {}: {}", tau, check.describe()), false, context.held_notes);
-    if (check.inverted_triangles > 0 && retriangulate_ && controller.turning_collapsed())
+    if (check.inverted_triangles > 0 && hook_.retriangulates() && controller.turning_collapsed())
       throw TrianglesTurning(fmt::format("triangles keep turning over: the next τ, {:g}, would be {:.3g} times the "
                                          "τ = {:g} at which they began",
                                          controller.state().next_tau,
@@ -616,7 +597,7 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
 void SurfaceDiffusion::renew_operators(StepTimes& times)
 {
   const Stopwatch watch;
-  op_ = flow_operators(mesh_, p_.scheme, parts_, &*cache_);
+  op_ = flow_operators(surface_.mesh, p_.scheme, parts_, &*surface_.cache);
   times.operators += watch.seconds();
 }
 

@@ -14,8 +14,8 @@
 //! const Mesh& result = flow.mesh();
 //! ```
 
+#include "sdflow/flow/flow_hook.h"
 #include "sdflow/flow/flow_state.h"
-#include "sdflow/flow/intersection_guard.h"
 #include "sdflow/flow/look_ahead.h"
 #include "sdflow/flow/parameters.h"
 #include "sdflow/flow/retriangulation.h"
@@ -27,7 +27,6 @@
 #include "sdflow/mesh.h"
 
 #include <atomic>
-#include <exception>
 #include <functional>
 #include <optional>
 #include <string>
@@ -60,14 +59,14 @@ public:
   //! The step limit or end time is reached, or (with stop_at_topology_change) the topology changed.
   bool finished() const;
 
-  const Mesh& mesh() const { return mesh_; }
+  const Mesh& mesh() const { return surface_.mesh; }
   long steps() const { return step_; }      //!< index of the last accepted step (0 at the start)
   double time() const { return time_; }
   //! N, H, L, M of the current surface (what the next step uses).
   const FlowOperators& operators() const { return op_; }
   //! w of the last step (the normal velocity is −w), on the current vertices; 0 after a
   //! re-triangulation and at the start.
-  const Eigen::VectorXd& velocity() const { return last_w_; }
+  const Eigen::VectorXd& velocity() const { return w_.last; }
   //! The parameters as resolved (the re-triangulation's ℓ fixed).
   const RunParameters& parameters() const { return p_; }
   FlowMetrics metrics() const;
@@ -98,6 +97,21 @@ private:
     const std::atomic<bool>* cancel = nullptr;   //!< null: the trials run to their end
   };
 
+  //! The surface and what its connectivity gives: its faces as rows, its components and the
+  //! operators' cotangent cache, renewed together when the connectivity changes.
+  struct Surface {
+    Mesh mesh;
+    FaceIndices triangles;
+    Topology topology;
+    std::optional<CotangentCache> cache;
+  };
+
+  //! w of the last two accepted steps, CG's warm starts (scheme.h, warm_starts), and velocity():
+  //! the last w, or 0 on a new triangulation.
+  struct Velocities {
+    Eigen::VectorXd previous, earlier, last;
+  };
+
   //! The step's accepted trial and what it took (accepted_trial).
   struct Accepted {
     StepRecord record;
@@ -116,11 +130,14 @@ private:
   FirstTrial first_trial(long next_step, const std::atomic<bool>* cancel = nullptr);
   bool can_look_ahead() const;
   void publish(FlowNote note);
-  //! triangles_, the operators' cache and topology_ of mesh_.
+  //! The faces, the operators' cache and the topology of the surface's mesh.
   void renew_connectivity();
-  //! topology_ of mesh_: its components, which are closed, the total genus.
+  //! The topology of the surface's mesh: its components, which are closed, the total genus.
   void renew_topology();
-  void prepare_retriangulation(RetriangulationHook hook);
+  //! hook_: the caller's `hook`, or the one of the parameters' schedule with its ℓ fixed now; without
+  //! either, the guard that stops the flow at a self-intersection (intersection_guard.h).
+  void prepare_retriangulation(RetriangulationHook hook, long tolerated_degraded);
+  //! The hook's look at `mesh`, the flow's surface or a copy of it, after the last step (FlowHook::look).
   RetriangulationReport call_retriangulation(Mesh& mesh, bool force, StepTimes& times,
                                              std::function<void()> changing = {});
   //! A refused re-triangulation (RetriangulationReport::refused) becomes an event and a warning.
@@ -134,25 +151,19 @@ private:
   void note(long step, double time, std::string text, bool warning = false, std::vector<FlowNote>* held = nullptr);
 
   RunParameters p_;
-  RetriangulationHook retriangulate_;
-  bool own_hook_ = false; // the hook made from the schedule, which changes the mesh only to re-triangulate it
-  std::optional<SelfIntersectionGuard> guard_; // without a hook: stops the flow at a self-intersection
-  TrialSolvers trials_;
-  Mesh mesh_;
-  FaceIndices triangles_;
-  Topology topology_;
-  std::optional<CotangentCache> cache_;
-  SchemeParts parts_; // made once: an anisotropic energy's stiffness is a search over the sphere
-  FlowOperators op_;
+  FlowHook hook_;        // what happens to the surface between steps
+  TrialSolvers trials_;  // the controller and the solvers: what trials change besides the surface
+  Surface surface_;
+  SchemeParts parts_;    // made once: an anisotropic energy's stiffness is a search over the sphere
+  FlowOperators op_;     // of surface_: what the next step uses
   long step_ = 0;
   double time_ = 0;
-  long tolerated_degraded_ = 0;   // see RetriangulationContext
   double start_length_ = 0;       // ℓ of the start phase's τ_s (time_step.h)
   double debris_volume_ = 0;      // FlowMetrics::debris_volume
   bool topology_changed_ = false; // with stop_at_topology_change: finished after this step
-  Eigen::VectorXd previous_w_, earlier_w_, last_w_; // w of the last two accepted steps, and the velocity
-  std::vector<FlowNote> notes_;
-  LookAhead ahead_;
+  Velocities w_;
+  std::vector<FlowNote> notes_;   // made since the last take_notes()
+  LookAhead ahead_;               // the next step's first trial, when one was taken beside the look
 };
 
 } // namespace sdflow

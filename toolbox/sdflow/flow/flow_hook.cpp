@@ -1,0 +1,54 @@
+#include "sdflow/flow/flow_hook.h"
+
+#include "sdflow/errors.h"
+
+#include <fmt/format.h>
+
+#include <utility>
+
+namespace sdflow {
+
+FlowHook::FlowHook(RetriangulationHook hook, bool own, long tolerated_degraded)
+    : hook_(std::move(hook)), own_(own), tolerated_degraded_(tolerated_degraded)
+{
+}
+
+FlowHook::FlowHook(const Mesh& mesh, long tolerated_degraded)
+    : guard_(std::in_place, mesh), tolerated_degraded_(tolerated_degraded)
+{
+}
+
+RetriangulationReport FlowHook::look(Mesh& mesh, long step, double time, bool force, StepTimes& times,
+                                     std::function<void()> changing)
+{
+  try {
+    RetriangulationReport report = hook_(mesh, {step, time, tolerated_degraded_, force, std::move(changing)});
+    if (report.degraded_left >= 0)
+      tolerated_degraded_ = report.degraded_left;
+    times.retriangulation_check += report.check_seconds;
+    times.volume_restoration += report.volume_seconds;
+    auto& p = times.pipeline;
+    const auto& q = report.pipeline_seconds;
+    p.merge += q.merge;
+    p.remesh += q.remesh;
+    p.intersections += q.intersections;
+    p.normals += q.normals;
+    p.reconstruction += q.reconstruction;
+    p.holes += q.holes;
+    p.components += q.components;
+    times.side_by_side += q.side_by_side;
+    return report;
+  } catch (const SolverFailure&) {
+    throw;
+  } catch (const Error& e) {
+    throw SolverFailure(fmt::format("re-triangulation after step {} failed: {}", step, e.what()));
+  }
+}
+
+void FlowHook::check(const Mesh& mesh, long step, double time)
+{
+  if (guard_)
+    guard_->check(mesh, step, time);
+}
+
+} // namespace sdflow
