@@ -108,6 +108,163 @@ Mesh initial_triangulation(ImplicitSurface& surface, double cell, const Projecti
   return mesh;
 }
 
+//! InvalidParameter for options mesh_implicit_surface cannot take (mesher.h's MesherOptions).
+void check_mesher_input(const ImplicitSurface& input, const MesherOptions& options)
+{
+  if (!input.value)
+    throw InvalidParameter(fmt::format("mesher: surface '{}' has no function", input.name));
+  if (input.box.isEmpty() || !(input.box.sizes().array() > 0).all())
+    throw InvalidParameter(fmt::format("mesher: the box {} of '{}' is empty", box_text(input.box), input.name));
+  const bool by_length = options.edge_length > 0, by_count = options.vertices > 0;
+  if (by_length == by_count)
+    throw InvalidParameter(fmt::format("mesher: give exactly one of an edge length (got {}) and a vertex count (got {})",
+                                       options.edge_length, options.vertices));
+  if (by_count && options.vertices < 12)
+    throw InvalidParameter(fmt::format("mesher: {} vertices are too few for a surface (at least 12)", options.vertices));
+  if (!(options.edges_per_radius >= 0) || !std::isfinite(options.edges_per_radius))
+    throw InvalidParameter(fmt::format("mesher: edges per radius must be ≥ 0, got {}", options.edges_per_radius));
+  if (!std::isfinite(options.edge_length) || !(options.grid_cell >= 0) || options.iterations < 1 ||
+      !(options.tolerance > 0 && options.tolerance < 1e-6))
+    throw InvalidParameter(fmt::format("mesher: need finite ℓ, grid cell ≥ 0 (got {}), iterations ≥ 1 (got {}) and a "
+                                       "relative tolerance in (0, 1e-6) (got {})",
+                                       options.grid_cell, options.iterations, options.tolerance));
+}
+
+//! The first triangulation (initial_triangulation) and the ℓ to remesh it to: options.edge_length,
+//! or from a vertex count ℓ = √(c A / N), the area A measured on a first triangulation, c
+//! calibrated on remeshed surfaces (kVerticesPerScaledArea), the grid refined if ℓ asks for it.
+//! Sets result.grid_cell; `surface` is clipped from then on if it leaves its box.
+struct FirstTriangulation {
+  Mesh mesh;
+  double edge_length = 0;
+};
+
+FirstTriangulation first_triangulation(ImplicitSurface& surface, const MesherOptions& options,
+                                       const ProjectionOptions& projection, MesherResult& result)
+{
+  const double feature_cell = surface.feature_size > 0 ? surface.feature_size / 2 : surface.scale() * kDefaultGridFraction;
+  FirstTriangulation first{.edge_length = options.edge_length};
+  const double ell = options.edge_length;
+  if (options.edge_length > 0) {
+    result.grid_cell = options.grid_cell > 0 ? options.grid_cell : std::min(kGridCellPerEdge * ell, feature_cell);
+    first.mesh = initial_triangulation(surface, result.grid_cell, projection);
+    return first;
+  }
+  result.grid_cell = options.grid_cell > 0 ? options.grid_cell : feature_cell;
+  ImplicitSurface probe = surface;
+  first.mesh = initial_triangulation(probe, result.grid_cell, projection);
+  first.edge_length = std::sqrt(kVerticesPerScaledArea * surface_area(first.mesh) / options.vertices);
+  if (options.grid_cell == 0 && kGridCellPerEdge * first.edge_length < result.grid_cell) {
+    result.grid_cell = kGridCellPerEdge * first.edge_length;
+    first.mesh = initial_triangulation(surface, result.grid_cell, projection);
+  } else {
+    surface = probe;
+  }
+  return first;
+}
+
+//! A grid too coarse for a neck or gap joins or cuts the sheets there, at any orientation of the
+//! shape: `mesh` is re-triangulated on grids halved (result.grid_cell) until halving no longer
+//! changes its topology, which is then trusted; InvalidParameter when it keeps changing down to
+//! kMaxGridHalvings or kFinestGridPerEdge · ℓ.
+void refine_grid_until_topology_holds(ImplicitSurface& surface, double ell, const ProjectionOptions& projection,
+                                      Mesh& mesh, MesherResult& result)
+{
+  TopologyCount coarse = count_topology(mesh);
+  for (int halving = 0;; ++halving) {
+    // The topology is the marching grid's: the projection, the costly part, moves no edge.
+    ImplicitSurface finer_surface = surface;
+    const TopologyCount fine = count_topology(marched_triangulation(finer_surface, result.grid_cell / 2));
+    if (fine == coarse)
+      return;
+    if (halving == kMaxGridHalvings || result.grid_cell / 4 < kFinestGridPerEdge * ell)
+      throw InvalidParameter(fmt::format(
+          "mesher: the topology of '{}' keeps changing as the marching grid is refined ({} at spacing {:.3g}, {} "
+          "at {:.3g}): a neck or gap thinner than the grid resolves; give the shape's smallest feature "
+          "(--feature-size) or a finer --grid-cell",
+          surface.name, describe(coarse), result.grid_cell, describe(fine), result.grid_cell / 2));
+    logger().info("mesher: '{}' on a grid of spacing {:.3g} has {}, on one of {:.3g} {}: refining the grid",
+                  surface.name, result.grid_cell, describe(coarse), result.grid_cell / 2, describe(fine));
+    surface = std::move(finer_surface);
+    result.grid_cell /= 2;
+    mesh = initial_triangulation(surface, result.grid_cell, projection);
+    coarse = fine;
+  }
+}
+
+//! `mesh` remeshed to ℓ onto the level set (remesh: its projections), and for a vertex count again
+//! with ℓ scaled by √(vertices / requested) until within kVertexCountTolerance of it, at most
+//! kMaxVertexCountRounds rounds. Returns the ℓ last used.
+double remesh_to_target(Mesh& mesh, double ell, const MesherOptions& options, RemeshOptions& remesh,
+                        MesherResult& result)
+{
+  for (int round = 0;; ++round) {
+    remesh.edge_length = ell;
+    remesh.iterations = round == 0 ? options.iterations : std::max(3, options.iterations / 2);
+    auto remeshed = isotropic_remesh(mesh, remesh);
+    mesh = std::move(remeshed.mesh);
+    result.remesh = remeshed.statistics;
+    result.remesh_rounds = round + 1;
+    if (options.vertices <= 0 || round + 1 == kMaxVertexCountRounds)
+      return ell;
+    const double ratio = static_cast<double>(mesh.n_vertices()) / options.vertices;
+    if (std::abs(ratio - 1) <= kVertexCountTolerance)
+      return ell;
+    ell *= std::sqrt(ratio); // vertex count scales like ℓ⁻²
+  }
+}
+
+//! `mesh` refined where it curves (radius_targets, down to ℓ/4), twice: the second pass sees the
+//! curvature of the refined mesh.
+void refine_by_curvature(Mesh& mesh, double ell, const MesherOptions& options, RemeshOptions& remesh,
+                         MesherResult& result)
+{
+  for (int pass = 0; pass < 2; ++pass) {
+    Mesh clean = mesh;
+    clean.garbage_collection();
+    remesh.sizing = nearest_vertex_sizing(
+        clean, radius_targets(clean, {.edges_per_radius = options.edges_per_radius, .min_length = ell / 4,
+                                      .max_length = ell}));
+    remesh.iterations = std::max(3, options.iterations / 2);
+    auto remeshed = isotropic_remesh(clean, remesh);
+    mesh = std::move(remeshed.mesh);
+    result.remesh = remeshed.statistics;
+  }
+}
+
+//! The largest distances of `mesh`'s vertices from the level set and of its rim from the clipping
+//! surface, relative to the surface's scale (MesherResult).
+void measure_distances(const ImplicitSurface& surface, const Mesh& mesh, MesherResult& result)
+{
+  const double scale = surface.scale();
+  for (auto v : mesh.vertices()) {
+    const Eigen::Vector3d p = to_eigen(mesh.point(v));
+    result.max_level_set_distance = std::max(result.max_level_set_distance, level_set_distance(surface, p) / scale);
+    if (mesh.is_boundary(v) && surface.clipped()) {
+      const double g = std::abs(surface.clip(p)) / clip_gradient(surface, p).norm();
+      result.max_boundary_distance = std::max(result.max_boundary_distance, g / scale);
+    }
+  }
+}
+
+//! InvalidParameter when the remeshing to ℓ changed the marched topology or left the surface
+//! crossing itself (MesherOptions::check_topology).
+void check_remeshed_topology(const ImplicitSurface& surface, double ell, const TopologyCount& marched, Mesh& mesh)
+{
+  collect_garbage(mesh);
+  const TopologyCount remeshed = count_topology(mesh);
+  if (remeshed != marched)
+    throw InvalidParameter(fmt::format("mesher: remeshing '{}' to ℓ = {:.4g} changed its topology ({} → {}): a "
+                                       "neck, gap or crease narrower than ℓ; give a smaller edge length or a blend",
+                                       surface.name, ell, describe(marched), describe(remeshed)));
+  const std::vector<FacePair> pairs = self_intersections(mesh);
+  if (!pairs.empty())
+    throw InvalidParameter(fmt::format("mesher: the triangulation of '{}' at ℓ = {:.4g} crosses itself ({} face "
+                                       "pairs, near {}): a crease or gap narrower than ℓ; give a smaller edge "
+                                       "length or a blend",
+                                       surface.name, ell, pairs.size(), crossing_places(mesh, pairs)));
+}
+
 } // namespace
 
 AngleDistribution triangle_min_angle_distribution(const Mesh& mesh)
@@ -137,72 +294,15 @@ AngleDistribution triangle_min_angle_distribution(const Mesh& mesh)
 
 MesherResult mesh_implicit_surface(const ImplicitSurface& input, const MesherOptions& options)
 {
-  if (!input.value)
-    throw InvalidParameter(fmt::format("mesher: surface '{}' has no function", input.name));
-  if (input.box.isEmpty() || !(input.box.sizes().array() > 0).all())
-    throw InvalidParameter(fmt::format("mesher: the box {} of '{}' is empty", box_text(input.box), input.name));
-  const bool by_length = options.edge_length > 0, by_count = options.vertices > 0;
-  if (by_length == by_count)
-    throw InvalidParameter(fmt::format("mesher: give exactly one of an edge length (got {}) and a vertex count (got {})",
-                                       options.edge_length, options.vertices));
-  if (by_count && options.vertices < 12)
-    throw InvalidParameter(fmt::format("mesher: {} vertices are too few for a surface (at least 12)", options.vertices));
-  if (!(options.edges_per_radius >= 0) || !std::isfinite(options.edges_per_radius))
-    throw InvalidParameter(fmt::format("mesher: edges per radius must be ≥ 0, got {}", options.edges_per_radius));
-  if (!std::isfinite(options.edge_length) || !(options.grid_cell >= 0) || options.iterations < 1 ||
-      !(options.tolerance > 0 && options.tolerance < 1e-6))
-    throw InvalidParameter(fmt::format("mesher: need finite ℓ, grid cell ≥ 0 (got {}), iterations ≥ 1 (got {}) and a "
-                                       "relative tolerance in (0, 1e-6) (got {})",
-                                       options.grid_cell, options.iterations, options.tolerance));
-
+  check_mesher_input(input, options);
   ImplicitSurface surface = input;
   const ProjectionOptions projection{.tolerance = options.tolerance};
-  const double feature_cell = surface.feature_size > 0 ? surface.feature_size / 2 : surface.scale() * kDefaultGridFraction;
   MesherResult result;
-
-  Mesh mesh;
-  double ell = options.edge_length;
-  if (by_length) {
-    result.grid_cell = options.grid_cell > 0 ? options.grid_cell : std::min(kGridCellPerEdge * ell, feature_cell);
-    mesh = initial_triangulation(surface, result.grid_cell, projection);
-  } else {
-    // A first triangulation measures the area A; then ℓ = √(c A / N) with c calibrated on
-    // remeshed surfaces, and the grid is refined if ℓ asks for it.
-    result.grid_cell = options.grid_cell > 0 ? options.grid_cell : feature_cell;
-    ImplicitSurface probe = surface;
-    mesh = initial_triangulation(probe, result.grid_cell, projection);
-    ell = std::sqrt(kVerticesPerScaledArea * surface_area(mesh) / options.vertices);
-    if (options.grid_cell == 0 && kGridCellPerEdge * ell < result.grid_cell) {
-      result.grid_cell = kGridCellPerEdge * ell;
-      mesh = initial_triangulation(surface, result.grid_cell, projection);
-    } else {
-      surface = probe;
-    }
-  }
-  // A grid too coarse for a neck or gap joins or cuts the sheets there, at any orientation of
-  // the shape: the topology is trusted once halving the grid no longer changes it.
-  if (options.check_topology) {
-    TopologyCount coarse = count_topology(mesh);
-    for (int halving = 0;; ++halving) {
-      // The topology is the marching grid's: the projection, the costly part, moves no edge.
-      ImplicitSurface finer_surface = surface;
-      const TopologyCount fine = count_topology(marched_triangulation(finer_surface, result.grid_cell / 2));
-      if (fine == coarse)
-        break;
-      if (halving == kMaxGridHalvings || result.grid_cell / 4 < kFinestGridPerEdge * ell)
-        throw InvalidParameter(fmt::format(
-            "mesher: the topology of '{}' keeps changing as the marching grid is refined ({} at spacing {:.3g}, {} "
-            "at {:.3g}): a neck or gap thinner than the grid resolves; give the shape's smallest feature "
-            "(--feature-size) or a finer --grid-cell",
-            surface.name, describe(coarse), result.grid_cell, describe(fine), result.grid_cell / 2));
-      logger().info("mesher: '{}' on a grid of spacing {:.3g} has {}, on one of {:.3g} {}: refining the grid",
-                    surface.name, result.grid_cell, describe(coarse), result.grid_cell / 2, describe(fine));
-      surface = std::move(finer_surface);
-      result.grid_cell /= 2;
-      mesh = initial_triangulation(surface, result.grid_cell, projection);
-      coarse = fine;
-    }
-  }
+  FirstTriangulation first = first_triangulation(surface, options, projection, result);
+  Mesh mesh = std::move(first.mesh);
+  double ell = first.edge_length;
+  if (options.check_topology)
+    refine_grid_until_topology_holds(surface, ell, projection, mesh, result);
   result.initial_vertices = mesh.n_vertices();
   result.initial_faces = mesh.n_faces();
   const TopologyCount marched = count_topology(mesh);
@@ -220,60 +320,15 @@ MesherResult mesh_implicit_surface(const ImplicitSurface& input, const MesherOpt
   };
   if (!surface.clipped())
     remesh.project_boundary = remesh.project; // no boundary exists; never called
-  for (int round = 0;; ++round) {
-    remesh.edge_length = ell;
-    remesh.iterations = round == 0 ? options.iterations : std::max(3, options.iterations / 2);
-    auto remeshed = isotropic_remesh(mesh, remesh);
-    mesh = std::move(remeshed.mesh);
-    result.remesh = remeshed.statistics;
-    result.remesh_rounds = round + 1;
-    if (!by_count || round + 1 == kMaxVertexCountRounds)
-      break;
-    const double ratio = static_cast<double>(mesh.n_vertices()) / options.vertices;
-    if (std::abs(ratio - 1) <= kVertexCountTolerance)
-      break;
-    ell *= std::sqrt(ratio); // vertex count scales like ℓ⁻²
-  }
+  ell = remesh_to_target(mesh, ell, options, remesh, result);
   result.edge_length = ell;
-  if (options.edges_per_radius > 0) {
-    // Twice: the second pass sees the curvature of the refined mesh.
-    for (int pass = 0; pass < 2; ++pass) {
-      Mesh clean = mesh;
-      clean.garbage_collection();
-      remesh.sizing = nearest_vertex_sizing(
-          clean, radius_targets(clean, {.edges_per_radius = options.edges_per_radius, .min_length = ell / 4,
-                                        .max_length = ell}));
-      remesh.iterations = std::max(3, options.iterations / 2);
-      auto remeshed = isotropic_remesh(clean, remesh);
-      mesh = std::move(remeshed.mesh);
-      result.remesh = remeshed.statistics;
-    }
-  }
+  if (options.edges_per_radius > 0)
+    refine_by_curvature(mesh, ell, options, remesh, result);
 
-  const double scale = surface.scale();
-  for (auto v : mesh.vertices()) {
-    const Eigen::Vector3d p = to_eigen(mesh.point(v));
-    result.max_level_set_distance = std::max(result.max_level_set_distance, level_set_distance(surface, p) / scale);
-    if (mesh.is_boundary(v) && surface.clipped()) {
-      const double g = std::abs(surface.clip(p)) / clip_gradient(surface, p).norm();
-      result.max_boundary_distance = std::max(result.max_boundary_distance, g / scale);
-    }
-  }
+  measure_distances(surface, mesh, result);
   result.min_angles = triangle_min_angle_distribution(mesh);
-  if (options.check_topology) {
-    collect_garbage(mesh);
-    const TopologyCount remeshed = count_topology(mesh);
-    if (remeshed != marched)
-      throw InvalidParameter(fmt::format("mesher: remeshing '{}' to ℓ = {:.4g} changed its topology ({} → {}): a "
-                                         "neck, gap or crease narrower than ℓ; give a smaller edge length or a blend",
-                                         surface.name, ell, describe(marched), describe(remeshed)));
-    const std::vector<FacePair> pairs = self_intersections(mesh);
-    if (!pairs.empty())
-      throw InvalidParameter(fmt::format("mesher: the triangulation of '{}' at ℓ = {:.4g} crosses itself ({} face "
-                                         "pairs, near {}): a crease or gap narrower than ℓ; give a smaller edge "
-                                         "length or a blend",
-                                         surface.name, ell, pairs.size(), crossing_places(mesh, pairs)));
-  }
+  if (options.check_topology)
+    check_remeshed_topology(surface, ell, marched, mesh);
   result.mesh = std::move(mesh);
   logger().info("mesher: '{}' → {} vertices, {} faces at ℓ = {:.4g}; min angle {:.1f}°, 5th percentile {:.1f}°",
                 surface.name, result.mesh.n_vertices(), result.mesh.n_faces(), ell, result.min_angles.min,
