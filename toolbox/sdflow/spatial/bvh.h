@@ -174,8 +174,6 @@ public:
   bool empty() const { return triangles_.empty(); }
   const std::array<int, 3>& triangle(int t) const { return triangles_[t]; }
   const double* point(int v) const { return points_.data() + 3 * static_cast<std::size_t>(v); }
-  //! The stored (outward-rounded) box of triangle t.
-  Aabb triangle_box(int t) const { return slot_box_[triangle_slot_[t]].box(); }
   //! The stored boxes of triangles s and t, grown by `margin`, overlap.
   bool boxes_overlap(int s, int t, double margin = 0.0) const
   {
