@@ -192,6 +192,7 @@ LocalRounds remesh_worn_regions(const Mesh& mesh, const DegradedElements& degrad
         remesh_locally(*current, seeds->worn_faces, seeds->targets,
                        {.edge_length = o.edge_length, .iterations = o.remesh_iterations, .rings = kLocalRemeshRings,
                         .curved_projection = o.curved_projection,
+                        .crease_angle_deg = o.crease_angle_deg,
                         .max_patch_share = rounds.rounds == 0 ? kLocalPatchShare : 1.0});
     if (next.declined) {
       total.patch_faces = next.patch_faces;

@@ -112,6 +112,13 @@ void add_retriangulation_entries(std::vector<ParameterEntry>& s)
     e.paper = false;
   }
   {
+    auto& e = add(s, entry("retriangulation.crease_angle", "--crease-angle", ParameterType::real,
+                           "Edges turning by more than this many degrees between flat triangles are creases the "
+                           "remeshing keeps (0: none; 45 suits CAD parts)"));
+    e.range = {.min = 0, .max = 180, .max_open = true};
+    bind<double>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::crease_angle_deg);
+  }
+  {
     auto& e = add(s, entry("retriangulation.neighbours", "--neighbours", ParameterType::integer,
                            "k, the nearest neighbours of the jet-fitted point normals"));
     e.range = at_least(6);

@@ -53,6 +53,7 @@ LocalRemeshResult remesh_locally(const Mesh& mesh, const std::vector<int>& faces
   RemeshOptions remesh{.edge_length = options.edge_length, .iterations = options.iterations};
   remesh.boundary = BoundaryMode::keep;
   remesh.settle_kept_boundary = true;
+  remesh.crease_angle_deg = options.crease_angle_deg;
   if (options.curved_projection) {
     // Normals from the whole surface: a patch vertex on the cut has only part of its star in the patch.
     const VertexVectors all_normals = vertex_normals(mesh);

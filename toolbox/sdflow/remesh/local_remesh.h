@@ -25,6 +25,8 @@ struct LocalRemeshOptions {
   //! Project onto the smooth surface the triangles sample (RemeshOptions::curved_projection), with
   //! the normals of each vertex's whole star; off: onto the flat triangles.
   bool curved_projection = true;
+  //! Creases kept inside the patch (RemeshOptions::crease_angle_deg); 0: none.
+  double crease_angle_deg = 0;
   //! Remesh nothing when the patch (chosen faces, rings, closure) would hold more than this share
   //! of the surface's faces (in (0, 1]): so much of it is worn that the whole pipeline is called for.
   double max_patch_share = 1;

@@ -8,6 +8,7 @@
 #include "sdflow/geometry/principal_curvature.h"
 #include "sdflow/geometry/quality.h"
 #include "sdflow/log.h"
+#include "sdflow/remesh/crease_edges.h"
 #include "sdflow/remesh/star_projection.h"
 #include "sdflow/spatial/closest_point_grid.h"
 #include "sdflow/spatial/spatial_order.h"
@@ -27,6 +28,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <unordered_set>
 #include <vector>
 
 namespace sdflow {
@@ -100,7 +102,8 @@ public:
            PointProjection project_boundary, bool thread_safe)
       : mesh_(mesh), options_(options), ell_(ell), project_(std::move(project)),
         project_boundary_(std::move(project_boundary)), parallel_projection_(thread_safe),
-        target_(mesh.n_vertices()), locked_(mesh.n_vertices(), 0)
+        target_(mesh.n_vertices()), locked_(mesh.n_vertices(), 0),
+        crease_valence_(mesh.n_vertices(), 0)
   {
     const double corner_cos = std::cos(options.boundary_corner_angle_deg * std::numbers::pi / 180);
     retarget();
@@ -119,6 +122,15 @@ public:
       const double n = e_in.norm() * e_out.norm();
       locked_[v.idx()] = n > 0 && e_in.dot(e_out) < corner_cos * n;
     }
+    if (options.crease_angle_deg > 0)
+      for (const int e : crease_edges(mesh_, options.crease_angle_deg)) {
+        const auto h = mesh_.halfedge_handle(Mesh::EdgeHandle(e), 0);
+        add_crease(mesh_.from_vertex_handle(h), mesh_.to_vertex_handle(h));
+      }
+    // Where a crease ends or creases meet, the vertex is a corner of the shape.
+    for (std::size_t i = 0; i < crease_valence_.size(); ++i)
+      if (crease_valence_[i] > 0 && crease_valence_[i] != 2)
+        locked_[i] = 1;
   }
 
   RemeshStatistics run()
@@ -185,12 +197,58 @@ private:
     const std::vector<int> old = sort_spatially(mesh_);
     std::vector<double> target(old.size());
     std::vector<char> locked(old.size());
+    std::vector<int> renumbered(crease_valence_.size(), -1);
     for (std::size_t i = 0; i < old.size(); ++i) {
       target[i] = target_[old[i]];
       locked[i] = locked_[old[i]];
+      renumbered[old[i]] = static_cast<int>(i);
     }
     target_.swap(target);
     locked_.swap(locked);
+    const std::unordered_set<std::uint64_t> creases = std::move(creases_);
+    creases_.clear();
+    crease_valence_.assign(old.size(), 0);
+    for (const std::uint64_t key : creases)
+      add_crease(Mesh::VertexHandle(renumbered[key >> 32]), Mesh::VertexHandle(renumbered[key & 0xffffffffu]));
+  }
+
+  //! A crease edge's key: its two vertex indices, the smaller first.
+  static std::uint64_t crease_key(Mesh::VertexHandle a, Mesh::VertexHandle b)
+  {
+    const int low = std::min(a.idx(), b.idx()), high = std::max(a.idx(), b.idx());
+    return static_cast<std::uint64_t>(low) << 32 | static_cast<std::uint32_t>(high);
+  }
+
+  bool is_crease(Mesh::VertexHandle a, Mesh::VertexHandle b) const
+  {
+    return !creases_.empty() && creases_.count(crease_key(a, b)) > 0;
+  }
+
+  bool on_crease(Mesh::VertexHandle v) const { return crease_valence_[v.idx()] > 0; }
+
+  void add_crease(Mesh::VertexHandle a, Mesh::VertexHandle b)
+  {
+    if (creases_.insert(crease_key(a, b)).second) {
+      ++crease_valence_[a.idx()];
+      ++crease_valence_[b.idx()];
+    }
+  }
+
+  void remove_crease(Mesh::VertexHandle a, Mesh::VertexHandle b)
+  {
+    if (creases_.erase(crease_key(a, b)) > 0) {
+      --crease_valence_[a.idx()];
+      --crease_valence_[b.idx()];
+    }
+  }
+
+  //! The crease neighbour of a vertex inside a crease (two crease edges) other than `not_this`.
+  Mesh::VertexHandle other_crease_neighbour(Mesh::VertexHandle v, Mesh::VertexHandle not_this) const
+  {
+    for (auto w : mesh_.vv_range(v))
+      if (w != not_this && is_crease(v, w))
+        return w;
+    return Mesh::VertexHandle();
   }
 
   //! The midpoint of h's edge.
@@ -266,12 +324,22 @@ private:
           return;
         }
         const Eigen::Vector3d mid = midpoint(pa, pb);
-        const Eigen::Vector3d p = same_bits(mid, projected[k].query)
-                                      ? projected[k].result
-                                      : (mesh_.is_boundary(e) ? project_boundary_(mid) : project_(mid));
-        mesh_.split(e, mesh_.add_vertex(to_point(p)));
+        // A crease is split where it runs, at its straight midpoint: lifting it onto a smooth
+        // surface would round it.
+        const bool crease = is_crease(a, b);
+        const Eigen::Vector3d p = crease                             ? mid
+                                  : same_bits(mid, projected[k].query) ? projected[k].result
+                                  : (mesh_.is_boundary(e) ? project_boundary_(mid) : project_(mid));
+        const auto m = mesh_.add_vertex(to_point(p));
         target_.push_back(options_.sizing ? target_at(p) : ell_);
         locked_.push_back(0);
+        crease_valence_.push_back(0);
+        mesh_.split(e, m);
+        if (crease) {
+          remove_crease(a, b);
+          add_crease(a, m);
+          add_crease(m, b);
+        }
         ++statistics_.splits;
       }
     }
@@ -284,7 +352,7 @@ private:
   {
     const auto v0 = mesh_.from_vertex_handle(h), v1 = mesh_.to_vertex_handle(h);
     const Eigen::Vector3d p1 = point(mesh_, v1);
-    if (locked_[v1.idx()] || mesh_.is_boundary(v1) != mesh_.is_boundary(v0))
+    if (locked_[v1.idx()] || on_crease(v1) || mesh_.is_boundary(v1) != mesh_.is_boundary(v0))
       return p1;
     const Eigen::Vector3d mid = midpoint(point(mesh_, v0), p1);
     const int slot = mesh_.is_boundary(v1) ? -1 : collapse_slot_[mesh_.edge_handle(h).idx()];
@@ -353,12 +421,21 @@ private:
   }
 
   //! Whether h's from-vertex v0 may be collapsed into its to-vertex v1 at all: unlocked, along
-  //! the boundary if on it, and through the link condition.
+  //! the boundary if on it, along the crease if on one (a crease that does not fold back onto
+  //! itself), and through the link condition.
   bool collapse_allowed(Mesh::HalfedgeHandle h)
   {
     const auto v0 = mesh_.from_vertex_handle(h), v1 = mesh_.to_vertex_handle(h);
     if (locked_[v0.idx()])
       return false;
+    if (on_crease(v0)) {
+      if (!is_crease(v0, v1))
+        return false;
+      const auto next = other_crease_neighbour(v0, v1);
+      for (auto w : mesh_.vv_range(v1))
+        if (w == next)
+          return false;
+    }
     if (mesh_.is_boundary(v0)) {
       // A boundary vertex may only slide along a boundary edge to a boundary neighbour.
       if (!movable_on_boundary() || !mesh_.is_boundary(v1) || !mesh_.is_boundary(mesh_.edge_handle(h)))
@@ -429,13 +506,26 @@ private:
         const Eigen::Vector3d p = collapse_position(h);
         if (!collapse_keeps_shape(h, p))
           continue;
-        const auto survivor = mesh_.to_vertex_handle(h);
-        mesh_.collapse(h);
-        mesh_.set_point(survivor, to_point(p));
-        ++statistics_.collapses;
+        collapse(h, p);
         break;
       }
     }
+  }
+
+  //! Collapses h's from-vertex into its to-vertex, which moves to `p`; a crease edge passes its
+  //! crease on to the survivor.
+  void collapse(Mesh::HalfedgeHandle h, const Eigen::Vector3d& p)
+  {
+    const auto v0 = mesh_.from_vertex_handle(h), survivor = mesh_.to_vertex_handle(h);
+    const auto next = on_crease(v0) ? other_crease_neighbour(v0, survivor) : Mesh::VertexHandle();
+    mesh_.collapse(h);
+    mesh_.set_point(survivor, to_point(p));
+    if (next.is_valid()) {
+      remove_crease(v0, survivor);
+      remove_crease(v0, next);
+      add_crease(survivor, next);
+    }
+    ++statistics_.collapses;
   }
 
   //! Edges at v (OpenMesh's valence(), inlined: see link_condition()).
@@ -504,7 +594,7 @@ private:
   {
     std::vector<Mesh::VertexHandle> beside;
     for (auto v : mesh_.vertices()) {
-      if (mesh_.status(v).deleted() || locked_[v.idx()] || mesh_.is_boundary(v))
+      if (mesh_.status(v).deleted() || locked_[v.idx()] || on_crease(v) || mesh_.is_boundary(v))
         continue;
       for (auto w : mesh_.vv_range(v))
         if (locked_[w.idx()]) {
@@ -541,6 +631,8 @@ private:
         continue;
       const auto h0 = mesh_.halfedge_handle(e, 0), h1 = mesh_.halfedge_handle(e, 1);
       const auto a = mesh_.from_vertex_handle(h0), b = mesh_.to_vertex_handle(h0);
+      if (is_crease(a, b))
+        continue;
       const auto c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h0));
       const auto d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h1));
       const int va = valence[a.idx()], vb = valence[b.idx()], vc = valence[c.idx()], vd = valence[d.idx()];
@@ -592,7 +684,7 @@ private:
     n.faces.reserve(6 * count);
     for (std::size_t i = 0; i < count; ++i) {
       const Mesh::VertexHandle v(static_cast<int>(i));
-      if (!mesh_.status(v).deleted() && !locked_[i] && mesh_.halfedge_handle(v).is_valid()) {
+      if (!mesh_.status(v).deleted() && !locked_[i] && !on_crease(v) && mesh_.halfedge_handle(v).is_valid()) {
         if (mesh_.is_boundary(v)) {
           const auto out = mesh_.halfedge_handle(v); // a boundary vertex's halfedge is on the boundary
           n.neighbours.push_back(mesh_.to_vertex_handle(out).idx());
@@ -717,6 +809,8 @@ private:
   bool parallel_projection_;
   std::vector<double> target_; //!< ℓ at every vertex, by index (deleted vertices too)
   std::vector<char> locked_;   //!< corners and kept boundaries: never moved or removed
+  std::unordered_set<std::uint64_t> creases_; //!< crease edges by crease_key
+  std::vector<int> crease_valence_;           //!< crease edges at every vertex, by index
   std::vector<unsigned> mark_; //!< link_condition()'s marks: vertex → stamp of its last marking
   unsigned stamp_ = 0;
   std::vector<int> collapse_slot_; //!< edge → its entry in collapse_cache_, -1 for none
@@ -793,6 +887,9 @@ RemeshResult isotropic_remesh(const Mesh& input, const RemeshOptions& options)
   if (!(options.boundary_corner_angle_deg >= 0 && options.boundary_corner_angle_deg <= 180))
     throw InvalidParameter(fmt::format("remesh: boundary corner angle {}° must be in [0°, 180°]",
                                        options.boundary_corner_angle_deg));
+  if (!(options.crease_angle_deg >= 0 && options.crease_angle_deg < 180))
+    throw InvalidParameter(fmt::format("remesh: crease angle {}° must be in [0°, 180°) (0 keeps no crease)",
+                                       options.crease_angle_deg));
   RemeshResult result;
   result.mesh = input;
   sort_spatially(result.mesh);

@@ -62,6 +62,11 @@ struct RemeshOptions {
   //! Boundary vertices where the boundary turns by more than this angle (degrees) are corners:
   //! never moved or removed, so polygonal boundaries keep their shape.
   double boundary_corner_angle_deg = 45;
+  //! Interior edges turning by more than this angle (degrees) between flat triangles are creases
+  //! (crease_edges.h): never flipped or smoothed across, split at their midpoints and collapsed only
+  //! along the crease, their vertices never relaxed, and those where a crease ends or meets
+  //! another never moved or removed. 0 keeps no crease.
+  double crease_angle_deg = 0;
   //! With BoundaryMode::keep: after the last iteration, let the vertices beside the kept boundary
   //! settle (Remesher::settle_beside_kept_boundary) and collapse the short edges left between them
   //! and the boundary. The rounds of remeshing leave such edges where a row of vertices came to lie

@@ -1,4 +1,5 @@
 target_sources(sdflow_toolbox PRIVATE
+  sdflow/remesh/crease_edges.cpp
   sdflow/remesh/exact_refinement.cpp
   sdflow/remesh/face_patch.cpp
   sdflow/remesh/local_remesh.cpp

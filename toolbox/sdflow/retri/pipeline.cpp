@@ -492,6 +492,8 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
                                             : known.crossings && r.merged_components == 0 ? *known.crossings
                                                                                            : self_intersections(mesh);
     remesh.curved_projection = options.curved_projection && crossings.empty();
+    // Nor are the sharp turns where sheets cross creases of a shape.
+    remesh.crease_angle_deg = crossings.empty() ? options.crease_angle_deg : 0;
     std::vector<double> targets;
     if (options.edges_per_radius > 0)
       targets = adapted_targets(mesh, crossings, options, r.edge_length,

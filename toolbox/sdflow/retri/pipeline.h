@@ -44,6 +44,13 @@ struct RetriangulationOptions {
   //! triangles (remesh.h, RemeshOptions::curved_projection), so a remeshing does not thin a neck;
   //! onto the flat ones when the surface intersects itself (no smooth surface to lift onto there).
   bool curved_projection = true;
+  //! Stage 1 keeps the creases, edges turning by more than this angle (degrees) between flat
+  //! triangles (remesh.h, RemeshOptions::crease_angle_deg), where the flow has not rounded them
+  //! yet: smoothed across, a crease reads as a curvature the next remeshing resolves with finer
+  //! edges, and so on at every one. None are kept where the surface crosses itself (the turns
+  //! there are the crossing's). 0 (the default) keeps none; 45 suits CAD parts (docs/design.md §3
+  //! says what it gains and costs).
+  double crease_angle_deg = 0;
   //! The boundary loops stay as they are, vertex for vertex, as a flow with a fixed rim needs
   //! (flow/boundary_condition.h): stage 1 keeps their vertices (BoundaryMode::keep), and stages 2–5
   //! keep a band of faces along them and rebuild only the surface inside it (fixed_rim.h). Off,
