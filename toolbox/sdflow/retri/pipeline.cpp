@@ -456,7 +456,164 @@ struct KnownFindings {
   const std::vector<double>* targets = nullptr;
 };
 
-//! The pipeline with the given options, once.
+//! Stage 1 on `mesh` (stage 0's output, garbage-collected here): the remeshing, curvature-adapted
+//! when `edges_per_radius` > 0, refused where it makes crossings of its own
+//! (remesh_without_own_crossings). Returns the remeshed surface's intersecting pairs, which stage
+//! 2 then needs not search again.
+std::vector<FacePair> remeshed_stage(Mesh& mesh, const RetriangulationOptions& options, KnownFindings known,
+                                     RetriangulationResult& r)
+{
+  const auto start = Clock::now();
+  RemeshOptions remesh;
+  remesh.edge_length = r.edge_length;
+  remesh.iterations = options.remesh_iterations;
+  if (options.keep_boundary)
+    remesh.boundary = BoundaryMode::keep;
+  collect_garbage(mesh);
+  // Where sheets cross, their normals describe no smooth surface: project onto the flat triangles.
+  // Stage 0 left the input as it was unless it joined components.
+  const bool looked_for = options.curved_projection || options.edges_per_radius > 0 || options.refinement_rounds > 0;
+  const std::vector<FacePair> crossings = !looked_for ? std::vector<FacePair>{}
+                                          : known.crossings && r.merged_components == 0 ? *known.crossings
+                                                                                         : self_intersections(mesh);
+  remesh.curved_projection = options.curved_projection && crossings.empty();
+  // Nor are the sharp turns where sheets cross creases of a shape.
+  remesh.crease_angle_deg = crossings.empty() ? options.crease_angle_deg : 0;
+  std::vector<double> targets;
+  if (options.edges_per_radius > 0)
+    targets = adapted_targets(mesh, crossings, options, r.edge_length, r.merged_components == 0 ? known.targets : nullptr);
+  StageOne remeshed =
+      remesh_without_own_crossings(mesh, crossings, std::move(targets), remesh, options, r.edge_length, r);
+  mesh = std::move(remeshed.mesh);
+  r.seconds.remesh = seconds_since(start);
+  return std::move(remeshed.pairs);
+}
+
+//! Stage 2's search, and beside it stage 4's clean-up of the surface as it is: the search usually
+//! finds nothing to cut, and the clean-up is then the result.
+struct SearchedSurface {
+  std::vector<FacePair> pairs;        //!< the surface's intersecting face pairs
+  std::optional<CleanedUp> unrebuilt; //!< the clean-up (not run with always_rebuild)
+  std::exception_ptr failure;         //!< what the clean-up threw, raised only if it is kept
+};
+
+//! Search `mesh` for intersecting pairs (or take stage 1's, `remeshed_pairs`) while it is cleaned
+//! up (clean_up) on the other core.
+SearchedSurface searched_beside_clean_up(const Mesh& mesh, std::optional<std::vector<FacePair>> remeshed_pairs,
+                                         const RetriangulationOptions& options, const ComponentOptions& debris,
+                                         RetriangulationResult& r)
+{
+  SearchedSurface s;
+  const auto side_by_side = Clock::now();
+  tbb::parallel_invoke(
+    [&] {
+      const auto begun = Clock::now();
+      s.pairs = remeshed_pairs ? std::move(*remeshed_pairs) : self_intersections(mesh);
+      r.seconds.intersections = seconds_since(begun);
+    },
+    [&] {
+      if (options.always_rebuild)
+        return;
+      const auto begun = Clock::now();
+      try {
+        s.unrebuilt = clean_up(mesh, debris, false);
+      } catch (...) {
+        s.failure = std::current_exception();
+      }
+      r.seconds.components = seconds_since(begun);
+    });
+  r.seconds.side_by_side =
+      std::max(0.0, r.seconds.intersections + r.seconds.components - seconds_since(side_by_side));
+  r.intersecting_pairs = static_cast<int>(s.pairs.size());
+  return s;
+}
+
+//! Stages 2–5 with a fixed rim: the band along it kept, the rest rebuilt inside it (fixed_rim.h).
+Mesh rebuilt_inside_rim(const Mesh& mesh, const std::vector<FacePair>& pairs, const RetriangulationOptions& options,
+                        double hole_bound, RetriangulationResult& r)
+{
+  const auto start = Clock::now();
+  RetriangulationResult inside = rebuild_keeping_rim(mesh, pairs, options, r.edge_length, hole_bound);
+  r.removed_faces = inside.removed_faces;
+  r.removed_points = inside.removed_points;
+  r.unused_points = inside.unused_points;
+  r.filled_holes = inside.filled_holes;
+  r.dropped_components += inside.dropped_components;
+  r.remesh.splits += inside.remesh.splits;
+  r.remesh.collapses += inside.remesh.collapses;
+  r.remesh.flips += inside.remesh.flips;
+  r.rebuilt = r.rim_kept = true;
+  r.seconds.reconstruction = seconds_since(start);
+  return std::move(inside.mesh);
+}
+
+//! Stage 4: the surface rebuilt from `oriented` (the points of removal.mesh, what stage 2 left of
+//! `mesh`). A rebuild that joins two pieces stage 2 left apart bridged a cut (the two ends of a neck
+//! pinched through its axis, less than ℓ apart, whose rims' normals admit a tube between them):
+//! then each piece is rebuilt on its own (reconstruct_apart).
+Reconstruction reconstructed(const Mesh& mesh, const RemovalResult& removal, const OrientedPoints& oriented,
+                             const RetriangulationOptions& options, RetriangulationResult& r)
+{
+  if (oriented.points.rows() < 3)
+    throw InvalidMesh(fmt::format("re-triangulation: nothing is left to rebuild: removing the crossings and the "
+                                  "points without a usable normal left {} points",
+                                  oriented.points.rows()));
+  Reconstruction rebuilt = reconstruct_surface(oriented.points, oriented.normals, options.reconstruction);
+  const std::vector<std::vector<int>> removal_pieces =
+      points_by_piece(mesh, removal, oriented, kBetweenCrossingsReach * r.edge_length, options.min_component_faces,
+                      options.normals.neighbours);
+  if (removal_pieces.size() > 1 && joins_groups(rebuilt, removal_pieces, static_cast<int>(oriented.points.rows()))) {
+    rebuilt = reconstruct_apart(oriented.points, oriented.normals, removal_pieces, options.reconstruction);
+    r.rebuilt_apart = true;
+  }
+  r.unused_points = static_cast<int>(rebuilt.unused.size());
+  return rebuilt;
+}
+
+//! Stage 5: the holes of `mesh` shorter than `hole_bound` filled (fill_holes).
+Mesh with_holes_filled(Mesh mesh, double hole_bound, RetriangulationResult& r)
+{
+  const auto start = Clock::now();
+  HoleFillingOptions holes;
+  holes.max_loop_length = hole_bound;
+  FilledHoles filled = fill_holes(mesh, holes);
+  r.filled_holes = static_cast<int>(std::count_if(filled.loops.begin(), filled.loops.end(), [](const HoleReport& loop) {
+    return loop.outcome == LoopOutcome::filled;
+  }));
+  r.seconds.holes = seconds_since(start);
+  return std::move(filled.mesh);
+}
+
+//! Stages 2–5: the faces in `pairs` removed, the rest's points given oriented normals, the surface
+//! rebuilt from them, its debris dropped (first, so that no hole of a stray piece is filled) and its
+//! holes filled.
+Mesh rebuilt_from_points(const Mesh& mesh, std::vector<FacePair> pairs, const RetriangulationOptions& options,
+                         const ComponentOptions& debris, double hole_bound, RetriangulationResult& r)
+{
+  auto start = Clock::now();
+  RemovalResult removal = remove_self_intersections(mesh, std::move(pairs));
+  r.removed_faces = static_cast<int>(removal.removed_faces.size());
+  r.seconds.intersections += seconds_since(start);
+  r.rebuilt = true;
+  start = Clock::now();
+  const OrientedPoints oriented = oriented_point_normals(removal.mesh, options.normals);
+  r.removed_points = static_cast<int>(oriented.removed.size());
+  r.seconds.normals = seconds_since(start);
+
+  start = Clock::now();
+  const Reconstruction rebuilt = reconstructed(mesh, removal, oriented, options, r);
+  r.seconds.reconstruction = seconds_since(start);
+  ComponentSelection pieces = keep_components(rebuilt.mesh, debris);
+  r.dropped_components += static_cast<int>(pieces.dropped.size());
+  r.dropped_volumes = dropped_volumes(rebuilt.mesh, pieces);
+  if (!options.fill_holes)
+    return std::move(pieces.mesh);
+  return with_holes_filled(std::move(pieces.mesh), hole_bound, r);
+}
+
+//! The pipeline with the given options, once: stage 0, stage 1 (remeshed_stage), stage 2's search
+//! beside the clean-up, and when something crosses (or always_rebuild) stages 2–5 with the rim kept
+//! or not, then stage 6 (clean_up) on the rebuild.
 RetriangulationResult retriangulate_once(const Mesh& input, const RetriangulationOptions& options,
                                          KnownFindings known)
 {
@@ -472,143 +629,32 @@ RetriangulationResult retriangulate_once(const Mesh& input, const Retriangulatio
   const ComponentOptions debris{.min_faces = options.min_component_faces,
                                 .min_thickness = options.min_component_thickness * r.edge_length};
   Mesh mesh = input;
-  auto start = Clock::now();
+  const auto start = Clock::now();
   r.merged_components = merge_intersecting_components(mesh);
   r.seconds.merge = seconds_since(start);
 
   std::optional<std::vector<FacePair>> remeshed_pairs; // stage 1's, when it found them
-  if (options.remesh_iterations > 0) {
-    start = Clock::now();
-    RemeshOptions remesh;
-    remesh.edge_length = r.edge_length;
-    remesh.iterations = options.remesh_iterations;
-    if (options.keep_boundary)
-      remesh.boundary = BoundaryMode::keep;
-    collect_garbage(mesh);
-    // Where sheets cross, their normals describe no smooth surface: project onto the flat triangles.
-    // Stage 0 left the input as it was unless it joined components.
-    const bool looked_for = options.curved_projection || options.edges_per_radius > 0 || options.refinement_rounds > 0;
-    const std::vector<FacePair> crossings = !looked_for ? std::vector<FacePair>{}
-                                            : known.crossings && r.merged_components == 0 ? *known.crossings
-                                                                                           : self_intersections(mesh);
-    remesh.curved_projection = options.curved_projection && crossings.empty();
-    // Nor are the sharp turns where sheets cross creases of a shape.
-    remesh.crease_angle_deg = crossings.empty() ? options.crease_angle_deg : 0;
-    std::vector<double> targets;
-    if (options.edges_per_radius > 0)
-      targets = adapted_targets(mesh, crossings, options, r.edge_length,
-                                r.merged_components == 0 ? known.targets : nullptr);
-    StageOne remeshed =
-        remesh_without_own_crossings(mesh, crossings, std::move(targets), remesh, options, r.edge_length, r);
-    mesh = std::move(remeshed.mesh);
-    remeshed_pairs = std::move(remeshed.pairs);
-    r.seconds.remesh = seconds_since(start);
-  }
+  if (options.remesh_iterations > 0)
+    remeshed_pairs = remeshed_stage(mesh, options, known, r);
 
   const double hole_bound = options.max_hole_length > 0 ? options.max_hole_length : automatic_hole_bound(mesh);
-  // Stage 2 usually finds nothing to cut, and stage 4 then cleans up this very surface: it runs
-  // beside the intersection test and is kept when the test comes back empty.
-  std::vector<FacePair> pairs;
-  std::optional<CleanedUp> unrebuilt;
-  std::exception_ptr unrebuilt_failure;
-  const auto side_by_side = Clock::now();
-  tbb::parallel_invoke(
-    [&] {
-      const auto begun = Clock::now();
-      pairs = remeshed_pairs ? std::move(*remeshed_pairs) : self_intersections(mesh);
-      r.seconds.intersections = seconds_since(begun);
-    },
-    [&] {
-      if (options.always_rebuild)
-        return;
-      const auto begun = Clock::now();
-      try {
-        unrebuilt = clean_up(mesh, debris, false);
-      } catch (...) {
-        unrebuilt_failure = std::current_exception();
-      }
-      r.seconds.components = seconds_since(begun);
-    });
-  r.seconds.side_by_side =
-      std::max(0.0, r.seconds.intersections + r.seconds.components - seconds_since(side_by_side));
-  r.intersecting_pairs = static_cast<int>(pairs.size());
-
-  if ((!pairs.empty() || options.always_rebuild) && options.keep_boundary && !boundary_loops(mesh).empty()) {
-    // A fixed rim: the band along it is kept, the rest rebuilt inside it (fixed_rim.h).
-    start = Clock::now();
-    RetriangulationResult inside = rebuild_keeping_rim(mesh, pairs, options, r.edge_length, hole_bound);
-    r.removed_faces = inside.removed_faces;
-    r.removed_points = inside.removed_points;
-    r.unused_points = inside.unused_points;
-    r.filled_holes = inside.filled_holes;
-    r.dropped_components += inside.dropped_components;
-    r.remesh.splits += inside.remesh.splits;
-    r.remesh.collapses += inside.remesh.collapses;
-    r.remesh.flips += inside.remesh.flips;
-    r.rebuilt = r.rim_kept = true;
-    mesh = std::move(inside.mesh);
-    r.seconds.reconstruction = seconds_since(start);
-  } else if (!pairs.empty() || options.always_rebuild) {
-    start = Clock::now();
-    RemovalResult removal = remove_self_intersections(mesh, std::move(pairs));
-    r.removed_faces = static_cast<int>(removal.removed_faces.size());
-    r.seconds.intersections += seconds_since(start);
-    r.rebuilt = true;
-    start = Clock::now();
-    const OrientedPoints oriented = oriented_point_normals(removal.mesh, options.normals);
-    r.removed_points = static_cast<int>(oriented.removed.size());
-    r.seconds.normals = seconds_since(start);
-
-    start = Clock::now();
-    if (oriented.points.rows() < 3)
-      throw InvalidMesh(fmt::format("re-triangulation: nothing is left to rebuild: removing the crossings and the "
-                                    "points without a usable normal left {} points",
-                                    oriented.points.rows()));
-    Reconstruction rebuilt = reconstruct_surface(oriented.points, oriented.normals, options.reconstruction);
-    // Stage 2 cut the surface where it crossed itself. A rebuild that joins two pieces it left
-    // apart bridged a cut: the two ends of a neck pinched through its axis, less than ℓ apart,
-    // whose rims' normals admit a tube between them. Then each piece is rebuilt on its own.
-    const std::vector<std::vector<int>> removal_pieces =
-        points_by_piece(mesh, removal, oriented, kBetweenCrossingsReach * r.edge_length, options.min_component_faces,
-                        options.normals.neighbours);
-    if (removal_pieces.size() > 1 &&
-        joins_groups(rebuilt, removal_pieces, static_cast<int>(oriented.points.rows()))) {
-      rebuilt = reconstruct_apart(oriented.points, oriented.normals, removal_pieces, options.reconstruction);
-      r.rebuilt_apart = true;
-    }
-    r.unused_points = static_cast<int>(rebuilt.unused.size());
-    r.seconds.reconstruction = seconds_since(start);
-    // Debris first, so that no hole of a stray piece is filled.
-    ComponentSelection pieces = keep_components(rebuilt.mesh, debris);
-    r.dropped_components += static_cast<int>(pieces.dropped.size());
-    r.dropped_volumes = dropped_volumes(rebuilt.mesh, pieces);
-    mesh = std::move(pieces.mesh);
-
-    if (options.fill_holes) {
-      start = Clock::now();
-      HoleFillingOptions holes;
-      holes.max_loop_length = hole_bound;
-      FilledHoles filled = fill_holes(mesh, holes);
-      r.filled_holes = static_cast<int>(std::count_if(filled.loops.begin(), filled.loops.end(), [](const HoleReport& loop) {
-        return loop.outcome == LoopOutcome::filled;
-      }));
-      mesh = std::move(filled.mesh);
-      r.seconds.holes = seconds_since(start);
-    }
+  SearchedSurface searched = searched_beside_clean_up(mesh, std::move(remeshed_pairs), options, debris, r);
+  std::optional<CleanedUp> cleaned = std::move(searched.unrebuilt);
+  if (!searched.pairs.empty() || options.always_rebuild) {
+    mesh = options.keep_boundary && !boundary_loops(mesh).empty()
+               ? rebuilt_inside_rim(mesh, searched.pairs, options, hole_bound, r)
+               : rebuilt_from_points(mesh, std::move(searched.pairs), options, debris, hole_bound, r);
+    const auto cleaning = Clock::now();
+    cleaned = clean_up(mesh, debris, true);
+    r.seconds.components = seconds_since(cleaning);
+  } else if (searched.failure) {
+    std::rethrow_exception(searched.failure);
   }
-
-  if (r.rebuilt) {
-    start = Clock::now();
-    unrebuilt = clean_up(mesh, debris, true);
-    r.seconds.components = seconds_since(start);
-  } else if (unrebuilt_failure) {
-    std::rethrow_exception(unrebuilt_failure);
-  }
-  r.dropped_components += unrebuilt->dropped;
-  r.dropped_volumes.insert(r.dropped_volumes.end(), unrebuilt->dropped_volumes.begin(), unrebuilt->dropped_volumes.end());
-  r.components_after = unrebuilt->components;
-  r.open_holes = unrebuilt->open_holes;
-  r.mesh = std::move(unrebuilt->mesh);
+  r.dropped_components += cleaned->dropped;
+  r.dropped_volumes.insert(r.dropped_volumes.end(), cleaned->dropped_volumes.begin(), cleaned->dropped_volumes.end());
+  r.components_after = cleaned->components;
+  r.open_holes = cleaned->open_holes;
+  r.mesh = std::move(cleaned->mesh);
   if (r.rebuilt)
     r.turned_open_components = orient_open_components_like(input, r.mesh);
 
