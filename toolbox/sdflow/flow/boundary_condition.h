@@ -6,6 +6,7 @@
 //! "Boundary conditions" and "Substrate".
 
 #include "sdflow/flow/flow_boundary.h"
+#include "sdflow/parameter_range.h"
 
 #include <memory>
 #include <string>
@@ -25,6 +26,15 @@ struct SubstrateOptions {
   //! η of the contact line's law v = η (cos θ_Y − cos θ_d), > 0; +∞ holds θ_Y at every step
   double mobility = 1;
 };
+
+//! The allowed values of SubstrateOptions, stated here only: SubstrateBoundary checks them and the
+//! run schema's `substrate.*` entries take them (flow/schema_scheme.cpp).
+struct SubstrateRanges {
+  ParameterRange z{};                                                                      //!< finite
+  ParameterRange contact_angle{.min = 0, .max = 180, .min_open = true, .max_open = true}; //!< degrees
+  ParameterRange mobility{.min = 0, .min_open = true, .infinite_allowed = true};          //!< ∞: θ_Y held
+};
+inline constexpr SubstrateRanges substrate_ranges{};
 
 //! "fixed", "paper" or "substrate".
 const char* boundary_condition_name(BoundaryCondition condition);

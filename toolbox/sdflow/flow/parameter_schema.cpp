@@ -15,13 +15,6 @@
 namespace sdflow {
 namespace {
 
-std::string number_text(double v)
-{
-  if (std::isinf(v))
-    return v > 0 ? "∞" : "−∞";
-  return fmt::format("{}", v);
-}
-
 std::vector<ParameterEntry> build_schema()
 {
   std::vector<ParameterEntry> s;
@@ -100,27 +93,6 @@ std::string type_name(ParameterType type)
   case ParameterType::text: return "text";
   }
   return "?";
-}
-
-bool ParameterRange::contains(double v) const
-{
-  if (std::isnan(v) || (std::isinf(v) && !infinite_allowed))
-    return false;
-  const bool above_min = min_open ? v > min : v >= min;
-  const bool below_max = max_open ? v < max : v <= max;
-  return above_min && below_max;
-}
-
-std::string ParameterRange::text() const
-{
-  const bool has_min = std::isfinite(min), has_max = std::isfinite(max);
-  if (has_min && has_max)
-    return fmt::format("in {}{}, {}{}", min_open ? '(' : '[', number_text(min), number_text(max), max_open ? ')' : ']');
-  if (has_min)
-    return fmt::format("{} {}", min_open ? ">" : "≥", number_text(min));
-  if (has_max)
-    return fmt::format("{} {}", max_open ? "<" : "≤", number_text(max));
-  return "";
 }
 
 bool ScheduleSetting::operator==(const ScheduleSetting& other) const

@@ -25,6 +25,7 @@
 //! (`adaptive.tolerance`), `--adaptive` (time_step = "adaptive") and MeshLab's `AutomaticTau`.
 
 #include "sdflow/flow/parameters.h"
+#include "sdflow/parameter_range.h"
 
 #include <Eigen/Core>
 
@@ -53,20 +54,6 @@ enum class ParameterType {
 
 //! "integer", "real", "boolean", "choice", "path", "point", "schedule", "reals", "text".
 std::string type_name(ParameterType type);
-
-//! The allowed values of a number: min and max, each end open or closed; infinite values only
-//! where `infinite_allowed` (a limit that may be "none").
-struct ParameterRange {
-  double min = -std::numeric_limits<double>::infinity();
-  double max = std::numeric_limits<double>::infinity();
-  bool min_open = false;
-  bool max_open = false;
-  bool infinite_allowed = false;
-
-  bool contains(double value) const;
-  //! "≥ 0", "> 0", "in [0, 60]", "in (0, 1]"; "" when any number is allowed.
-  std::string text() const;
-};
 
 //! A τ table and the file it was read from (empty: given inline).
 struct ScheduleSetting {

@@ -87,8 +87,8 @@ void apply_preset(const std::string& name, RunParameters& parameters);
 //! twice under two names, or a value of the wrong type or outside its range.
 void read_run_parameters(const std::filesystem::path& file, RunParameters& parameters);
 
-//! Check the range of every parameter in use (parameter_schema.h: the one place ranges are given,
-//! the re-triangulation's included) and their consistency (τ for the chosen mode, an error
+//! Check the range of every parameter in use (the schema's, parameter_schema.h, some taken from the
+//! option structs they configure: retriangulation_ranges, substrate_ranges) and their consistency (τ for the chosen mode, an error
 //! tolerance with extrapolated steps); throws InvalidParameter naming the key.
 void validate_flow_parameters(const RunParameters& parameters);
 

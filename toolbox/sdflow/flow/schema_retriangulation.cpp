@@ -1,8 +1,11 @@
 //! \file schema_retriangulation.cpp
 //! \brief The run schema's [retriangulation] section: when (flow/retriangulation.h) and how
-//! (retri/pipeline.h) the surface is re-triangulated.
+//! (retri/pipeline.h) the surface is re-triangulated. The pipeline's ranges are its own
+//! (retriangulation_ranges), which its options check also reads.
 
 #include "sdflow/flow/detail/schema_sections.h"
+
+#include "sdflow/retri/pipeline.h"
 
 namespace sdflow::detail {
 
@@ -71,7 +74,7 @@ void add_retriangulation_entries(std::vector<ParameterEntry>& s)
     auto& e = add(s, entry("retriangulation.edge_length", "--edge-length", ParameterType::real,
                            "ℓ, the target edge length (0: the initial surface's mean edge length, written to run.toml "
                            "as a number)"));
-    e.range = at_least(0);
+    e.range = retriangulation_ranges.edge_length;
     e.meshlab = {.name = "EdgeLength", .label = "Re-triangulation edge length ℓ",
                  .help = "Target edge length of the re-triangulation, used only when it is on (≥ 0; 0: the mesh's "
                          "mean edge length at the start). The default is this mesh's mean edge length.",
@@ -81,21 +84,21 @@ void add_retriangulation_entries(std::vector<ParameterEntry>& s)
   {
     auto& e = add(s, entry("retriangulation.remesh_iterations", "--remesh-iterations", ParameterType::integer,
                            "Rounds of isotropic remeshing (0: none)"));
-    e.range = at_least(0);
+    e.range = retriangulation_ranges.remesh_iterations;
     bind<long>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::remesh_iterations);
   }
   {
     auto& e = add(s, entry("retriangulation.edges_per_radius", "--edges-per-radius", ParameterType::real,
                            "Curvature-adapted ℓ: edges per radius of curvature where finer than ℓ (0: uniform ℓ, the "
                            "paper's)"));
-    e.range = at_least(0);
+    e.range = retriangulation_ranges.edges_per_radius;
     bind<double>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::edges_per_radius);
     e.paper = 0.0;
   }
   {
     auto& e = add(s, entry("retriangulation.min_edge_fraction", "--min-edge-fraction", ParameterType::real,
                            "Floor of the adapted ℓ, as a fraction of ℓ"));
-    e.range = {.min = 0, .max = 1, .min_open = true};
+    e.range = retriangulation_ranges.min_edge_fraction;
     bind<double>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::min_edge_fraction);
   }
   {
@@ -121,7 +124,7 @@ void add_retriangulation_entries(std::vector<ParameterEntry>& s)
   {
     auto& e = add(s, entry("retriangulation.neighbours", "--neighbours", ParameterType::integer,
                            "k, the nearest neighbours of the jet-fitted point normals"));
-    e.range = at_least(6);
+    e.range = retriangulation_ranges.neighbours;
     bind<long>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::normals, &PointNormalsOptions::neighbours);
   }
   {
@@ -132,20 +135,19 @@ void add_retriangulation_entries(std::vector<ParameterEntry>& s)
   {
     auto& e = add(s, entry("retriangulation.max_hole_length", "--max-hole-length", ParameterType::real,
                            "Holes with a longer boundary stay open (0: automatic)"));
-    e.range = at_least(0);
-    e.range.infinite_allowed = true; // as validate_retriangulation_options allows
+    e.range = retriangulation_ranges.max_hole_length;
     bind<double>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::max_hole_length);
   }
   {
     auto& e = add(s, entry("retriangulation.min_component_faces", "--min-component-faces", ParameterType::integer,
                            "Components with fewer triangles are dropped as debris"));
-    e.range = at_least(1);
+    e.range = retriangulation_ranges.min_component_faces;
     bind<long>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::min_component_faces);
   }
   {
     auto& e = add(s, entry("retriangulation.min_component_thickness", "--min-component-thickness", ParameterType::real,
                            "Closed components whose volume is below this fraction of ℓ times their area are dropped"));
-    e.range = at_least(0);
+    e.range = retriangulation_ranges.min_component_thickness;
     bind<double>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::min_component_thickness);
   }
 }

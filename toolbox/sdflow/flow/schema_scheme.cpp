@@ -5,6 +5,7 @@
 #include "sdflow/flow/detail/schema_sections.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/flow/boundary_condition.h"
 
 #include <fmt/format.h>
 
@@ -157,6 +158,7 @@ void add_flow_option_entries(std::vector<ParameterEntry>& s)
     auto& e = add(s, entry("substrate.z", "--substrate-z", ParameterType::real,
                            "The substrate's plane z = z₀ (boundary = \"substrate\"): every boundary loop of the "
                            "surface must lie on it"));
+    e.range = substrate_ranges.z;
     bind<double>(e, &RunParameters::scheme, &SchemeOptions::substrate, &SubstrateOptions::z);
     e.in_use = e.written = on_substrate;
   }
@@ -164,7 +166,7 @@ void add_flow_option_entries(std::vector<ParameterEntry>& s)
     auto& e = add(s, entry("substrate.contact_angle", "--contact-angle", ParameterType::real,
                            "Young's angle θ_Y in degrees (boundary = \"substrate\"), cos θ_Y = (γ_VS − γ_FS)/γ_FV: "
                            "the angle of the film with the substrate at equilibrium"));
-    e.range = {.min = 0, .max = 180, .min_open = true, .max_open = true};
+    e.range = substrate_ranges.contact_angle;
     bind<double>(e, &RunParameters::scheme, &SchemeOptions::substrate, &SubstrateOptions::contact_angle);
     e.in_use = e.written = on_substrate;
   }
@@ -172,7 +174,7 @@ void add_flow_option_entries(std::vector<ParameterEntry>& s)
     auto& e = add(s, entry("substrate.mobility", "--contact-line-mobility", ParameterType::real,
                            "η of the contact line (boundary = \"substrate\"): it moves in the plane at "
                            "η (cos θ_Y − cos θ) along its outward normal; inf holds the angle at θ_Y"));
-    e.range = {.min = 0, .min_open = true, .infinite_allowed = true};
+    e.range = substrate_ranges.mobility;
     bind<double>(e, &RunParameters::scheme, &SchemeOptions::substrate, &SubstrateOptions::mobility);
     e.in_use = e.written = on_substrate;
   }

@@ -76,13 +76,14 @@ std::vector<ContactPoint> contact_points(const Mesh& mesh, const VertexVectors& 
 
 SubstrateBoundary::SubstrateBoundary(const SubstrateOptions& options) : options_(options)
 {
-  if (!(options.contact_angle > 0 && options.contact_angle < 180))
-    throw InvalidParameter(fmt::format("substrate.contact_angle must be in (0, 180) degrees, got {}",
+  const SubstrateRanges& r = substrate_ranges;
+  if (!r.contact_angle.contains(options.contact_angle))
+    throw InvalidParameter(fmt::format("substrate.contact_angle must be {} degrees, got {}", r.contact_angle.text(),
                                        options.contact_angle));
-  if (!(options.mobility > 0))
-    throw InvalidParameter(fmt::format("substrate.mobility must be > 0 (inf holds the contact angle), got {}",
-                                       options.mobility));
-  if (!std::isfinite(options.z))
+  if (!r.mobility.contains(options.mobility))
+    throw InvalidParameter(fmt::format("substrate.mobility must be {} (inf holds the contact angle), got {}",
+                                       r.mobility.text(), options.mobility));
+  if (!r.z.contains(options.z))
     throw InvalidParameter(fmt::format("substrate.z must be finite, got {}", options.z));
   cos_young_ = std::cos(options.contact_angle * std::numbers::pi / 180);
 }

@@ -38,30 +38,31 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 
 void validate_retriangulation_options(const RetriangulationOptions& o)
 {
-  if (!(o.edge_length >= 0) || !std::isfinite(o.edge_length))
-    throw InvalidParameter(fmt::format("re-triangulation: target edge length must be ≥ 0 (0: automatic), got {}",
-                                       o.edge_length));
-  if (o.remesh_iterations < 0)
-    throw InvalidParameter(
-        fmt::format("re-triangulation: remesh iterations must be ≥ 0, got {}", o.remesh_iterations));
-  if (!(o.max_hole_length >= 0))
-    throw InvalidParameter(fmt::format("re-triangulation: max hole length must be ≥ 0 (0: automatic), got {}",
-                                       o.max_hole_length));
-  if (o.normals.neighbours < 6)
-    throw InvalidParameter(
-        fmt::format("re-triangulation: the jet normals need at least 6 neighbours, got {}", o.normals.neighbours));
-  if (!(o.min_component_thickness >= 0) || !std::isfinite(o.min_component_thickness))
-    throw InvalidParameter(fmt::format("re-triangulation: min component thickness must be ≥ 0, got {}",
-                                       o.min_component_thickness));
-  if (!(o.edges_per_radius >= 0) || !std::isfinite(o.edges_per_radius))
-    throw InvalidParameter(fmt::format("re-triangulation: edges per radius of curvature must be ≥ 0 (0: uniform ℓ), "
-                                       "got {}", o.edges_per_radius));
-  if (!(o.min_edge_fraction > 0 && o.min_edge_fraction <= 1))
-    throw InvalidParameter(
-        fmt::format("re-triangulation: the smallest edge fraction must be in (0, 1], got {}", o.min_edge_fraction));
-  if (o.min_component_faces < 1)
-    throw InvalidParameter(
-        fmt::format("re-triangulation: min component faces must be ≥ 1, got {}", o.min_component_faces));
+  const RetriangulationRanges& r = retriangulation_ranges;
+  if (!r.edge_length.contains(o.edge_length))
+    throw InvalidParameter(fmt::format("re-triangulation: target edge length must be {} (0: automatic), got {}",
+                                       r.edge_length.text(), o.edge_length));
+  if (!r.remesh_iterations.contains(o.remesh_iterations))
+    throw InvalidParameter(fmt::format("re-triangulation: remesh iterations must be {}, got {}",
+                                       r.remesh_iterations.text(), o.remesh_iterations));
+  if (!r.max_hole_length.contains(o.max_hole_length))
+    throw InvalidParameter(fmt::format("re-triangulation: max hole length must be {} (0: automatic), got {}",
+                                       r.max_hole_length.text(), o.max_hole_length));
+  if (!r.neighbours.contains(o.normals.neighbours))
+    throw InvalidParameter(fmt::format("re-triangulation: the jet normals need at least {} neighbours, got {}",
+                                       r.neighbours.min, o.normals.neighbours));
+  if (!r.min_component_thickness.contains(o.min_component_thickness))
+    throw InvalidParameter(fmt::format("re-triangulation: min component thickness must be {}, got {}",
+                                       r.min_component_thickness.text(), o.min_component_thickness));
+  if (!r.edges_per_radius.contains(o.edges_per_radius))
+    throw InvalidParameter(fmt::format("re-triangulation: edges per radius of curvature must be {} (0: uniform ℓ), "
+                                       "got {}", r.edges_per_radius.text(), o.edges_per_radius));
+  if (!r.min_edge_fraction.contains(o.min_edge_fraction))
+    throw InvalidParameter(fmt::format("re-triangulation: the smallest edge fraction must be {}, got {}",
+                                       r.min_edge_fraction.text(), o.min_edge_fraction));
+  if (!r.min_component_faces.contains(o.min_component_faces))
+    throw InvalidParameter(fmt::format("re-triangulation: min component faces must be {}, got {}",
+                                       r.min_component_faces.text(), o.min_component_faces));
 }
 
 namespace {

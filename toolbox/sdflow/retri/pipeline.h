@@ -18,6 +18,7 @@
 //! on a surface without singularities they would only re-triangulate the same points.
 
 #include "sdflow/mesh.h"
+#include "sdflow/parameter_range.h"
 #include "sdflow/reconstruct/advancing_front.h"
 #include "sdflow/reconstruct/holes.h"
 #include "sdflow/reconstruct/point_normals.h"
@@ -125,7 +126,21 @@ struct RetriangulationResult {
   } seconds;
 };
 
-//! Throws InvalidParameter for options out of range.
+//! The allowed values of the options a caller sets, stated here only: validate_retriangulation_options
+//! checks them, and the run schema's [retriangulation] entries take them (flow/schema_retriangulation.cpp).
+struct RetriangulationRanges {
+  ParameterRange edge_length{.min = 0};                          //!< 0: automatic
+  ParameterRange remesh_iterations{.min = 0};                    //!< 0: no remeshing
+  ParameterRange edges_per_radius{.min = 0};                     //!< 0: uniform ℓ
+  ParameterRange min_edge_fraction{.min = 0, .max = 1, .min_open = true};
+  ParameterRange neighbours{.min = 6};                           //!< a degree-2 jet needs 6
+  ParameterRange max_hole_length{.min = 0, .infinite_allowed = true}; //!< 0: automatic; ∞: every hole
+  ParameterRange min_component_faces{.min = 1};
+  ParameterRange min_component_thickness{.min = 0};
+};
+inline constexpr RetriangulationRanges retriangulation_ranges{};
+
+//! Throws InvalidParameter for options out of retriangulation_ranges.
 void validate_retriangulation_options(const RetriangulationOptions& options);
 
 //! One line saying what a re-triangulation did (the operations of each stage that ran, the
