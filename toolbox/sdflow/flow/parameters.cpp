@@ -278,10 +278,15 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& p)
     }
 }
 
-void validate_run_parameters(const RunParameters& p)
+void validate_stop_condition(const RunParameters& p)
 {
   if (p.steps == 0 && std::isinf(p.end_time))
     throw InvalidParameter("no stop condition: give a number of steps or an end time");
+}
+
+void validate_run_parameters(const RunParameters& p)
+{
+  validate_stop_condition(p);
   validate_flow_parameters(p);
 }
 

@@ -92,7 +92,12 @@ void read_run_parameters(const std::filesystem::path& file, RunParameters& param
 //! tolerance with extrapolated steps); throws InvalidParameter naming the key.
 void validate_flow_parameters(const RunParameters& parameters);
 
-//! validate_flow_parameters, and a stop condition (a number of steps or an end time) for a run.
+//! A run's own rule, which the flow does not check: a stop condition (a number of steps or an end
+//! time); throws InvalidParameter.
+void validate_stop_condition(const RunParameters& parameters);
+
+//! validate_stop_condition and validate_flow_parameters: what a front end checks once, before it
+//! reads the input.
 void validate_run_parameters(const RunParameters& parameters);
 
 //! The fully resolved parameters as TOML, under the canonical keys (the schedule inline, absolute

@@ -351,16 +351,20 @@ std::string timings_row(long step, const StepTimes& t, double output)
 
 SimulationResult run_simulation(const Mesh& initial, const SimulationOptions& options)
 {
-  validate_run_parameters(options.parameters);
-  RunRecorder recorder(options.parameters, false);
+  // The flow checks its parameters (validate_flow_parameters) on construction, so it is made
+  // before the directory is taken: what is left to check here is the run's own stop condition.
+  validate_stop_condition(options.parameters);
   SurfaceDiffusion flow(initial, options.parameters, options.retriangulate);
+  RunRecorder recorder(options.parameters, false);
   recorder.begin(flow);
   return run(flow, recorder, options);
 }
 
 SimulationResult resume_simulation(const SimulationOptions& options)
 {
-  validate_run_parameters(options.parameters);
+  // The flow checks the rest on construction, before any file is written (until then the
+  // recorder has only locked the directory and, for a run with no checkpoint, made its folders).
+  validate_stop_condition(options.parameters);
   RunRecorder recorder(options.parameters, true);
   if (!recorder.has_checkpoint()) {
     const Mesh initial = recorder.restart_surface(options.parameters);
