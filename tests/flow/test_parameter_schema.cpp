@@ -2,6 +2,8 @@
 //! has a flag and help, older names still read, errors name the key, README's table is the schema's.
 #include "sdflow/errors.h"
 #include "sdflow/flow/parameter_schema.h"
+#include "sdflow/flow/substrate_boundary.h"
+#include "sdflow/retri/pipeline.h"
 #include "io/temp_dir.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +12,8 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace sdflow {
 namespace {
@@ -271,6 +275,54 @@ TEST(ParameterSchema, range_errors_name_the_file_line_and_key)
   } catch (const InvalidParameter& e) {
     EXPECT_NE(std::string(e.what()).find("checkpoint_every must be ≥ 1, got 0"), std::string::npos) << e.what();
   }
+}
+
+//! The options whose range is stated beside them (retriangulation_ranges, substrate_ranges) and
+//! checked by their stage for its direct callers: that check and the schema's refuse the same values.
+TEST(ParameterSchema, a_stages_own_check_refuses_exactly_what_the_schema_refuses)
+{
+  const std::set<std::string> pipeline{"retriangulation.edge_length",      "retriangulation.remesh_iterations",
+                                       "retriangulation.edges_per_radius", "retriangulation.min_edge_fraction",
+                                       "retriangulation.neighbours",       "retriangulation.max_hole_length",
+                                       "retriangulation.min_component_faces",
+                                       "retriangulation.min_component_thickness"};
+  const std::set<std::string> substrate{"substrate.z", "substrate.contact_angle", "substrate.mobility"};
+  int checked = 0;
+  for (const ParameterEntry& e : parameter_schema()) {
+    if (!pipeline.count(e.key) && !substrate.count(e.key))
+      continue;
+    SCOPED_TRACE(e.key);
+    const bool integer = e.type == ParameterType::integer;
+    std::vector<double> probes{std::nan(""), HUGE_VAL, -HUGE_VAL, -1, 0, 0.5, 1, 6, 90, 1e6};
+    for (const double end : {e.range.min, e.range.max})
+      if (std::isfinite(end))
+        for (const double step : {-1.0, -1e-9, 0.0, 1e-9, 1.0})
+          probes.push_back(end + step);
+    for (const double x : probes) {
+      if (integer && !(std::isfinite(x) && x == std::floor(x)))
+        continue;
+      SCOPED_TRACE(x);
+      RunParameters p;
+      e.set(p, integer ? ParameterValue{static_cast<long>(x)} : ParameterValue{x});
+      bool schema_refuses = false, stage_refuses = false;
+      try {
+        check_range(e, e.get(p));
+      } catch (const InvalidParameter&) {
+        schema_refuses = true;
+      }
+      try {
+        if (pipeline.count(e.key))
+          validate_retriangulation_options(p.retriangulation.pipeline);
+        else
+          SubstrateBoundary boundary(p.scheme.substrate);
+      } catch (const InvalidParameter&) {
+        stage_refuses = true;
+      }
+      EXPECT_EQ(stage_refuses, schema_refuses);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 100);
 }
 
 TEST(ParameterSchema, unknown_keys_get_the_closest_known_one)
