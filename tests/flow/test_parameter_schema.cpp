@@ -283,6 +283,7 @@ TEST(ParameterSchema, a_stages_own_check_refuses_exactly_what_the_schema_refuses
 {
   const std::set<std::string> pipeline{"retriangulation.edge_length",      "retriangulation.remesh_iterations",
                                        "retriangulation.edges_per_radius", "retriangulation.min_edge_fraction",
+                                       "retriangulation.crease_angle",
                                        "retriangulation.neighbours",       "retriangulation.max_hole_length",
                                        "retriangulation.min_component_faces",
                                        "retriangulation.min_component_thickness"};

@@ -118,7 +118,7 @@ void add_retriangulation_entries(std::vector<ParameterEntry>& s)
     auto& e = add(s, entry("retriangulation.crease_angle", "--crease-angle", ParameterType::real,
                            "Edges turning by more than this many degrees between flat triangles are creases the "
                            "remeshing keeps (0: none; 45 suits CAD parts)"));
-    e.range = {.min = 0, .max = 180, .max_open = true};
+    e.range = retriangulation_ranges.crease_angle;
     bind<double>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::crease_angle_deg);
   }
   {

@@ -60,6 +60,9 @@ void validate_retriangulation_options(const RetriangulationOptions& o)
   if (!r.min_edge_fraction.contains(o.min_edge_fraction))
     throw InvalidParameter(fmt::format("re-triangulation: the smallest edge fraction must be {}, got {}",
                                        r.min_edge_fraction.text(), o.min_edge_fraction));
+  if (!r.crease_angle.contains(o.crease_angle_deg))
+    throw InvalidParameter(fmt::format("re-triangulation: the crease angle must be {} degrees (0: no creases), got {}",
+                                       r.crease_angle.text(), o.crease_angle_deg));
   if (!r.min_component_faces.contains(o.min_component_faces))
     throw InvalidParameter(fmt::format("re-triangulation: min component faces must be {}, got {}",
                                        r.min_component_faces.text(), o.min_component_faces));

@@ -133,6 +133,7 @@ struct RetriangulationRanges {
   ParameterRange remesh_iterations{.min = 0};                    //!< 0: no remeshing
   ParameterRange edges_per_radius{.min = 0};                     //!< 0: uniform ℓ
   ParameterRange min_edge_fraction{.min = 0, .max = 1, .min_open = true};
+  ParameterRange crease_angle{.min = 0, .max = 180, .max_open = true}; //!< degrees; 0: no creases
   ParameterRange neighbours{.min = 6};                           //!< a degree-2 jet needs 6
   ParameterRange max_hole_length{.min = 0, .infinite_allowed = true}; //!< 0: automatic; ∞: every hole
   ParameterRange min_component_faces{.min = 1};
