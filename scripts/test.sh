@@ -13,7 +13,9 @@ skip=() # ctest arguments leaving tests out
 run_suite() { # build directory, then extra CMake arguments
   local dir=$1; shift
   mkdir -p "$dir"
-  cmake -S . -B "$dir" -G Ninja -DSDFLOW_BUILD_TESTS=ON -DSDFLOW_BUILD_CLI=ON -DSDFLOW_BUILD_MESHLAB_PLUGIN=OFF "$@" \
+  # Unity build of the tests and the CLI: about a third less compile time (issue 34 item 8).
+  cmake -S . -B "$dir" -G Ninja -DSDFLOW_BUILD_TESTS=ON -DSDFLOW_BUILD_CLI=ON -DSDFLOW_BUILD_MESHLAB_PLUGIN=OFF \
+    -DSDFLOW_UNITY_BUILD=ON "$@" \
     > "$dir/configure.log" || { cat "$dir/configure.log"; return 1; }
   cmake --build "$dir" -j "$jobs"
   ctest --test-dir "$dir" --output-on-failure -j "$jobs" "${skip[@]}"

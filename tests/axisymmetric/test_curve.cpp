@@ -13,7 +13,7 @@
 namespace sdflow::axisymmetric {
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 TEST(GeneratingCurve, area_and_volume_converge_at_second_order)
 {

@@ -18,7 +18,7 @@
 namespace sdflow::axisymmetric {
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 //! The polygon's measures converge at second order; at this many nodes its error is far below
 //! kRelativeTolerance, which a curve of another shape misses by orders of magnitude.
 constexpr int kFineNodes = 200'000;

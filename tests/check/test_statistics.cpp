@@ -3,13 +3,12 @@
 #include "sdflow/check/statistics.h"
 #include "sdflow/geometry/measures.h"
 #include "support/analytic_meshes.h"
+#include "support/mesh_checks.h"
 
 #include <gtest/gtest.h>
 
 namespace sdflow {
 namespace {
-
-constexpr double kAgreement = 1e-9;
 
 //! An icosphere with one vertex pushed through its far side: one closed component that crosses
 //! itself, as a repair without --remove-self-intersections can leave.
@@ -33,7 +32,7 @@ TEST(Statistics, crossing_component_is_counted_and_left_out_of_tetgen)
   EXPECT_FALSE(s.components[0].tetgen_volume.has_value());
   EXPECT_EQ(s.components[1].crossing_faces, 0);
   ASSERT_TRUE(s.components[1].tetgen_volume.has_value());
-  EXPECT_NEAR(*s.components[1].tetgen_volume, enclosed_volume(clean), kAgreement * enclosed_volume(clean));
+  EXPECT_NEAR(*s.components[1].tetgen_volume, enclosed_volume(clean), checks::kTetgenAgreement * enclosed_volume(clean));
   EXPECT_FALSE(s.tetgen_volume.has_value()) << "a total over some components is not the surface's";
   EXPECT_NE(s.tetgen_skipped.find("1 closed component"), std::string::npos) << s.tetgen_skipped;
 }
@@ -45,7 +44,7 @@ TEST(Statistics, surface_that_does_not_cross_gets_every_tetgen_volume)
   EXPECT_EQ(s.self_intersecting_pairs, 0);
   EXPECT_TRUE(s.tetgen_skipped.empty());
   ASSERT_TRUE(s.tetgen_volume.has_value());
-  EXPECT_NEAR(*s.tetgen_volume, s.volume, kAgreement * s.volume);
+  EXPECT_NEAR(*s.tetgen_volume, s.volume, checks::kTetgenAgreement * s.volume);
 }
 
 } // namespace

@@ -3,13 +3,12 @@
 #include "sdflow/errors.h"
 #include "sdflow/geometry/measures.h"
 #include "support/analytic_meshes.h"
+#include "support/mesh_checks.h"
 
 #include <gtest/gtest.h>
 
 namespace sdflow {
 namespace {
-
-constexpr double kAgreement = 1e-9; // relative, as issue 2 requires
 
 TEST(TetgenVolume, agrees_with_divergence_volume_on_closed_surfaces)
 {
@@ -20,7 +19,7 @@ TEST(TetgenVolume, agrees_with_divergence_volume_on_closed_surfaces)
     ASSERT_EQ(checks.size(), 1u);
     EXPECT_GT(checks[0].tetrahedra, 0);
     EXPECT_NEAR(checks[0].divergence_volume, enclosed_volume(mesh), 1e-12 * enclosed_volume(mesh));
-    EXPECT_LT(checks[0].relative_difference(), kAgreement);
+    EXPECT_LT(checks[0].relative_difference(), checks::kTetgenAgreement);
   }
 }
 
@@ -32,7 +31,7 @@ TEST(TetgenVolume, checks_each_closed_component_and_skips_open_ones)
   ASSERT_EQ(checks.size(), 2u);
   EXPECT_EQ(checks[0].component, 0);
   EXPECT_EQ(checks[1].component, 1);
-  EXPECT_LT(checks[1].relative_difference(), kAgreement);
+  EXPECT_LT(checks[1].relative_difference(), checks::kTetgenAgreement);
   EXPECT_GT(checks[1].tetgen_volume, 20 * checks[0].tetgen_volume);
 }
 
@@ -83,7 +82,7 @@ TEST(TetgenVolume, cavity_volume_carries_the_sign_of_the_divergence_volume)
   ASSERT_EQ(checks.size(), 1u);
   EXPECT_LT(checks[0].divergence_volume, 0);
   EXPECT_LT(checks[0].tetgen_volume, 0);
-  EXPECT_LT(checks[0].relative_difference(), kAgreement);
+  EXPECT_LT(checks[0].relative_difference(), checks::kTetgenAgreement);
 }
 
 } // namespace

@@ -152,7 +152,7 @@ TEST(RunCommand, energy_flags_and_rows_reach_run_toml_and_bad_g_exits_2_naming_t
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string toml = test::read_file(dir / "e/run.toml");
   EXPECT_NE(toml.find("[energy]\nkind = \"ellipsoidal\"\ng = [1, 1, 4]\n"), std::string::npos) << toml;
-  for (const std::string& g : {"1,0,4", "1,nan,4", "-1,1,1", "1,2"}) {
+  for (const std::string g : {"1,0,4", "1,nan,4", "-1,1,1", "1,2"}) {
     SCOPED_TRACE(g);
     const auto bad = analytic::run_sdflow(run + (dir / ("bad" + g)).string() + " --energy ellipsoidal --energy-g " + g);
     EXPECT_EQ(bad.exit_code, 2) << bad.output;

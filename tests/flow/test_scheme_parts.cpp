@@ -83,7 +83,8 @@ public:
   }
 };
 
-double relative_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return (a - b).norm() / b.norm(); }
+//! |a - b| / |b| in the Euclidean norm.
+double relative_norm_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return (a - b).norm() / b.norm(); }
 
 StepResult step_with(const Mesh& mesh, const SchemeParts& parts, double tau)
 {
@@ -97,7 +98,7 @@ TEST(SchemeParts, an_energy_sets_the_right_hand_side_through_its_first_variation
   const SchemeParts area = scheme_parts(kCotangent);
   const StepResult reference = step_with(mesh, area, 0.05);
   const StepResult doubled = step_with(mesh, {std::make_shared<DoubledArea>(), area.boundary}, 0.05);
-  EXPECT_LT(relative_difference(doubled.w, 2 * reference.w), kRoundOff);
+  EXPECT_LT(relative_norm_difference(doubled.w, 2 * reference.w), kRoundOff);
 }
 
 TEST(SchemeParts, an_energy_sets_the_implicit_system)
@@ -106,8 +107,8 @@ TEST(SchemeParts, an_energy_sets_the_implicit_system)
   const SchemeParts parts{std::make_shared<ExplicitArea>(), scheme_parts(kCotangent).boundary};
   const FlowOperators op = flow_operators(mesh, kCotangent, parts, nullptr);
   const StepResult step = step_with(mesh, parts, 0.05);
-  EXPECT_LT(relative_difference(step.w, op.rhs.cwiseQuotient(op.areas)), kRoundOff) << "w = M⁻¹ L H";
-  EXPECT_GT(relative_difference(step_with(mesh, scheme_parts(kCotangent), 0.05).w, step.w), 0.1)
+  EXPECT_LT(relative_norm_difference(step.w, op.rhs.cwiseQuotient(op.areas)), kRoundOff) << "w = M⁻¹ L H";
+  EXPECT_GT(relative_norm_difference(step_with(mesh, scheme_parts(kCotangent), 0.05).w, step.w), 0.1)
       << "the implicit term matters at this τ: the test would not see it ignored";
 }
 
@@ -158,8 +159,9 @@ TEST(SchemeParts, a_boundary_condition_lets_the_volume_restoration_move_its_rim)
   // The paper's condition holds its rim in the restoration.
   const VolumeRestoration held = restore_volumes(bump, {target}, {triangles, component, closed}, PaperBoundary{});
   for (auto v : bump.vertices())
-    if (bump.is_boundary(v))
+    if (bump.is_boundary(v)) {
       EXPECT_EQ(held.positions.row(v.idx()), x.row(v.idx()));
+    }
 }
 
 } // namespace

@@ -94,8 +94,9 @@ TEST(SurfaceDiffusion, a_dumbbell_pinches_off_in_memory_exactly_as_its_recorded_
   EXPECT_LT(std::abs(m.volume_restored), 1e-2);
   EXPECT_NE(split.detail.find("topology changed (components 1 → 2"), std::string::npos) << split.detail;
   for (const StepEvent& e : last_step.events) // one re-triangulation, the same measures on each of its events
-    if (e.retriangulation)
+    if (e.retriangulation) {
       EXPECT_EQ(e.retriangulation->faces_rebuilt, m.faces_rebuilt) << event_name(e.kind);
+    }
   const auto parts = component_topology(flow.mesh());
   ASSERT_EQ(parts.size(), 2u);
   for (const auto& c : parts)

@@ -57,8 +57,9 @@ TEST(RestoreVolumes, open_components_get_their_material_volume_back_with_the_bou
   set_vertex_positions(restored, r.positions);
   EXPECT_NEAR(material_volume(restored), target, round_off_volume * target);
   for (auto v : disk.vertices()) {
-    if (disk.is_boundary(v))
+    if (disk.is_boundary(v)) {
       EXPECT_EQ(r.positions.row(v.idx()), x.row(v.idx())) << v.idx();
+    }
   }
   EXPECT_GT(r.offsets[0], 0);
   EXPECT_THROW(restore_volumes(disk, {}), InvalidParameter);
@@ -95,8 +96,9 @@ TEST(RestoreVolumesFrom, an_open_surface_gets_its_material_volume_back_with_its_
   set_vertex_positions(after, restore_volumes_from(before, after).positions);
   EXPECT_NEAR(material_volume(after), material_volume(before), round_off_volume * material_volume(before));
   for (auto v : after.vertices()) {
-    if (after.is_boundary(v))
+    if (after.is_boundary(v)) {
       EXPECT_EQ(vertex_positions(after).row(v.idx()), x.row(v.idx())) << v.idx();
+    }
   }
 }
 

@@ -3,6 +3,7 @@
 #include "sdflow/geometry/form_sum_anisotropy.h"
 
 #include "sdflow/errors.h"
+#include "support/anisotropy_points.h"
 
 #include <gtest/gtest.h>
 
@@ -22,13 +23,11 @@ const std::vector<AnisotropyTerm> kCubicLike{{.g = {1, 1, 4}},
                                              {.g = {1, 1, 4}, .rotation_deg = {0, 90, 0}},
                                              {.g = {0.5, 2, 1}, .rotation_deg = {20, -35, 50}}};
 
-const std::vector<Eigen::Vector3d> kPoints{{0.3, -0.7, 0.5}, {-1.2, 0.1, 0.4}, {0.05, 0.9, -2.0}, {1, 1, 1}};
-
 TEST(Anisotropy, gradient_and_hessian_match_central_differences)
 {
   for (const auto* terms : {&kEllipsoidal, &kCubicLike}) {
     const FormSumAnisotropy gamma(*terms);
-    for (const Eigen::Vector3d& p : kPoints) {
+    for (const Eigen::Vector3d& p : test::kAnisotropyPoints) {
       SCOPED_TRACE(testing::Message() << "terms " << terms->size() << ", p = " << p.transpose());
       const Eigen::Vector3d xi = gamma.gradient(p);
       const Eigen::Matrix3d hessian = gamma.hessian(p);
@@ -46,7 +45,7 @@ TEST(Anisotropy, gradient_and_hessian_match_central_differences)
 TEST(Anisotropy, is_one_homogeneous_with_eulers_identity)
 {
   const FormSumAnisotropy gamma(kCubicLike);
-  for (const Eigen::Vector3d& p : kPoints)
+  for (const Eigen::Vector3d& p : test::kAnisotropyPoints)
     for (const double scale : {1e-3, 0.5, 7.0, 1e4}) {
       SCOPED_TRACE(testing::Message() << "p = " << p.transpose() << ", λ = " << scale);
       EXPECT_NEAR(gamma.value(scale * p), scale * gamma.value(p), 1e-14 * scale * gamma.value(p));
@@ -59,7 +58,7 @@ TEST(Anisotropy, is_one_homogeneous_with_eulers_identity)
 TEST(Anisotropy, unit_g_is_the_euclidean_norm)
 {
   const FormSumAnisotropy gamma(std::vector<AnisotropyTerm>{{.g = {1, 1, 1}, .rotation_deg = {10, 20, 30}}});
-  for (const Eigen::Vector3d& p : kPoints) {
+  for (const Eigen::Vector3d& p : test::kAnisotropyPoints) {
     EXPECT_NEAR(gamma.value(p), p.norm(), 1e-15 * p.norm());
     EXPECT_LT((gamma.gradient(p) - p.normalized()).norm(), 1e-15);
     const Eigen::Vector3d n = p.normalized();
@@ -73,7 +72,7 @@ TEST(Anisotropy, a_rotation_turns_the_principal_axes)
   // R_x(90°) takes y to z: G = R diag(1, 1, 4) Rᵀ = diag(1, 4, 1).
   const FormSumAnisotropy rotated(std::vector<AnisotropyTerm>{{.g = {1, 1, 4}, .rotation_deg = {90, 0, 0}}});
   const FormSumAnisotropy axis_aligned(std::vector<AnisotropyTerm>{{.g = {1, 4, 1}}});
-  for (const Eigen::Vector3d& p : kPoints)
+  for (const Eigen::Vector3d& p : test::kAnisotropyPoints)
     EXPECT_NEAR(rotated.value(p), axis_aligned.value(p), 1e-14 * p.norm());
 }
 

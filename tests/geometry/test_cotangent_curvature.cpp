@@ -23,7 +23,7 @@ namespace sdflow {
 namespace {
 
 constexpr CurvatureOptions kCotangent{.method = CurvatureMethod::cotangent};
-constexpr double kSecondOrder = 1.85; // observed order must reach this for a second-order quantity
+using analytic::kSecondOrder;
 
 using Errors = analytic::CurvatureErrors;
 

@@ -15,7 +15,7 @@
 namespace sdflow {
 namespace {
 
-constexpr double kSecondOrder = 1.85; // observed order must reach this for a second-order quantity
+using analytic::kSecondOrder;
 
 using analytic::curvature_errors;
 using Errors = analytic::CurvatureErrors;

@@ -4,6 +4,7 @@
 #include "sdflow/geometry/formula_anisotropy.h"
 
 #include "sdflow/errors.h"
+#include "support/anisotropy_points.h"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +13,6 @@
 
 namespace sdflow {
 namespace {
-
-const std::vector<Eigen::Vector3d> kPoints{{0.3, -0.7, 0.5}, {-1.2, 0.1, 0.4}, {0.05, 0.9, -2.0}, {1, 1, 1}};
 
 struct WrittenOut {
   std::string formula;
@@ -31,7 +30,7 @@ TEST(FormulaAnisotropy, matches_the_exact_forms_it_writes_out)
     SCOPED_TRACE(w.formula);
     const FormulaAnisotropy formula(w.formula);
     const FormSumAnisotropy exact(w.terms);
-    for (const Eigen::Vector3d& p : kPoints) {
+    for (const Eigen::Vector3d& p : test::kAnisotropyPoints) {
       SCOPED_TRACE(testing::Message() << "p = " << p.transpose());
       EXPECT_NEAR(formula.value(p), exact.value(p), 1e-14 * exact.value(p));
       EXPECT_LT((formula.gradient(p) - exact.gradient(p)).norm(), 1e-9 * exact.gradient(p).norm());
@@ -44,7 +43,7 @@ TEST(FormulaAnisotropy, matches_the_exact_forms_it_writes_out)
 TEST(FormulaAnisotropy, is_one_homogeneous)
 {
   const FormulaAnisotropy gamma("1 + 0.05 * (nx^4 + ny^4 + nz^4)");
-  for (const Eigen::Vector3d& p : kPoints)
+  for (const Eigen::Vector3d& p : test::kAnisotropyPoints)
     for (const double scale : {1e-3, 0.5, 7.0, 1e4}) {
       SCOPED_TRACE(testing::Message() << "p = " << p.transpose() << ", λ = " << scale);
       EXPECT_NEAR(gamma.value(scale * p), scale * gamma.value(p), 1e-14 * scale * gamma.value(p));

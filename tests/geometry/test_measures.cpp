@@ -14,8 +14,8 @@
 namespace sdflow {
 namespace {
 
-constexpr double pi = std::numbers::pi;
-constexpr double kSecondOrder = 1.85;
+using std::numbers::pi;
+using analytic::kSecondOrder;
 
 //! Ellipsoid area by quadrature in (t = cos θ, φ): smooth and periodic, so midpoint/trapezoid rules
 //! converge fast; 10⁻⁹ relative is far below the mesh errors compared against it.

@@ -2,6 +2,7 @@
 //! and keeps the area and volume of the surface the soup describes.
 
 #include "support/analytic_meshes.h"
+#include "support/mesh_checks.h"
 
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
@@ -21,21 +22,6 @@ namespace {
 //! Areas and volumes of the same triangles summed in another order.
 constexpr double sum_tolerance = 1e-12;
 
-//! The mesh's vertices and triangles as a soup.
-PolygonSoup soup_of(const Mesh& mesh)
-{
-  PolygonSoup soup;
-  for (auto v : mesh.vertices())
-    soup.points.push_back(to_eigen(mesh.point(v)));
-  for (auto f : mesh.faces()) {
-    std::vector<long long> polygon;
-    for (auto v : f.vertices())
-      polygon.push_back(v.idx());
-    soup.polygons.push_back(polygon);
-  }
-  return soup;
-}
-
 //! The repairs as code → count, for readable failures.
 std::map<std::string, std::size_t> counts(const RepairResult& r)
 {
@@ -48,7 +34,7 @@ std::map<std::string, std::size_t> counts(const RepairResult& r)
 //! The repaired mesh validates as read_mesh would (round trip through build_mesh) and is closed.
 void expect_valid_closed(const Mesh& mesh)
 {
-  PolygonSoup again = soup_of(mesh);
+  PolygonSoup again = checks::soup_of(mesh);
   EXPECT_NO_THROW(build_mesh(again, "repaired"));
   for (const ComponentTopology& c : component_topology(mesh))
     EXPECT_TRUE(c.closed());
@@ -58,7 +44,7 @@ void expect_valid_closed(const Mesh& mesh)
 class RepairSphere : public ::testing::Test {
 protected:
   Mesh sphere = analytic::icosphere(2);
-  PolygonSoup soup = soup_of(sphere);
+  PolygonSoup soup = checks::soup_of(sphere);
   double area = surface_area(sphere);
   double volume = enclosed_volume(sphere);
 
@@ -165,7 +151,7 @@ TEST_F(RepairSphere, flipped_faces_follow_their_neighbours)
   expect_same_body(r.mesh);
 
   // All of them flipped: consistent already, and turned outward as a whole.
-  PolygonSoup inside_out = soup_of(sphere);
+  PolygonSoup inside_out = checks::soup_of(sphere);
   for (auto& polygon : inside_out.polygons)
     std::swap(polygon[1], polygon[2]);
   const RepairResult turned = repair_soup(inside_out, "inside-out");
@@ -253,7 +239,7 @@ TEST(Repair, bodies_split_apart_where_one_touches_the_other_are_final)
   soup.points = {{1, 2, 0}, {0, 0, 0}, {4, 1, 0}, {0, 0, -1}, {0, -1, 0}, {-1, -1, -1}, {0, 0, -1}};
   soup.polygons = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {0, 4, 5}, {0, 6, 4}, {0, 5, 6}, {4, 6, 5}};
   const RepairResult r = repair_soup(soup, "touching");
-  const RepairResult again = repair_soup(soup_of(r.mesh), "repaired");
+  const RepairResult again = repair_soup(checks::soup_of(r.mesh), "repaired");
   EXPECT_TRUE(again.repairs.empty()) << ::testing::PrintToString(counts(again));
   for (const double v : component_volumes(r.mesh))
     EXPECT_GT(v, 0);
@@ -269,7 +255,7 @@ TEST(Repair, a_fin_on_an_edge_is_cut_off)
   const RepairResult r = repair_soup(soup, "fin");
   EXPECT_EQ(r.count("non-manifold-edge"), 1u) << ::testing::PrintToString(counts(r));
   EXPECT_EQ(r.mesh.n_faces(), 5u);
-  EXPECT_NO_THROW(build_mesh(soup_of(r.mesh), "repaired"));
+  EXPECT_NO_THROW(build_mesh(checks::soup_of(r.mesh), "repaired"));
 }
 
 TEST(Repair, a_bow_tie_vertex_is_split)
@@ -320,7 +306,7 @@ TEST(Repair, random_soups_are_repaired_into_valid_meshes_or_refused)
       soup.polygons.push_back({index(random), index(random), index(random)});
     try {
       const RepairResult r = repair_soup(soup, "random");
-      EXPECT_NO_THROW(build_mesh(soup_of(r.mesh), "repaired"));
+      EXPECT_NO_THROW(build_mesh(checks::soup_of(r.mesh), "repaired"));
       EXPECT_EQ(r.face_origin.size(), r.mesh.n_faces());
       ++repaired;
     } catch (const MeshValidationError& e) {

@@ -3,6 +3,7 @@
 
 #include "io/temp_dir.h"
 #include "support/analytic_meshes.h"
+#include "support/mesh_checks.h"
 
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
@@ -60,20 +61,6 @@ PolygonSoup with_off_lines(PolygonSoup soup)
     soup.point_lines[i] = 3 + i;
   for (std::size_t f = 0; f < soup.polygons.size(); ++f)
     soup.polygon_lines[f] = 3 + soup.points.size() + f;
-  return soup;
-}
-
-PolygonSoup soup_of(const Mesh& mesh)
-{
-  PolygonSoup soup;
-  for (auto v : mesh.vertices())
-    soup.points.push_back(to_eigen(mesh.point(v)));
-  for (auto f : mesh.faces()) {
-    std::vector<long long> polygon;
-    for (auto v : f.vertices())
-      polygon.push_back(v.idx());
-    soup.polygons.push_back(polygon);
-  }
   return soup;
 }
 
@@ -378,10 +365,10 @@ TEST(Validate, inside_out_component_is_flipped_and_logged)
   // Two spheres: the first inside out, the second already outward.
   const Mesh inside_out = analytic::icosphere(2, 1.0);
   const Mesh outward = analytic::icosphere(2, 0.5, Eigen::Vector3d(3, 0, 0));
-  PolygonSoup soup = soup_of(inside_out);
+  PolygonSoup soup = checks::soup_of(inside_out);
   for (auto& polygon : soup.polygons)
     std::swap(polygon[1], polygon[2]);
-  const PolygonSoup second = soup_of(outward);
+  const PolygonSoup second = checks::soup_of(outward);
   const auto offset = static_cast<long long>(soup.points.size());
   soup.points.insert(soup.points.end(), second.points.begin(), second.points.end());
   for (auto polygon : second.polygons) {
@@ -416,7 +403,7 @@ TEST(Validate, cavity_inside_a_body_is_oriented_out_of_the_material)
   const Mesh outer = analytic::icosphere(3, 2.0);
   const Mesh cavity = analytic::icosphere(2, 0.5, Eigen::Vector3d(0.3, 0, 0));
   for (const bool given_into_the_cavity : {false, true}) {
-    PolygonSoup soup = soup_of(analytic::disjoint_union(outer, cavity));
+    PolygonSoup soup = checks::soup_of(analytic::disjoint_union(outer, cavity));
     if (given_into_the_cavity)
       for (std::size_t f = outer.n_faces(); f < soup.polygons.size(); ++f)
         std::swap(soup.polygons[f][1], soup.polygons[f][2]);
@@ -442,7 +429,7 @@ TEST(Validate, bodies_that_cross_each_other_are_both_bodies)
   });
   ASSERT_LT((to_eigen(first.point(*rightmost)) - Eigen::Vector3d(0.8, 0, 0)).norm(), 1.0) << "not inside the second";
   for (const bool first_inside_out : {false, true}) {
-    PolygonSoup soup = soup_of(analytic::disjoint_union(first, second));
+    PolygonSoup soup = checks::soup_of(analytic::disjoint_union(first, second));
     if (first_inside_out)
       for (std::size_t f = 0; f < first.n_faces(); ++f)
         std::swap(soup.polygons[f][1], soup.polygons[f][2]);
@@ -475,7 +462,7 @@ TEST(Validate, a_bubble_under_a_surface_with_a_rim_is_a_cavity_of_its_material)
   const Mesh beside = analytic::icosphere(2, 0.5, Eigen::Vector3d(4, 0, 0.9));
   const Mesh dipping = analytic::icosphere(2, 0.5, Eigen::Vector3d(-0.6, 0, 0));
   const BuiltMesh built = build_mesh(
-      soup_of(analytic::disjoint_union(analytic::disjoint_union(analytic::disjoint_union(dome, bubble), beside), dipping)),
+      checks::soup_of(analytic::disjoint_union(analytic::disjoint_union(analytic::disjoint_union(dome, bubble), beside), dipping)),
       "dome");
   const std::vector<double> volumes = component_volumes(built.mesh);
   ASSERT_EQ(volumes.size(), 4u);
@@ -487,7 +474,7 @@ TEST(Validate, a_bubble_under_a_surface_with_a_rim_is_a_cavity_of_its_material)
 TEST(Validate, disk_has_boundary_and_keeps_its_orientation)
 {
   const Mesh disk = analytic::disk(4);
-  PolygonSoup soup = soup_of(disk);
+  PolygonSoup soup = checks::soup_of(disk);
   for (auto& polygon : soup.polygons) // facing down: an open surface has no inside, nothing to flip
     std::swap(polygon[1], polygon[2]);
   const BuiltMesh built = build_mesh(soup, "disk");
@@ -505,7 +492,7 @@ TEST(Validate, any_face_order_is_accepted)
   for (const Mesh& mesh : {analytic::icosphere(2), analytic::torus(12, 7, 1.0, 0.4), analytic::disk(5)}) {
     for (int trial = 0; trial < 5; ++trial) {
       SCOPED_TRACE(trial);
-      PolygonSoup soup = soup_of(mesh);
+      PolygonSoup soup = checks::soup_of(mesh);
       std::shuffle(soup.polygons.begin(), soup.polygons.end(), random);
       const BuiltMesh built = build_mesh(soup, "shuffled");
       EXPECT_EQ(built.mesh.n_faces(), mesh.n_faces());

@@ -340,8 +340,9 @@ TEST(Holes, a_sound_hole_is_faired_with_the_weights_asked_for)
   for (const auto weights : {FairingWeights::cotangent, FairingWeights::uniform}) {
     options.weights = weights;
     for (const auto& report : fill_holes(flat_annulus(), options).loops)
-      if (report.outcome == LoopOutcome::filled)
+      if (report.outcome == LoopOutcome::filled) {
         EXPECT_EQ(report.uniform_fairing, weights == FairingWeights::uniform);
+      }
   }
 }
 

@@ -17,7 +17,7 @@
 namespace sdflow {
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 //! Volume of the union of two balls of radius r whose centres are d apart (d < 2r).
 double two_ball_union_volume(double r, double d)

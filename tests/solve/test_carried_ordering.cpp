@@ -20,12 +20,12 @@
 namespace sdflow {
 namespace {
 
-constexpr double tau_beta = 1e-3;
+constexpr double system_tau_beta = 1e-3; //!< τβ of the systems M + τβ L M⁻¹ L whose orderings are compared
 
 SparseMatrix system_matrix(const Mesh& mesh)
 {
   const FlowOperators op = flow_operators(mesh);
-  return flow_matrix({op.laplacian, op.areas, op.held, tau_beta});
+  return flow_matrix({op.laplacian, op.areas, op.held, system_tau_beta});
 }
 
 //! A unit sphere of 10 242 vertices, its surface slightly uneven so no two vertices are alike.
@@ -161,10 +161,10 @@ TEST(FlowSolver, a_carried_ordering_solves_the_remeshed_system_as_a_fresh_one_do
   const Mesh& before = sphere();
   const FlowOperators old_op = flow_operators(before);
   FlowSolver solver;
-  solver.solve({old_op.laplacian, old_op.areas, old_op.held, tau_beta}, old_op.rhs);
+  solver.solve({old_op.laplacian, old_op.areas, old_op.held, system_tau_beta}, old_op.rhs);
   const Mesh after = isotropic_remesh(before, {.iterations = 3}).mesh;
   const FlowOperators op = flow_operators(after);
-  const FlowSystem system{op.laplacian, op.areas, op.held, tau_beta};
+  const FlowSystem system{op.laplacian, op.areas, op.held, system_tau_beta};
   solver.carry_ordering(nearest_points(vertex_positions(before), vertex_positions(after)), op.laplacian);
   const std::vector<int> carried = solver.state().ordering;
   SolveReport report;

@@ -8,6 +8,9 @@
 
 namespace sdflow::analytic {
 
+//! The observed order a second-order quantity must reach under refinement (2 less pre-asymptotic slack).
+inline constexpr double kSecondOrder = 1.85;
+
 //! Least-squares slope of log(error) against log(h): the observed order p in error ≈ C h^p.
 inline double observed_order(const std::vector<double>& h, const std::vector<double>& error)
 {

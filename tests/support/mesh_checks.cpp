@@ -141,6 +141,20 @@ bool triangles_intersect(const std::array<int, 3>& ti, const std::array<int, 3>&
 
 } // namespace
 
+PolygonSoup soup_of(const Mesh& mesh)
+{
+  PolygonSoup soup;
+  for (auto v : mesh.vertices())
+    soup.points.push_back(to_eigen(mesh.point(v)));
+  for (auto f : mesh.faces()) {
+    std::vector<long long> polygon;
+    for (auto v : f.vertices())
+      polygon.push_back(v.idx());
+    soup.polygons.push_back(polygon);
+  }
+  return soup;
+}
+
 int self_intersecting_pairs(const Mesh& mesh)
 {
   std::vector<Point> x(mesh.n_vertices());

@@ -3,12 +3,19 @@
 //! \brief Brute-force checks of reconstructed and repaired surfaces: exact self-intersection
 //! test over all triangle pairs, distances between a mesh and a surface, boundary loops.
 
+#include "sdflow/io/soup.h"
 #include "sdflow/mesh.h"
 
 #include <functional>
 #include <vector>
 
 namespace sdflow::checks {
+
+//! TetGen's volume and the divergence theorem's agree to this, relative (issue 2).
+inline constexpr double kTetgenAgreement = 1e-9;
+
+//! The mesh's vertices and triangles as a polygon soup, for the soup readers' and repairs' paths.
+PolygonSoup soup_of(const Mesh& mesh);
 
 //! Number of pairs of triangles that intersect beyond their shared vertices or edge, decided
 //! with Shewchuk's exact orient3d (O(F²) with a bounding-box prefilter: small meshes only).
