@@ -12,8 +12,8 @@ sphere of radius R has H = −1/R, Δ = M⁻¹L with L negative semi-definite.
 
 from ._sdflow import (EnvironmentFailure, Error, Finding, InvalidMesh, InvalidParameter, IoError,
                       NumericalError, metrics_header)
-from .flow import (Cleaned, Event, Fallback, Flow, Merged, Refused, Rejected, Remeshed, RunResult, Start, State,
-                   Step, Split, Surgery, resume, run)
+from .flow import (Cleaned, Contact, Event, Fallback, Flow, Merged, Refused, Rejected, Remeshed, RunResult, Start,
+                   State, Step, Split, Surgery, Touchdown, resume, run)
 from .mesh import (CurvatureDeviation, MeshResult, area, component_volumes, components, cotangent_laplacian,
                    curvature_deviation, fill_holes, intersections, laplace_beltrami, largest_principal_curvature,
                    mass_matrix, mean_curvature, mean_edge_length, normals, point_normals, read, reconstruct,

@@ -16,8 +16,10 @@ class Event:
     """Something that happened in a step besides the step itself (metrics.csv's `event` column).
 
     `kind` is one of "start", "rejected", "fallback", "remeshed", "surgery", "split", "merged",
-    "cleaned", "refused"; `detail` is the re-triangulation's line of events.log for "remeshed" to "cleaned" and
-    "refused" (why it was refused), the reason for "fallback". A re-triangulation's events carry
+    "cleaned", "refused", "touchdown", "contact"; `detail` is the re-triangulation's line of events.log for
+    "remeshed" to "cleaned", "touchdown" and "contact", and "refused" (why it was refused), the reason for
+    "fallback". "touchdown" (a film reached its substrate and was cut there) and "contact" (two contact
+    lines met) carry in `crossing_size` the film's height or the contact lines' gap that triggered them. A re-triangulation's events carry
     what it measured: the face pairs that crossed before it (`crossing_pairs`), the narrowest neck or
     gap within 2ℓ of them where the topology changed (`crossing_size`, else None), the components, genus and
     boundary loops before and after, the faces before, after and rebuilt, the relative volume
@@ -81,12 +83,23 @@ class Refused(Event):
     """A re-triangulation was refused, the surface kept (`refusal` says why)."""
 
 
+class Touchdown(Event):
+    """A film on a substrate came within the threshold of it away from its contact lines and was cut
+    there: a hole opened, or an island broke (`crossing_size`: the film's lowest height)."""
+
+
+class Contact(Event):
+    """Two contact lines on a substrate came within the threshold of each other: islands merged, or
+    an island's footprint pinched and it broke (`crossing_size`: their gap)."""
+
+
 class Fallback(Event):
     """A τ table's step failed even after its halvings: adaptive steps covered its τ of time."""
 
 
 _EVENT_TYPES = {"start": Start, "rejected": Rejected, "remeshed": Remeshed, "surgery": Surgery, "split": Split,
-                "merged": Merged, "cleaned": Cleaned, "fallback": Fallback, "refused": Refused}
+                "merged": Merged, "cleaned": Cleaned, "fallback": Fallback, "refused": Refused,
+                "touchdown": Touchdown, "contact": Contact}
 
 
 @dataclass(frozen=True)

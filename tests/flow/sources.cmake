@@ -16,6 +16,7 @@ target_sources(sdflow_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/test_scheme_parts.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_step_event.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_substrate_boundary.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_substrate_topology.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_surface_diffusion.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_time_step.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_topology_guard.cpp

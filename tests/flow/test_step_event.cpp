@@ -11,7 +11,8 @@ namespace {
 
 constexpr StepEventKind kAllKinds[] = {StepEventKind::start,   StepEventKind::rejected, StepEventKind::fallback,
                                        StepEventKind::remeshed, StepEventKind::surgery, StepEventKind::split,
-                                       StepEventKind::merged,  StepEventKind::cleaned, StepEventKind::refused};
+                                       StepEventKind::merged,  StepEventKind::cleaned, StepEventKind::refused,
+                                       StepEventKind::touchdown, StepEventKind::contact};
 
 TEST(StepEvent, every_kind_has_its_own_name_without_the_separator)
 {

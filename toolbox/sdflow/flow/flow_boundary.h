@@ -7,6 +7,7 @@
 //! `flow_boundary` (boundary_condition.h); `flow_operators`, the stepper and the volume restoration
 //! call only these.
 
+#include "sdflow/flow/retriangulation.h"
 #include "sdflow/geometry/laplacian.h"
 #include "sdflow/mesh.h"
 
@@ -55,6 +56,15 @@ public:
   virtual double tau_limit(const Mesh& /*mesh*/, const FlowOperators& /*operators*/) const
   {
     return std::numeric_limits<double>::infinity();
+  }
+
+  //! The flow's re-triangulation hook `hook` (made from `schedule`, its ℓ resolved) with the rim's
+  //! own topology changes, which a re-triangulation keeping the rim cannot make, in front of it
+  //! (the substrate's: substrate_topology_hook.h). The fixed and paper conditions return `hook`.
+  virtual RetriangulationHook rim_topology_hook(RetriangulationHook hook,
+                                                const RetriangulationSchedule& /*schedule*/) const
+  {
+    return hook;
   }
 };
 

@@ -76,8 +76,9 @@ struct RetriangulationMeasures {
   //! degraded elements or a step that could not be taken called for it).
   long crossing_pairs = 0;
   //! The narrowest neck or gap within 2 ℓ of those crossings before it (flow/crossing_width.h),
-  //! measured when the topology changed there: the size at which the flow brought the change. NaN
-  //! otherwise.
+  //! measured when the topology changed there: the size at which the flow brought the change. For a
+  //! substrate's change (flow/substrate_topology.h) the film's height above the plane or the gap
+  //! between the contact lines that triggered it. NaN otherwise.
   double crossing_size = std::numeric_limits<double>::quiet_NaN();
   TopologyCount before, after; //!< the surface's topology before and after
   long faces_before = 0, faces_after = 0;
@@ -120,6 +121,8 @@ struct RetriangulationReport {
   bool merged = false;   //!< components were joined
   //! components below the clean-up's size bounds were dropped as debris (retri/pipeline.h, stage 6)
   bool cleaned = false;
+  bool touchdown = false; //!< a film reached its substrate and was cut there (substrate_topology.h)
+  bool contact = false;   //!< two contact lines on the substrate met and were joined or cut
   //! The re-triangulation was refused and the surface kept as it was, for `refusal`.
   bool refused = false;
   RefusalReason refusal = RefusalReason::none;
@@ -131,7 +134,7 @@ struct RetriangulationReport {
   RetriangulationResult::Seconds pipeline_seconds;
   double volume_seconds = 0; //!< of giving the components back their volume
   RetriangulationMeasures measures; //!< when it ran (also when `refused`)
-  bool changed() const { return remeshed || surgery || split || merged || cleaned; }
+  bool changed() const { return remeshed || surgery || split || merged || cleaned || touchdown || contact; }
 };
 
 //! Called between steps; may change the mesh in place (positions and connectivity), returning what

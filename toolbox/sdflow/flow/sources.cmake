@@ -21,6 +21,8 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/step_event.cpp
   sdflow/flow/step_record.cpp
   sdflow/flow/substrate_boundary.cpp
+  sdflow/flow/substrate_topology.cpp
+  sdflow/flow/substrate_topology_hook.cpp
   sdflow/flow/surface_diffusion.cpp
   sdflow/flow/surface_energy_options.cpp
   sdflow/flow/time_step.cpp

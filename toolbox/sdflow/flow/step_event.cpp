@@ -16,6 +16,8 @@ std::string_view event_name(StepEventKind kind)
   case StepEventKind::merged: return "merged";
   case StepEventKind::cleaned: return "cleaned";
   case StepEventKind::refused: return "refused";
+  case StepEventKind::touchdown: return "touchdown";
+  case StepEventKind::contact: return "contact";
   }
   return "unknown";
 }

@@ -23,6 +23,8 @@ enum class StepEventKind {
   merged,   //!< components were joined
   cleaned,  //!< components too small to flow were dropped as debris
   refused,  //!< a re-triangulation was refused, the surface kept (StepEvent::refusal says why)
+  touchdown, //!< a film on a substrate reached it away from its contact lines: cut there (substrate_topology.h)
+  contact,   //!< two contact lines on a substrate met: cut across the film, or zipped across the bare plane
 };
 
 //! The name metrics.csv, events.log and Python use for `kind` ("surgery", ...).

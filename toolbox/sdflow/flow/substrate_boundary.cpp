@@ -2,6 +2,7 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/flow/scheme.h"
+#include "sdflow/flow/substrate_topology_hook.h"
 #include "sdflow/geometry/material_volume.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/topology.h"
@@ -200,6 +201,12 @@ void SubstrateBoundary::move_rim(const Mesh& mesh, const FlowOperators& operator
                           rate[static_cast<std::size_t>(k)];
     positions.row(v) += offset * operators.normals.row(v);
   }
+}
+
+RetriangulationHook SubstrateBoundary::rim_topology_hook(RetriangulationHook hook,
+                                                         const RetriangulationSchedule& schedule) const
+{
+  return substrate_topology_hook(std::move(hook), options_.z, schedule);
 }
 
 } // namespace sdflow

@@ -368,7 +368,8 @@ void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook, long to
   schedule.pipeline.keep_boundary = parts_.boundary->keeps_rim();
   RetriangulationSchedule refined_schedule = schedule;
   refined_schedule.pipeline = refined(schedule.pipeline, p_.refinement);
-  hook_ = FlowHook(make_retriangulation_hook(refined_schedule), true, tolerated_degraded);
+  hook_ = FlowHook(parts_.boundary->rim_topology_hook(make_retriangulation_hook(refined_schedule), refined_schedule),
+                   true, tolerated_degraded);
 }
 
 RetriangulationReport SurfaceDiffusion::call_retriangulation(Mesh& mesh, bool force, StepTimes& times,
@@ -423,7 +424,8 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
   for (const auto& [flag, kind] :
        {std::pair{report.remeshed, StepEventKind::remeshed}, std::pair{report.surgery, StepEventKind::surgery},
         std::pair{report.split, StepEventKind::split}, std::pair{report.merged, StepEventKind::merged},
-        std::pair{report.cleaned, StepEventKind::cleaned}})
+        std::pair{report.cleaned, StepEventKind::cleaned}, std::pair{report.touchdown, StepEventKind::touchdown},
+        std::pair{report.contact, StepEventKind::contact}})
     if (flag && !has_event(events, kind))
       these.push_back({.kind = kind, .retriangulation = report.measures, .detail = report.detail});
   note(step_, time_, fmt::format("re-triangulated ({}): {}", event_names(these), report.detail));
