@@ -9,8 +9,10 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <vector>
 
@@ -40,7 +42,7 @@ TEST_F(ShapeCommand, list_names_every_shape_and_parameter)
   const auto r = analytic::run_sdflow("shape --list");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* s : {"sphere", "ellipsoid", "torus", "dumbbell", "sintering", "spheres-on-plane", "packing",
-                        "cuboid-island",
+                        "cuboid-island", "film-with-hole", "--thickness", "--hole",
                         "--min-distance", "--spheres", "--major", "--minor",
                         "--neck-width", "--neck-radius", "--disk-radius", "--blend", "--expr"})
     EXPECT_NE(r.output.find(s), std::string::npos) << s;
@@ -79,6 +81,31 @@ TEST_F(ShapeCommand, cuboid_island_stands_on_the_plane_with_one_boundary_loop)
   const auto bad = analytic::run_sdflow("shape cuboid-island --a 2 --b 1 --c 0.5 --radius 0.6 -o " + out.string());
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("rounding radius"), std::string::npos) << bad.output;
+}
+
+TEST_F(ShapeCommand, film_with_hole_lies_on_the_plane_with_its_outer_edge_and_its_hole_as_two_loops)
+{
+  const fs::path out = dir / "film.ply";
+  const auto r = analytic::run_sdflow(
+      "shape film-with-hole --side 3 --thickness 0.3 --hole 0.5 --radius 0.1 --edge-length 0.1 -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Mesh film = read_mesh(out).mesh;
+  const auto components = component_topology(film);
+  ASSERT_EQ(components.size(), 1u);
+  EXPECT_EQ(components[0].genus, 0);
+  EXPECT_EQ(components[0].boundary_loops, 2);
+  double rim_off = 0, hole_radius = std::numeric_limits<double>::infinity();
+  for (auto v : film.vertices()) {
+    const auto p = film.point(v);
+    if (film.is_boundary(v))
+      rim_off = std::max(rim_off, std::abs(static_cast<double>(p[2])));
+    hole_radius = std::min(hole_radius, std::hypot(static_cast<double>(p[0]), static_cast<double>(p[1])));
+  }
+  EXPECT_LE(rim_off, 1e-9) << "both loops lie on z = 0";
+  EXPECT_NEAR(hole_radius, 0.5, 0.02) << "no vertex inside the hole, the hole's rim on its circle";
+  const auto bad = analytic::run_sdflow("shape film-with-hole --side 2 --hole 1 -o " + out.string());
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("hole radius"), std::string::npos) << bad.output;
 }
 
 TEST_F(ShapeCommand, vertex_count_and_expression_are_honoured)

@@ -26,7 +26,7 @@ TEST(Shapes, catalogue_lists_every_shape_with_defaults)
   for (const auto& s : list)
     names.push_back(s.name);
   EXPECT_EQ(names, (std::vector<std::string>{"sphere", "ellipsoid", "torus", "dumbbell", "sintering", "spheres-on-plane",
-                                             "cuboid-island", "packing"}));
+                                             "cuboid-island", "film-with-hole", "packing"}));
   for (const auto& s : list) {
     SCOPED_TRACE(s.name);
     EXPECT_FALSE(s.parameters.empty());
@@ -42,7 +42,7 @@ TEST(Shapes, functions_are_negative_inside_and_their_gradients_are_right)
   const std::vector<std::pair<std::string, Eigen::Vector3d>> inside_points = {
       {"sphere", {0.1, 0.2, 0.3}},   {"ellipsoid", {4, 0, 0}},        {"torus", {6, 0, 1}},
       {"dumbbell", {12, 1, 0}},      {"sintering", {3, 3, -3}},       {"spheres-on-plane", {0, 0, -5}},
-      {"cuboid-island", {1.9, 0.9, 0.1}}, {"packing", {1.8, 0.9, 0.2}}};
+      {"cuboid-island", {1.9, 0.9, 0.1}}, {"film-with-hole", {2, 0.5, 0.2}}, {"packing", {1.8, 0.9, 0.2}}};
   std::mt19937 random(7);
   std::uniform_real_distribution<double> unit(-1, 1);
   for (const auto& [name, p] : inside_points) {

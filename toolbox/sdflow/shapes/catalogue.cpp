@@ -277,6 +277,39 @@ ImplicitSurface cuboid_island_shape(const CuboidIslandParameters& parameters)
   return s;
 }
 
+ImplicitSurface film_with_hole_shape(const FilmWithHoleParameters& parameters)
+{
+  const auto [side, h, hole, r] = parameters;
+  const std::string_view name = "film-with-hole";
+  require_positive(name, "side", side);
+  require_positive(name, "thickness", h);
+  require_positive(name, "hole radius", hole);
+  require_positive(name, "rounding radius", r);
+  if (!(r < h))
+    throw InvalidParameter(fmt::format("{}: rounding radius {} must be less than the thickness {}", name, r, h));
+  if (!(hole + 2 * r < side / 2))
+    throw InvalidParameter(
+        fmt::format("{}: the hole radius {} plus twice the rounding {} must be less than half the side {}", name, hole,
+                    r, side / 2));
+  const ImplicitSurface film = cuboid_island_shape({side, side, h, r});
+  ImplicitSurface s;
+  s.name = std::string(name);
+  // The film less the cylinder: the smooth maximum max(f, g) = −smin(−f, −g), g = hole − ρ.
+  const auto sample = [film, hole, r](const Eigen::Vector3d& p) {
+    const double rho = std::hypot(p.x(), p.y());
+    const Eigen::Vector3d radial = rho > 0 ? Eigen::Vector3d(p.x() / rho, p.y() / rho, 0) : Eigen::Vector3d::UnitX();
+    const Sample outside = smooth_union({-film.value(p), -film.gradient(p)}, {rho - hole, radial}, r);
+    return Sample{-outside.value, -outside.gradient};
+  };
+  s.value = [sample](const Eigen::Vector3d& p) { return sample(p).value; };
+  s.gradient = [sample](const Eigen::Vector3d& p) { return sample(p).gradient; };
+  s.clip = film.clip;
+  s.clip_gradient = film.clip_gradient;
+  s.box = film.box;
+  s.feature_size = std::min({h, hole, side});
+  return s;
+}
+
 namespace {
 
 struct Entry {
@@ -340,6 +373,17 @@ const std::vector<Entry>& entries()
                    {"radius", island.radius, "rounding radius of the edges and corners"}}},
                  [](const auto& get) {
                    return cuboid_island_shape({get("a"), get("b"), get("c"), get("radius")});
+                 }});
+    const FilmWithHoleParameters film;
+    e.push_back({{"film-with-hole",
+                  "a square film of thickness h on the substrate z = 0 with a circular hole down to it; its outer edges "
+                  "and the hole's rim are both contact lines (for boundary = \"substrate\")",
+                  {{"side", film.side, "the film's side along x and y"},
+                   {"thickness", film.thickness, "its thickness h"},
+                   {"hole", film.hole, "the radius of the hole"},
+                   {"radius", film.radius, "rounding radius of the outer edges and of the hole's top rim"}}},
+                 [](const auto& get) {
+                   return film_with_hole_shape({get("side"), get("thickness"), get("hole"), get("radius")});
                  }});
     const LatticePacking lattice;
     const RandomPacking random;

@@ -79,6 +79,19 @@ struct CuboidIslandParameters {
 //! on the plane (a rounded rectangle), its sides meeting the plane at 90°.
 ImplicitSurface cuboid_island_shape(const CuboidIslandParameters& parameters = {});
 
+struct FilmWithHoleParameters {
+  double side = 6;        //!< the square film's side, along x and y
+  double thickness = 0.5; //!< its thickness h above z = 0
+  double hole = 1;        //!< the radius of the circular hole through it, about the z axis
+  double radius = 0.2;    //!< the rounding of the film's outer edges and of the hole's top rim, < h
+};
+//! A square film [−s/2, s/2]² of thickness h on the substrate z = 0 with a circular hole down to the
+//! substrate: the rounded box of cuboid_island_shape less the cylinder ρ < hole, by a smooth maximum
+//! of width `radius` (the hole's top rim rounded), clipped to z ≥ 0. Two boundary loops on the plane,
+//! the outer square and the hole's circle, both meeting it at 90°; under boundary = "substrate"
+//! both are contact lines (the outer edges retract as the hole's rim does).
+ImplicitSurface film_with_hole_shape(const FilmWithHoleParameters& parameters = {});
+
 //! A named parameter of a catalogue shape, for `sdflow shape --list` and the registry.
 struct ShapeParameter {
   std::string name;
