@@ -406,8 +406,8 @@ SubstrateTopologyResult change_substrate_topology(const Mesh& mesh, const Substr
     if (result.change != SubstrateChange::none) {
       result.size = lowest;
       result.detail = fmt::format("the film came {:.3g} above the substrate, within δ = {:.3g}, farther than ℓ = {:.3g} "
-                                  "from its contact lines; the {} vertices lower than δ there cut out ({} faces, {} of "
-                                  "debris) and their rim put on the plane",
+                                  "from its contact lines; the film lower than δ there cut out ({} vertices, {} faces, {} "
+                                  "of debris) and its rim put on the plane",
                                   lowest, o.threshold, o.edge_length, low_vertices, result.faces_removed,
                                   result.debris_faces);
       return result;
