@@ -15,27 +15,18 @@
 #include "sdflow/geometry/material_volume.h"
 #include "sdflow/geometry/topology.h"
 #include "support/analytic_meshes.h"
+#include "support/test_meshes.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <functional>
 
 namespace sdflow {
 namespace {
 
-constexpr double kEdge = 0.2;           //!< ℓ of the hook's schedule
-constexpr double kDelta = 0.25 * kEdge; //!< δ = min_edge_fraction · ℓ with the default fraction
-constexpr double kRestored = 1e-10;     //!< relative volume left after the restoration's Newton iterations
-
-//! Map every vertex of `mesh` by `f`.
-Mesh mapped(const Mesh& mesh, const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& f)
-{
-  VertexVectors x = vertex_positions(mesh);
-  for (Eigen::Index i = 0; i < x.rows(); ++i)
-    x.row(i) = f(x.row(i).transpose()).transpose();
-  return make_mesh(x, face_indices(mesh));
-}
+constexpr double kTopologyEll = 0.2;                    //!< ℓ of the hook's schedule
+constexpr double kTopologyDelta = 0.25 * kTopologyEll; //!< δ = min_edge_fraction · ℓ with the default fraction
+constexpr double kTopologyRestored = 1e-10;             //!< relative volume left after the restoration's Newton iterations
 
 //! Whether a vertex of the unit disk, |p|² = `r2`, lies on its rim (its height then exactly 0).
 bool on_rim(double r2) { return r2 > 1 - 1e-12; }
@@ -45,7 +36,7 @@ bool on_rim(double r2) { return r2 > 1 - 1e-12; }
 //! (|x| ≲ 0.4) pushed down to about `middle` of its height.
 Mesh island_pushed_down(double middle)
 {
-  return mapped(analytic::disk(12), [middle](const Eigen::Vector3d& p) {
+  return test::mapped(analytic::disk(12), [middle](const Eigen::Vector3d& p) {
     const double r2 = p.squaredNorm(), x = 3 * p.x(), s = (x / 0.6) * (x / 0.6);
     const double dip = 1 - (1 - middle) * std::exp(-s * s);
     return Eigen::Vector3d(x, p.y(), on_rim(r2) ? 0.0 : 0.3 * (1 - r2 * r2) * dip);
@@ -55,7 +46,7 @@ Mesh island_pushed_down(double middle)
 //! The hemisphere of radius 1 on 12 rings with its top pushed down to `top`.
 Mesh dimpled_cap(double top)
 {
-  return mapped(analytic::spherical_cap(12, 1, 90), [top](const Eigen::Vector3d& p) {
+  return test::mapped(analytic::spherical_cap(12, 1, 90), [top](const Eigen::Vector3d& p) {
     const double r2 = p.x() * p.x() + p.y() * p.y();
     return Eigen::Vector3d(p.x(), p.y(), p.z() * (1 - (1 - top) * std::exp(-r2 / (0.35 * 0.35))));
   });
@@ -67,7 +58,7 @@ Mesh two_caps(double gap)
   const double base = std::sin(std::numbers::pi / 3);
   const Mesh cap = analytic::spherical_cap(8, 1, 60);
   const auto shifted = [&](double dx) {
-    return mapped(cap, [dx](const Eigen::Vector3d& p) { return Eigen::Vector3d(p.x() + dx, p.y(), p.z()); });
+    return test::mapped(cap, [dx](const Eigen::Vector3d& p) { return Eigen::Vector3d(p.x() + dx, p.y(), p.z()); });
   };
   return analytic::disjoint_union(shifted(-base - gap / 2), shifted(base + gap / 2));
 }
@@ -75,17 +66,17 @@ Mesh two_caps(double gap)
 //! An island of 3 × 1, height 0.3 (1 − r⁴), whose footprint is pinched at x = 0 to a waist `waist` wide.
 Mesh island_with_waist(double waist)
 {
-  return mapped(analytic::disk(12), [waist](const Eigen::Vector3d& p) {
+  return test::mapped(analytic::disk(12), [waist](const Eigen::Vector3d& p) {
     const double x = 3 * p.x(), r2 = p.squaredNorm();
     const double narrowing = 1 - (1 - waist / 2) * std::exp(-(x / 0.4) * (x / 0.4));
     return Eigen::Vector3d(x, p.y() * narrowing, on_rim(r2) ? 0.0 : 0.3 * (1 - r2 * r2));
   });
 }
 
-RetriangulationSchedule schedule()
+RetriangulationSchedule topology_schedule()
 {
   RetriangulationSchedule s;
-  s.pipeline.edge_length = kEdge;
+  s.pipeline.edge_length = kTopologyEll;
   return s;
 }
 
@@ -103,7 +94,7 @@ Hooked through_hook(Mesh mesh)
         ++h.inner_calls;
         return RetriangulationReport{};
       },
-      0.0, schedule());
+      0.0, topology_schedule());
   h.report = hook(mesh, {.step = 1, .time = 0.1});
   h.mesh = std::move(mesh);
   return h;
@@ -142,10 +133,10 @@ TEST(SubstrateTopology, an_island_whose_middle_comes_down_to_the_plane_breaks_in
   EXPECT_EQ(m.after, (TopologyCount{.components = 2, .genus = 0, .boundary_loops = 2}));
   EXPECT_EQ(count_topology(h.mesh), m.after);
   EXPECT_GT(m.crossing_size, 0);
-  EXPECT_LT(m.crossing_size, kDelta) << "the trigger is the film's lowest height, below δ";
+  EXPECT_LT(m.crossing_size, kTopologyDelta) << "the trigger is the film's lowest height, below δ";
   EXPECT_LT(m.faces_after, m.faces_before);
   EXPECT_GT(m.volume_restored, 0) << "the cut took material: the restoration gives it back";
-  EXPECT_NEAR(material_volume(h.mesh) / volume, 1, kRestored);
+  EXPECT_NEAR(material_volume(h.mesh) / volume, 1, kTopologyRestored);
   for (const ComponentTopology& c : component_topology(h.mesh))
     EXPECT_EQ(c.boundary_loops, 1);
   expect_on_substrate(h.mesh);
@@ -164,13 +155,13 @@ TEST(SubstrateTopology, a_cap_touching_the_plane_inside_opens_a_hole)
   EXPECT_EQ(euler_characteristic(cap), 1);
   EXPECT_EQ(euler_characteristic(h.mesh), 0) << "a disk became an annulus";
   EXPECT_NEAR(h.report.measures.crossing_size, 0.02, 1e-12) << "the top vertex was the lowest";
-  EXPECT_NEAR(material_volume(h.mesh) / volume, 1, kRestored);
+  EXPECT_NEAR(material_volume(h.mesh) / volume, 1, kTopologyRestored);
   expect_on_substrate(h.mesh);
 }
 
 TEST(SubstrateTopology, two_caps_whose_contact_lines_nearly_touch_merge_into_one_island)
 {
-  const Mesh caps = two_caps(0.3 * kDelta);
+  const Mesh caps = two_caps(0.3 * kTopologyDelta);
   const double volume = material_volume(caps);
   const Hooked h = through_hook(caps);
   EXPECT_TRUE(h.report.contact);
@@ -179,32 +170,32 @@ TEST(SubstrateTopology, two_caps_whose_contact_lines_nearly_touch_merge_into_one
   EXPECT_EQ(h.report.measures.before, (TopologyCount{.components = 2, .genus = 0, .boundary_loops = 2}));
   EXPECT_EQ(h.report.measures.after, (TopologyCount{.components = 1, .genus = 0, .boundary_loops = 1}));
   EXPECT_EQ(euler_characteristic(h.mesh), 1);
-  EXPECT_NEAR(h.report.measures.crossing_size, 0.3 * kDelta, 1e-9);
+  EXPECT_NEAR(h.report.measures.crossing_size, 0.3 * kTopologyDelta, 1e-9);
   EXPECT_GT(h.report.measures.faces_after, h.report.measures.faces_before);
-  EXPECT_NEAR(material_volume(h.mesh) / volume, 1, kRestored) << "the zip lies in the plane: no volume to give back";
+  EXPECT_NEAR(material_volume(h.mesh) / volume, 1, kTopologyRestored) << "the zip lies in the plane: no volume to give back";
   expect_on_substrate(h.mesh);
 }
 
 TEST(SubstrateTopology, an_island_whose_footprint_pinches_breaks_across_it)
 {
-  const Mesh island = island_with_waist(0.3 * kDelta);
+  const Mesh island = island_with_waist(0.3 * kTopologyDelta);
   const double volume = material_volume(island);
   const SubstrateTopologyResult r =
-      change_substrate_topology(island, {.z = 0, .threshold = kDelta, .edge_length = kEdge});
+      change_substrate_topology(island, {.z = 0, .threshold = kTopologyDelta, .edge_length = kTopologyEll});
   ASSERT_EQ(r.change, SubstrateChange::contact);
   EXPECT_TRUE(r.across_material);
   EXPECT_EQ(count_topology(r.mesh), (TopologyCount{.components = 2, .genus = 0, .boundary_loops = 2}));
   const Hooked h = through_hook(island);
   EXPECT_TRUE(h.report.contact && h.report.split);
-  EXPECT_NEAR(material_volume(h.mesh) / volume, 1, kRestored);
+  EXPECT_NEAR(material_volume(h.mesh) / volume, 1, kTopologyRestored);
   expect_on_substrate(h.mesh);
 }
 
 TEST(SubstrateTopology, a_film_above_the_threshold_is_left_alone)
 {
-  for (const Mesh& mesh : {dimpled_cap(2 * kDelta), island_pushed_down(0.5), two_caps(2 * kDelta),
+  for (const Mesh& mesh : {dimpled_cap(2 * kTopologyDelta), island_pushed_down(0.5), two_caps(2 * kTopologyDelta),
                            analytic::spherical_cap(12, 1, 30), analytic::spherical_cap(12, 1, 150)}) {
-    const SubstrateTopologyResult r = change_substrate_topology(mesh, {.z = 0, .threshold = kDelta, .edge_length = kEdge});
+    const SubstrateTopologyResult r = change_substrate_topology(mesh, {.z = 0, .threshold = kTopologyDelta, .edge_length = kTopologyEll});
     EXPECT_EQ(r.change, SubstrateChange::none) << r.detail;
     const Hooked h = through_hook(mesh);
     EXPECT_EQ(h.inner_calls, 1) << "the re-triangulation hook runs as without a substrate";
@@ -223,7 +214,7 @@ TEST(SubstrateTopology, other_boundary_conditions_leave_the_hook_as_it_is)
         ++calls;
         return inner;
       },
-      schedule());
+      topology_schedule());
   Mesh cap = dimpled_cap(0.02);
   const RetriangulationReport report = hook(cap, {.step = 1});
   EXPECT_EQ(calls, 1);
