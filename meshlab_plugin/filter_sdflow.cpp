@@ -36,8 +36,10 @@ QStringList choices(const std::vector<std::string>& names)
   return list;
 }
 
-//! The parameters of "Surface diffusion N steps" (toolbox_bridge.h derives them from sdflow's
-//! schema of run parameters), as MeshLab's.
+//! Adds to `parameters`, as MeshLab's, the dialog of "Surface diffusion N steps" or, with
+//! `anisotropic`, of "Anisotropic surface diffusion N steps" (the same and the surface energy's),
+//! with defaults for a mesh of `mean_edge_length`: diffusion_parameters (toolbox_bridge.h) derives
+//! them from sdflow's schema of run parameters.
 void add_diffusion_parameters(RichParameterList& parameters, double mean_edge_length, bool anisotropic)
 {
   using Kind = sdflow::meshlab::DialogParameter::Kind;

@@ -4,7 +4,7 @@
 
 #include "sdflow/flow/anchored_solver.h"
 #include "sdflow/flow/scheme.h"
-#include "support/analytic_meshes.h"
+#include "support/test_meshes.h"
 
 #include <gtest/gtest.h>
 
@@ -16,17 +16,6 @@ namespace {
 
 constexpr double kTau = 1e-4;
 constexpr double kBeta = 0.5;
-
-//! A unit sphere made uneven, so that it moves, rebuilt from its arrays as a flow holds its surface.
-Mesh uneven_sphere()
-{
-  Mesh m = analytic::icosphere(3);
-  for (const auto v : m.vertices()) {
-    const auto p = m.point(v);
-    m.set_point(v, p * (1 + 0.1 * p[2] * p[2]));
-  }
-  return make_mesh(vertex_positions(m), face_indices(m));
-}
 
 //! One step of `mesh` with `solver`, its anchor set when the step factorised.
 StepResult step_with(AnchoredSolver& solver, const Mesh& mesh)
@@ -40,7 +29,7 @@ StepResult step_with(AnchoredSolver& solver, const Mesh& mesh)
 
 TEST(AnchoredSolver, restored_from_its_record_it_solves_as_the_original)
 {
-  Mesh mesh = uneven_sphere();
+  Mesh mesh = test::uneven_sphere();
   AnchoredSolver original(SolverOptions{});
   const StepResult first = step_with(original, mesh);
   ASSERT_TRUE(first.solve.factorised);
@@ -64,7 +53,7 @@ TEST(AnchoredSolver, restored_from_its_record_it_solves_as_the_original)
 
 TEST(AnchoredSolver, a_retriangulation_or_a_solver_without_factor_leaves_no_anchor)
 {
-  const Mesh mesh = uneven_sphere();
+  const Mesh mesh = test::uneven_sphere();
   AnchoredSolver solver(SolverOptions{});
   EXPECT_FALSE(solver.record().anchor) << "nothing factorised yet";
   step_with(solver, mesh);

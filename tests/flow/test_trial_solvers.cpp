@@ -4,7 +4,7 @@
 
 #include "sdflow/flow/scheme.h"
 #include "sdflow/flow/trial_solvers.h"
-#include "support/analytic_meshes.h"
+#include "support/test_meshes.h"
 
 #include <gtest/gtest.h>
 
@@ -13,17 +13,6 @@ namespace {
 
 constexpr double kTau = 1e-4;
 constexpr double kBeta = 0.5;
-
-//! A unit sphere made uneven, so that it moves, rebuilt from its arrays as a flow holds its surface.
-Mesh uneven_sphere()
-{
-  Mesh m = analytic::icosphere(3);
-  for (const auto v : m.vertices()) {
-    const auto p = m.point(v);
-    m.set_point(v, p * (1 + 0.1 * p[2] * p[2]));
-  }
-  return make_mesh(vertex_positions(m), face_indices(m));
-}
 
 TimeStepOptions adaptive_steps()
 {
@@ -42,7 +31,7 @@ StepResult solve_trial(TrialSolvers& trials, const Mesh& mesh)
 
 TEST(TrialSolvers, a_solved_trial_is_counted_and_anchors_the_factor_it_made)
 {
-  const Mesh mesh = uneven_sphere();
+  const Mesh mesh = test::uneven_sphere();
   TrialSolvers trials(adaptive_steps(), SolverOptions{});
   const StepResult r = solve_trial(trials, mesh);
   ASSERT_TRUE(r.solve.factorised);
@@ -58,7 +47,7 @@ TEST(TrialSolvers, a_solved_trial_is_counted_and_anchors_the_factor_it_made)
 
 TEST(TrialSolvers, rewound_to_a_mark_they_solve_as_if_the_trials_since_had_not_run)
 {
-  Mesh mesh = uneven_sphere();
+  Mesh mesh = test::uneven_sphere();
   TrialSolvers trials(adaptive_steps(), SolverOptions{}), fresh(adaptive_steps(), SolverOptions{});
   const TrialMark mark = trials.mark();
   const StepResult first = solve_trial(trials, mesh);

@@ -1,7 +1,7 @@
 #pragma once
 //! \file test_meshes.h
 //! \brief Small meshes for the tests: grids mapped by a function, disjoint unions, mapped copies,
-//! worn sphere caps, a CAD plate. Header-only helpers shared by the test files.
+//! an uneven sphere, worn sphere caps, a CAD plate. Header-only helpers shared by the test files.
 
 #include "sdflow/mesh.h"
 #include "sdflow/remesh/face_patch.h"
@@ -66,6 +66,18 @@ inline Mesh mapped(const Mesh& mesh, const std::function<Eigen::Vector3d(const E
   for (auto v : out.vertices())
     out.set_point(v, to_point(map(to_eigen(out.point(v)))));
   return out;
+}
+
+//! A unit sphere made uneven (r = 1 + 0.1 z²), so that the flow moves it, rebuilt from its arrays
+//! as a flow holds its surface.
+inline Mesh uneven_sphere()
+{
+  Mesh m = analytic::icosphere(3);
+  for (const auto v : m.vertices()) {
+    const auto p = m.point(v);
+    m.set_point(v, p * (1 + 0.1 * p[2] * p[2]));
+  }
+  return make_mesh(vertex_positions(m), face_indices(m));
 }
 
 //! A worn cap of the unit sphere: the faces of icosphere(5) with centroid z > 0.3, cut out (its rim
