@@ -102,7 +102,7 @@ void Sdflow(benchmark::State& state)
   for (auto _ : state) {
     const double cpu_begin = cpu_seconds(RUSAGE_SELF);
     const auto begin = std::chrono::steady_clock::now();
-    sdflow::RunParameters p;
+    sdflow::FlowOptions p;
     p.retriangulation.enabled = false;
     p.steps = steps;
     p.time_step.mode = sdflow::TimeStepMode::constant;

@@ -4,7 +4,7 @@
 //!   sdflow run --resume DIR [--steps N] [--end-time T] [the other flags the schema marks resumable]
 //!   sdflow run --help-scenario           (the table of keys and flags, markdown, as in README)
 //!   sdflow run --help-meshlab            (the MeshLab filter's parameters, markdown, as in README)
-//! The flags, their checks and the resume rules come from the schema (flow/parameter_schema.h).
+//! The flags, their checks and the resume rules come from the schema (run/parameter_schema.h).
 //! SIGINT / SIGTERM stop the run after the current step with a checkpoint (exit 130 / 143).
 
 #include "common_options.h"
@@ -14,10 +14,10 @@
 #include "verbs.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/flow/parameter_schema.h"
 #include "sdflow/io/io.h"
 #include "sdflow/limits.h"
 #include "sdflow/log.h"
+#include "sdflow/run/parameter_schema.h"
 #include "sdflow/run/run_input.h"
 #include "sdflow/run/simulation.h"
 
@@ -37,7 +37,7 @@
 namespace sdflow::cli {
 namespace {
 
-//! The flag of one schema entry (flow/parameter_schema.h): its option, where CLI11 puts the value,
+//! The flag of one schema entry (run/parameter_schema.h): its option, where CLI11 puts the value,
 //! and the options of its shorthands (`--adaptive`).
 struct SchemaFlag {
   const ParameterEntry* entry = nullptr;
@@ -252,14 +252,14 @@ void run(const RunArguments& a)
                               p.input.string(), maker.string(), shell_word(maker.string())));
   if (p.output_dir.empty())
     throw InvalidParameter("no run directory: give --out DIR or `out` in the scenario file");
-  validate_run_parameters(p);
+  const CheckedRunParameters checked(p); // once, before the input is read
   const SizeLimits limits = run_input_limits(FrontEnd::command_line, a.force);
   if (resuming)
     check_count(p.steps, limits.max_steps, "--steps", limits);
 
   Progress progress(p);
   install_stop_handlers();
-  SimulationOptions options{.parameters = p, .progress = std::ref(progress),
+  SimulationOptions options{.parameters = checked, .progress = std::ref(progress),
                             .stop_requested = [] { return stop_signal != 0; }};
   SimulationResult result;
   try {

@@ -9,11 +9,11 @@
 //! -timeout catches a slow one (scripts/fuzz.sh).
 #include "fuzz_common.h"
 
-#include "sdflow/flow/parameters.h"
 #include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/remesh/exact_refinement.h"
 #include "sdflow/remesh/remesh.h"
 #include "sdflow/run/coarse_input.h"
+#include "sdflow/run/parameters.h"
 #include "sdflow/run/run_input.h"
 
 #include <tbb/global_control.h>
@@ -54,8 +54,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   sdflow::RunParameters parameters;
   parameters.steps = 2;
+  std::optional<sdflow::CheckedRunParameters> checked;
   try {
-    sdflow::validate_run_parameters(parameters);
+    checked.emplace(parameters);
     // Refining a coarse input is exact but, on uneven triangles, may make tens of thousands of
     // vertices (a 79-vertex spike made 59 000), whose checks alone outlast the per-input limit in
     // this instrumented build: an input `run` would refine beyond max_refined_vertices is skipped
@@ -74,7 +75,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0; // refined by `run` beyond what two steps take in about a second
   std::optional<sdflow::SurfaceDiffusion> made;
   try {
-    made.emplace(mesh, parameters);
+    made.emplace(mesh, checked->flow());
   } catch (const sdflow::Error&) {
     return 0; // a mesh the scheme cannot use, refused with its reason before step 1
   }

@@ -1,8 +1,8 @@
-//! libFuzzer harness: the scenario reader (flow/parameters.h, TOML) and the validation of what it
+//! libFuzzer harness: the scenario reader (run/parameters.h, TOML) and the validation of what it
 //! read, as `sdflow run SCENARIO.toml` does before any work.
 #include "fuzz_common.h"
 
-#include "sdflow/flow/parameters.h"
+#include "sdflow/run/parameters.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {

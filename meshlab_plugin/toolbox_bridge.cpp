@@ -1,17 +1,17 @@
 #include "toolbox_bridge.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/flow/parameter_schema.h"
-#include "sdflow/flow/parameters.h"
-#include "sdflow/run/run_input.h"
 #include "sdflow/flow/scheme.h"
 #include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/geometry/curvature.h"
 #include "sdflow/geometry/normals.h"
 #include "sdflow/geometry/quality.h"
+#include "sdflow/io/validate.h"
 #include "sdflow/log.h"
 #include "sdflow/retri/pipeline.h"
-#include "sdflow/io/validate.h"
+#include "sdflow/run/parameter_schema.h"
+#include "sdflow/run/parameters.h"
+#include "sdflow/run/run_input.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

@@ -26,7 +26,7 @@ struct Reporter {
 };
 
 //! One parameter of "Surface diffusion N steps", as the dialog and .mlx scripts show it. The list
-//! is derived from the run parameters' schema (sdflow/flow/parameter_schema.h): each is one key of
+//! is derived from the run parameters' schema (sdflow/run/parameter_schema.h): each is one key of
 //! a scenario and one flag of `sdflow run`.
 struct DialogParameter {
   //! `text` is a line of text: a formula, or numbers separated by commas (a list of reals).

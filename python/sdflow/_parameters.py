@@ -1,6 +1,6 @@
 """Keyword arguments → the scenario reader of the command line.
 
-A run's parameters have one reader, ``read_run_parameters`` (toolbox/sdflow/flow/parameters.h),
+A run's parameters have one reader, ``read_run_parameters`` (toolbox/sdflow/run/parameters.h),
 which ``sdflow run SCENARIO.toml`` and ``run.toml`` go through. Keyword arguments are written as
 such a TOML file and read by it, so that their names, defaults, ranges and error messages are
 exactly the scenario keys' (``beta``, ``curvature``, ``t_end``, ``adaptive={...}``,

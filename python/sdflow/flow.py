@@ -152,7 +152,7 @@ class Flow:
 
     ``Flow(V, F, **parameters)``: V (n×3 reals), F (m×3 integers), validated and oriented as a mesh
     file is when read (`findings` has what was found). Parameters are the scenario keys of
-    `sdflow run` (toolbox/sdflow/flow/parameters.h) with their defaults, names, checks and
+    `sdflow run` (toolbox/sdflow/run/parameters.h) with their defaults, names, checks and
     messages: ``beta``, ``curvature``, ``mass``, ``tau``, ``time_step``, ``extrapolate``,
     ``conserve_volume``, ``boundary``, ``steps``, ``t_end``, ``adaptive={...}``,
     ``retriangulation={...}``, ``preset``, ... Re-triangulation is **on** by default
@@ -386,10 +386,10 @@ def run(V=None, F=None, *, scenario=None, progress=False, callback=None, force=F
         raise _sdflow.InvalidParameter("F is missing: give V and F")
     if not p.out:
         raise _sdflow.InvalidParameter("no run directory: give out=DIR or `out` in the scenario file")
-    _sdflow.validate_run_parameters(p)
+    checked = _sdflow.validate_run_parameters(p)  # once, before the input is read
     on_step, bar = _run_callback(progress, callback, p)
     try:
-        d = _sdflow.run_simulation(V, F, p, on_step, force)
+        d = _sdflow.run_simulation(V, F, checked, on_step, force)
     finally:
         bar.close()
     return _result(d, p.out)
@@ -407,10 +407,10 @@ def resume(out, *, steps=None, t_end=None, snapshot_every=None, checkpoint_every
     p = _sdflow.read_parameters([toml])
     _sdflow.set_output_dir(p, os.fspath(out))
     _sdflow.set_limits(p, steps, t_end, snapshot_every, checkpoint_every)
-    _sdflow.validate_run_parameters(p)
+    checked = _sdflow.validate_run_parameters(p)
     on_step, bar = _run_callback(progress, callback, p)
     try:
-        d = _sdflow.resume_simulation(p, on_step, force)
+        d = _sdflow.resume_simulation(checked, on_step, force)
     finally:
         bar.close()
     return _result(d, os.fspath(out))

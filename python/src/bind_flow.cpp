@@ -1,4 +1,4 @@
-//! The flow: parameters read by the scenario reader (flow/parameters.h), the flow in memory
+//! The flow: parameters read by the scenario reader (run/parameters.h), the flow in memory
 //! (SurfaceDiffusion, flow/surface_diffusion.h) and runs recorded in a run directory
 //! (run_simulation / resume_simulation, run/simulation.h), with the GIL released while they work.
 
@@ -107,13 +107,14 @@ py::tuple step_tuple(const StepRecord& r, const std::vector<FlowNote>& notes)
 class FlowCore {
 public:
   FlowCore(const py::handle& V, const py::handle& F, RunParameters parameters, bool force)
-      : limits_(run_input_limits(FrontEnd::python, force))
+      : limits_(run_input_limits(FrontEnd::python, force)), run_(parameters)
   {
     BuiltMesh built = built_from_arrays(V, F);
     findings_ = std::move(built.findings);
     ToolboxLock lock;
+    const CheckedFlowOptions checked(parameters); // once, before the input checks that read it
     check_run_input(built.mesh, parameters, surface_source, FrontEnd::python, limits_);
-    flow_ = std::make_unique<SurfaceDiffusion>(built.mesh, std::move(parameters));
+    flow_ = std::make_unique<SurfaceDiffusion>(built.mesh, checked);
   }
 
   py::tuple step()
@@ -140,28 +141,30 @@ public:
   //! run does with a new --t-end), so that the last step lands on the new end time.
   void set_limits(long steps, double end_time)
   {
-    const RunParameters& current = flow_->parameters();
+    const FlowOptions& current = flow_->options();
     if (current.steps == steps && current.end_time == end_time)
       return;
     Busy busy(busy_);
-    RunParameters p = current;
+    FlowOptions p = current;
     p.steps = steps;
     p.end_time = end_time;
     ToolboxLock lock;
-    validate_flow_parameters(p);
+    const CheckedFlowOptions checked(p);
     check_end_time(flow_->mesh(), p.end_time, p.time_step.mode == TimeStepMode::constant ? p.time_step.tau : 0.0,
                    limits_, run_input_terms(FrontEnd::python));
     const FlowState state = flow_->state();
     rejected_before_ += flow_->rejected_trials();
     factorisations_before_ += flow_->factorisations();
     std::vector<FlowNote> notes = flow_->take_notes();
-    flow_ = std::make_unique<SurfaceDiffusion>(state, std::move(p));
+    flow_ = std::make_unique<SurfaceDiffusion>(state, checked);
     pending_notes_.insert(pending_notes_.end(), notes.begin(), notes.end());
   }
 
   py::list failure_notes() { return note_lines(std::exchange(pending_notes_, {})); }
 
   const SurfaceDiffusion& flow() const { return *flow_; }
+  //! The run's parameters with the flow's options as resolved (ℓ and the refinement fixed).
+  RunParameters parameters() const { return with_flow_options(run_, flow_->options()); }
   double last_tau() const { return last_tau_; }
   const std::string& last_event() const { return last_event_; }
   const std::vector<Finding>& findings() const { return findings_; }
@@ -181,6 +184,7 @@ private:
   };
 
   SizeLimits limits_;
+  RunParameters run_; // as given; the flow's options as resolved are the flow's
   std::unique_ptr<SurfaceDiffusion> flow_;
   std::vector<Finding> findings_;
   std::vector<FlowNote> pending_notes_;
@@ -196,9 +200,9 @@ struct RunCallbacks {
   std::optional<py::error_already_set> pending;
   bool stop = false;
 
-  SimulationOptions options(RunParameters p)
+  SimulationOptions options(const CheckedRunParameters& p)
   {
-    SimulationOptions o{.parameters = std::move(p)};
+    SimulationOptions o{.parameters = p};
     o.progress = [this](const StepRecord& r) {
       py::gil_scoped_acquire acquire;
       if (progress.is_none() || stop)
@@ -259,7 +263,7 @@ py::dict result_dict(const SimulationResult& r)
 
 void bind_flow(py::module_& m)
 {
-  py::class_<RunParameters>(m, "RunParameters", "Every parameter of a run, as read from TOML (flow/parameters.h).")
+  py::class_<RunParameters>(m, "RunParameters", "Every parameter of a run, as read from TOML (run/parameters.h).")
       .def("toml", &run_parameters_toml, "The fully resolved parameters as TOML, as run.toml holds them.")
       .def_property_readonly("steps", [](const RunParameters& p) { return p.steps; })
       .def_property_readonly("t_end", [](const RunParameters& p) { return p.end_time; })
@@ -277,7 +281,6 @@ void bind_flow(py::module_& m)
         return p;
       },
       py::arg("files"), "RunParameters from TOML files read in order, each overriding the keys it has.");
-  m.def("validate_flow_parameters", &validate_flow_parameters, py::arg("parameters"));
 
   py::class_<FlowCore>(m, "FlowCore")
       .def(py::init<const py::handle&, const py::handle&, RunParameters, bool>(), py::arg("V"), py::arg("F"),
@@ -289,9 +292,9 @@ void bind_flow(py::module_& m)
       .def_property_readonly("step_index", [](const FlowCore& c) { return c.flow().steps(); })
       .def_property_readonly("time", [](const FlowCore& c) { return c.flow().time(); })
       .def_property_readonly("tau", &FlowCore::last_tau)
-      .def_property_readonly("steps_limit", [](const FlowCore& c) { return c.flow().parameters().steps; })
-      .def_property_readonly("t_end", [](const FlowCore& c) { return c.flow().parameters().end_time; })
-      .def_property_readonly("parameters", [](const FlowCore& c) { return c.flow().parameters(); })
+      .def_property_readonly("steps_limit", [](const FlowCore& c) { return c.flow().options().steps; })
+      .def_property_readonly("t_end", [](const FlowCore& c) { return c.flow().options().end_time; })
+      .def_property_readonly("parameters", &FlowCore::parameters)
       .def_property_readonly("findings", [](const FlowCore& c) { return findings_to_python(c.findings()); })
       .def_property_readonly("rejected_trials", &FlowCore::rejected_trials)
       .def_property_readonly("factorisations", &FlowCore::factorisations)
@@ -316,7 +319,9 @@ void bind_flow(py::module_& m)
 
   m.def(
       "run_simulation",
-      [](const py::object& V, const py::object& F, RunParameters p, const py::object& progress, bool force) {
+      [](const py::object& V, const py::object& F, const CheckedRunParameters& checked, const py::object& progress,
+         bool force) {
+        const RunParameters& p = *checked;
         const SizeLimits limits = run_input_limits(FrontEnd::python, force);
         BuiltMesh built;
         if (V.is_none()) {
@@ -336,7 +341,7 @@ void bind_flow(py::module_& m)
         const std::filesystem::path dir = p.output_dir;
         SimulationResult result;
         {
-          const SimulationOptions options = callbacks.options(std::move(p));
+          const SimulationOptions options = callbacks.options(checked);
           ToolboxLock lock;
           result = run_simulation(built.mesh, options);
         }
@@ -347,14 +352,15 @@ void bind_flow(py::module_& m)
 
   m.def(
       "resume_simulation",
-      [](RunParameters p, const py::object& progress, bool force) {
+      [](const CheckedRunParameters& checked, const py::object& progress, bool force) {
+        const RunParameters& p = *checked;
         const SizeLimits limits = run_input_limits(FrontEnd::python, force);
         check_count(p.steps, limits.max_steps, "steps", limits);
         RunCallbacks callbacks{.progress = progress};
         const std::filesystem::path dir = p.output_dir;
         SimulationResult result;
         {
-          const SimulationOptions options = callbacks.options(std::move(p));
+          const SimulationOptions options = callbacks.options(checked);
           ToolboxLock lock;
           result = resume_simulation(options);
         }
@@ -363,7 +369,11 @@ void bind_flow(py::module_& m)
       },
       py::arg("parameters"), py::arg("progress"), py::arg("force"));
 
-  m.def("validate_run_parameters", &validate_run_parameters, py::arg("parameters"));
+  py::class_<CheckedRunParameters>(m, "CheckedRunParameters",
+                                   "RunParameters that validate_run_parameters accepted (run/parameters.h).");
+  m.def(
+      "validate_run_parameters", [](const RunParameters& p) { return CheckedRunParameters(p); },
+      py::arg("parameters"), "The parameters checked once, for run_simulation or resume_simulation.");
   m.def(
       "set_output_dir", [](RunParameters& p, const std::filesystem::path& dir) { p.output_dir = dir; },
       py::arg("parameters"), py::arg("dir"));

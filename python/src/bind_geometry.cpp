@@ -6,8 +6,8 @@
 #include "bindings.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/flow/parameters.h"
 #include "sdflow/flow/scheme.h"
+#include "sdflow/flow/scheme_names.h"
 #include "sdflow/geometry/curvature.h"
 #include "sdflow/geometry/laplacian.h"
 #include "sdflow/geometry/measures.h"

@@ -1,9 +1,9 @@
 //! `sdflow run` and `sdflow plot` end to end: a run and its figures, exit codes, and a run killed
 //! with SIGKILL that leaves complete files and resumes to the uninterrupted result bit for bit.
 #include "io/temp_dir.h"
-#include "sdflow/flow/parameter_schema.h"
 #include "sdflow/io/io.h"
 #include "sdflow/run/checkpoint.h"
+#include "sdflow/run/parameter_schema.h"
 #include "sdflow/run/simulation.h"
 #include "support/analytic_meshes.h"
 #include "support/json_query.h"

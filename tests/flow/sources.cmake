@@ -7,11 +7,8 @@ target_sources(sdflow_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/test_exact_kinetics.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_isotropic_energy.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_look_ahead.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/test_parameter_schema.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/test_parameters.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_refinement.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_retriangulation.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/test_samples.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_scheme.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_scheme_parts.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_step_event.cpp

@@ -32,9 +32,9 @@ Eigen::Vector3d fitted_semi_axes(const Mesh& mesh)
   return inverse_squares.cwiseInverse().cwiseSqrt();
 }
 
-RunParameters wulff_run(const Eigen::Vector3d& g, double end_time)
+FlowOptions wulff_run(const Eigen::Vector3d& g, double end_time)
 {
-  RunParameters p;
+  FlowOptions p;
   p.end_time = end_time;
   p.retriangulation.enabled = false;
   p.conserve_volume = true;
@@ -75,7 +75,7 @@ TEST(AnisotropicFlow, a_sphere_relaxes_to_its_wulff_ellipsoid_with_energy_decrea
   EXPECT_NEAR(axes[1] / a, 1, 0.02);
   EXPECT_NEAR(axes[2] / (2 * a), 1, 0.02);
 
-  RunParameters isotropic = wulff_run({1, 1, 4}, 1.0);
+  FlowOptions isotropic = wulff_run({1, 1, 4}, 1.0);
   isotropic.scheme.energy = {};
   SurfaceDiffusion round(sphere, isotropic);
   while (!round.finished())

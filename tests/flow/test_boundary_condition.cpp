@@ -128,7 +128,7 @@ TEST(FixedBoundary, flat_disk_does_not_move_for_any_tau)
 //! |V(T) − V(0)| / V(0) of the material volume after `steps` steps of τ = T / steps.
 double volume_error(const Mesh& start, double end_time, int steps, BoundaryCondition boundary)
 {
-  RunParameters p;
+  FlowOptions p;
   p.retriangulation.enabled = false;
   p.steps = steps;
   p.time_step.mode = TimeStepMode::constant;
@@ -169,7 +169,7 @@ TEST(FixedBoundary, bump_conserves_its_material_volume_to_first_order_in_tau)
 TEST(FixedBoundary, rim_stays_bit_identical_across_steps_and_retriangulations)
 {
   const Mesh start = bump(10, 0.4);
-  RunParameters p;
+  FlowOptions p;
   p.steps = 12;
   p.time_step.mode = TimeStepMode::constant;
   p.time_step.tau = 2e-5;

@@ -1,4 +1,4 @@
-//! The next step's first trial taken beside the look at the surface (RunParameters::look_ahead,
+//! The next step's first trial taken beside the look at the surface (FlowOptions::look_ahead,
 //! surface_diffusion.h): a flow that looks ahead takes the steps, notes and checkpoints of one that
 //! does not, bit for bit, through remeshings, rejections and a pinch-off.
 #include "io/temp_dir.h"
@@ -14,9 +14,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-RunParameters dumbbell_run(bool look_ahead)
+FlowOptions dumbbell_run(bool look_ahead)
 {
-  RunParameters p;
+  FlowOptions p;
   p.end_time = 1.0;
   p.look_ahead = look_ahead;
   // Aiming at the displacement bound itself, τ often overshoots it: rejected trials in most stretches.
@@ -88,7 +88,7 @@ TEST(LookAhead, is_off_with_a_hook_of_the_callers)
   // A caller's hook may change the mesh in place while a trial would read it.
   const Mesh start =
       mesh_implicit_surface(dumbbell_shape({.radius = 3, .separation = 9}), {.edge_length = 0.5}).mesh;
-  RunParameters p = dumbbell_run(true);
+  FlowOptions p = dumbbell_run(true);
   p.steps = 3;
   int calls = 0;
   SurfaceDiffusion flow(start, p, [&](Mesh&, const RetriangulationContext&) {

@@ -4,6 +4,7 @@
 #include "sdflow/flow/refinement.h"
 #include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/geometry/measures.h"
+#include "sdflow/run/parameters.h"
 #include "support/analytic_meshes.h"
 
 #include <fmt/format.h>
@@ -68,12 +69,12 @@ TEST(Refinement, a_flow_fixes_it_once_from_its_initial_surface_and_the_paper_pre
   p.retriangulation.enabled = true;
   const SurfaceDiffusion automatic(sphere, p);
   const double expected = 2.0 / (kReferenceEdgesPerRadius * mean_edge_length(sphere));
-  EXPECT_NEAR(automatic.parameters().refinement, expected, kRadiusTolerance * expected);
-  EXPECT_GT(automatic.parameters().refinement, 1.3);
+  EXPECT_NEAR(automatic.options().refinement, expected, kRadiusTolerance * expected);
+  EXPECT_GT(automatic.options().refinement, 1.3);
   p.refinement = 2.5;
-  EXPECT_EQ(SurfaceDiffusion(sphere, p).parameters().refinement, 2.5) << "a given s is kept";
+  EXPECT_EQ(SurfaceDiffusion(sphere, p).options().refinement, 2.5) << "a given s is kept";
   apply_preset("paper", p);
-  EXPECT_EQ(SurfaceDiffusion(sphere, p).parameters().refinement, 1);
+  EXPECT_EQ(SurfaceDiffusion(sphere, p).options().refinement, 1);
   p.refinement = -1;
   EXPECT_THROW(SurfaceDiffusion(sphere, p), InvalidParameter);
 }
@@ -85,11 +86,11 @@ TEST(Refinement, measures_the_remeshers_target_only_when_the_run_remeshes)
   p.steps = 1;
   p.retriangulation.pipeline.edge_length = 0.02; // five times finer than the mesh
   p.retriangulation.enabled = true;
-  const double remeshed = SurfaceDiffusion(sphere, p).parameters().refinement;
+  const double remeshed = SurfaceDiffusion(sphere, p).options().refinement;
   EXPECT_NEAR(remeshed, 2.0 / (kReferenceEdgesPerRadius * 0.02), kRadiusTolerance * remeshed);
   // Without re-triangulation the mesh keeps its own resolution: the unused target does not count.
   p.retriangulation.enabled = false;
-  const double own = SurfaceDiffusion(sphere, p).parameters().refinement;
+  const double own = SurfaceDiffusion(sphere, p).options().refinement;
   const double expected = 2.0 / (kReferenceEdgesPerRadius * mean_edge_length(sphere));
   EXPECT_NEAR(own, expected, kRadiusTolerance * expected);
 }

@@ -35,7 +35,7 @@ Mesh noisy_sphere(int level, double amplitude)
 Mesh evolve(const Mesh& mesh, double tau, int steps, const SchemeOptions& scheme = {},
             const SolverOptions& solver_options = {})
 {
-  RunParameters p;
+  FlowOptions p;
   p.retriangulation.enabled = false;
   p.steps = steps;
   p.time_step.mode = TimeStepMode::constant;

@@ -6,7 +6,7 @@
 #include "sdflow/flow/substrate_boundary.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/flow/parameters.h"
+#include "sdflow/flow/flow_options.h"
 #include "sdflow/flow/scheme.h"
 #include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/geometry/material_volume.h"
@@ -77,9 +77,9 @@ double substrate_energy(const Mesh& mesh, double young_degrees)
   return surface_area(mesh) - std::cos(radians(young_degrees)) * base_of(mesh).area;
 }
 
-RunParameters substrate_run(double young_degrees, double mobility)
+FlowOptions substrate_run(double young_degrees, double mobility)
 {
-  RunParameters p;
+  FlowOptions p;
   p.scheme.boundary = BoundaryCondition::substrate;
   p.scheme.substrate = {.z = 0, .contact_angle = young_degrees, .mobility = mobility};
   p.retriangulation.enabled = false;
@@ -96,9 +96,9 @@ TEST(SubstrateBoundary, refuses_bad_parameters_naming_the_key)
     } catch (const InvalidParameter& e) {
       EXPECT_NE(std::string(e.what()).find("substrate.contact_angle"), std::string::npos) << e.what();
     }
-    RunParameters p = substrate_run(angle, 1);
+    FlowOptions p = substrate_run(angle, 1);
     p.steps = 1;
-    EXPECT_THROW(validate_flow_parameters(p), InvalidParameter);
+    EXPECT_THROW(validate_flow_options(p), InvalidParameter);
   }
   for (const double mobility : {0.0, -1.0, std::nan("")}) {
     SCOPED_TRACE(mobility);
@@ -139,7 +139,7 @@ TEST(SubstrateBoundary, refuses_a_surface_whose_rim_is_off_the_plane_or_that_lie
   f.col(1).swap(f.col(2));
   EXPECT_NE(message(make_mesh(x, f), 0).find("out of the film"), std::string::npos);
   EXPECT_THROW(SurfaceDiffusion(cap, [] {
-                 RunParameters q = substrate_run(60, 1);
+                 FlowOptions q = substrate_run(60, 1);
                  q.scheme.substrate.z = 0.01;
                  q.steps = 1;
                  return q;
@@ -205,7 +205,7 @@ struct Relaxation {
 };
 Relaxation relax(int rings, double young, double end_time, bool conserve)
 {
-  RunParameters p = substrate_run(young, 10);
+  FlowOptions p = substrate_run(young, 10);
   p.end_time = end_time;
   p.conserve_volume = conserve;
   SurfaceDiffusion flow(analytic::spherical_cap(rings, 1, 90), p);
@@ -276,7 +276,7 @@ TEST(SubstrateBoundary, a_hemisphere_relaxes_to_the_cap_of_its_volume_and_youngs
 //! from a hemisphere spreading toward θ_Y = 60°, without the restoration.
 double substrate_volume_error(double end_time, int steps)
 {
-  RunParameters p = substrate_run(60, 10);
+  FlowOptions p = substrate_run(60, 10);
   p.steps = steps;
   p.time_step.mode = TimeStepMode::constant;
   p.time_step.tau = end_time / steps;
@@ -313,7 +313,7 @@ TEST(SubstrateBoundary, an_anisotropic_island_relaxes_to_its_winterbottom_shape)
   const double exact_ratio = (2 - sigma) / std::sqrt(1 - sigma * sigma / 4);
   std::vector<double> errors;
   for (const int rings : {6, 12}) {
-    RunParameters p = substrate_run(60, 10);
+    FlowOptions p = substrate_run(60, 10);
     p.scheme.energy = {.kind = SurfaceEnergyKind::ellipsoidal, .g = {1, 1, 4}};
     p.end_time = kRelaxationTime;
     p.conserve_volume = true;

@@ -7,7 +7,7 @@
 #include "sdflow/flow/substrate_topology.h"
 
 #include "sdflow/flow/fixed_boundary.h"
-#include "sdflow/flow/parameters.h"
+#include "sdflow/flow/flow_options.h"
 #include "sdflow/flow/step_event.h"
 #include "sdflow/flow/substrate_boundary.h"
 #include "sdflow/flow/substrate_topology_hook.h"
@@ -229,7 +229,7 @@ TEST(SubstrateTopology, a_flow_logs_the_touchdown_as_an_event_with_its_numbers)
 {
   for (const BoundaryCondition boundary : {BoundaryCondition::substrate, BoundaryCondition::fixed}) {
     SCOPED_TRACE(boundary_condition_name(boundary));
-    RunParameters p;
+    FlowOptions p;
     p.scheme.boundary = boundary;
     p.scheme.substrate = {.z = 0, .contact_angle = 90, .mobility = 10};
     p.conserve_volume = true;
@@ -247,7 +247,7 @@ TEST(SubstrateTopology, a_flow_logs_the_touchdown_as_an_event_with_its_numbers)
         ASSERT_TRUE(e.retriangulation.has_value());
         EXPECT_EQ(e.retriangulation->before.boundary_loops, 1);
         EXPECT_EQ(e.retriangulation->after.boundary_loops, 2);
-        EXPECT_LT(e.retriangulation->crossing_size, flow.parameters().retriangulation.pipeline.edge_length);
+        EXPECT_LT(e.retriangulation->crossing_size, flow.options().retriangulation.pipeline.edge_length);
         EXPECT_NE(e.detail.find("boundary loops 1 → 2"), std::string::npos) << e.detail;
       }
     EXPECT_NEAR(material_volume(flow.mesh()) / volume, 1, 1e-8);

@@ -85,7 +85,7 @@ TEST(SurfaceDiffusion, a_dumbbell_pinches_off_in_memory_exactly_as_its_recorded_
   EXPECT_GT(m.crossing_pairs, 0);
   EXPECT_TRUE(std::isfinite(m.crossing_size));
   EXPECT_GE(m.crossing_size, 0.0);
-  EXPECT_LT(m.crossing_size, flow.parameters().retriangulation.pipeline.edge_length);
+  EXPECT_LT(m.crossing_size, flow.options().retriangulation.pipeline.edge_length);
   EXPECT_EQ(m.faces_before, faces_before_last);
   EXPECT_EQ(m.faces_after, static_cast<long>(flow.mesh().n_faces()));
   EXPECT_GT(m.faces_rebuilt, 0);
@@ -180,7 +180,7 @@ TEST(SurfaceDiffusion, start_steps_damp_noise_keep_the_volume_and_free_the_pace)
     }
   }
   EXPECT_GE(start_steps, 1);
-  EXPECT_LE(start_steps, flow.parameters().time_step.adaptive.start_steps);
+  EXPECT_LE(start_steps, flow.options().time_step.adaptive.start_steps);
   // The start steps take most of the noise at the scale of the edges away (measured: 0.0189 to
   // 0.0056), and the pace is then freer: τ reached 2.8e-4 against 7.1e-5 without them.
   EXPECT_LT(roughness_after_start, 0.5 * edge_scale_roughness(start));
@@ -276,7 +276,7 @@ TEST(SurfaceDiffusion, a_restored_state_continues_bit_for_bit)
     while (!whole.finished())
       whole.step();
 
-    SurfaceDiffusion resumed(middle, whole.parameters());
+    SurfaceDiffusion resumed(middle, whole.options());
     EXPECT_EQ(resumed.steps(), 12);
     while (!resumed.finished())
       resumed.step();

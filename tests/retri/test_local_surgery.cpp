@@ -115,7 +115,7 @@ Mesh capsule(double ratio, double edge = 0.3)
 //! before `end_time`: the fixture the flow itself makes.
 Mesh first_crossing(const Mesh& start, double end_time)
 {
-  RunParameters p;
+  FlowOptions p;
   p.end_time = end_time;
   p.retriangulation.pipeline.edge_length = mean_edge_length(start);
   p.retriangulation.local_surgery = false; // the whole pipeline between steps, whatever the default
@@ -192,7 +192,7 @@ void expect_same_outcome_as_global(const Mesh& crossed, const RetriangulationOpt
 //! genus changes (empty when it does not before `end_time`).
 Mesh last_before_genus_change(const Mesh& start, double end_time)
 {
-  RunParameters p;
+  FlowOptions p;
   p.end_time = end_time;
   p.retriangulation.pipeline.edge_length = mean_edge_length(start);
   p.retriangulation.local_surgery = false;

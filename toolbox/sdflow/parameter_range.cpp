@@ -1,5 +1,7 @@
 #include "sdflow/parameter_range.h"
 
+#include "sdflow/errors.h"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -35,6 +37,13 @@ std::string ParameterRange::text() const
   if (has_max)
     return fmt::format("{} {}", max_open ? "<" : "≤", number_text(max));
   return "";
+}
+
+void check_in_range(const ParameterRange& range, double value, std::string_view name)
+{
+  if (!range.contains(value))
+    throw InvalidParameter(fmt::format("{} must be {}{}, got {}", name, std::isinf(value) ? "finite and " : "",
+                                       range.text(), value));
 }
 
 } // namespace sdflow

@@ -1,11 +1,12 @@
 #pragma once
 //! \file parameter_range.h
 //! \brief The allowed values of a numeric parameter, stated once where the option is defined and
-//! read by every check and every table that shows it: the run schema (flow/parameter_schema.h) and
+//! read by every check and every table that shows it: the run schema (run/parameter_schema.h) and
 //! the option checks of the stages it configures (retri/pipeline.h's RetriangulationRanges).
 
 #include <limits>
 #include <string>
+#include <string_view>
 
 namespace sdflow {
 
@@ -22,5 +23,9 @@ struct ParameterRange {
   //! "≥ 0", "> 0", "in [0, 60]", "in (0, 1]"; "" when any number is allowed.
   std::string text() const;
 };
+
+//! Throws InvalidParameter "NAME must be RANGE, got VALUE" (NAME: the scenario key) when `range`
+//! does not contain `value`.
+void check_in_range(const ParameterRange& range, double value, std::string_view name);
 
 } // namespace sdflow

@@ -13,7 +13,7 @@ namespace sdflow {
 struct UserTerms {
   //! A run parameter (by its scenario key, "retriangulation.edge_length") given `value`, as the
   //! user gives it: "--edge-length 0.1" (`value` empty: the name alone, "--edge-length"). The
-  //! default is the flag by the schema's naming rule (flow/parameter_schema.h, Names), which the
+  //! default is the flag by the schema's naming rule (run/parameter_schema.h, Names), which the
   //! verbs that are not `run` follow too.
   std::function<std::string(std::string_view key, std::string_view value)> setting = [](std::string_view key,
                                                                                       std::string_view value) {

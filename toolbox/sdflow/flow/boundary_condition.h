@@ -28,7 +28,7 @@ struct SubstrateOptions {
 };
 
 //! The allowed values of SubstrateOptions, stated here only: SubstrateBoundary checks them and the
-//! run schema's `substrate.*` entries take them (flow/schema_scheme.cpp).
+//! run schema's `substrate.*` entries take them (run/schema_scheme.cpp).
 struct SubstrateRanges {
   ParameterRange z{};                                                                      //!< finite
   ParameterRange contact_angle{.min = 0, .max = 180, .min_open = true, .max_open = true}; //!< degrees

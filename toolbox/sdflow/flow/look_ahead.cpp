@@ -11,7 +11,7 @@
 
 namespace sdflow {
 
-bool LookAhead::possible(const RunParameters& p, long vertices)
+bool LookAhead::possible(const FlowOptions& p, long vertices)
 {
   return p.look_ahead && p.retriangulation.pipeline.remesh_iterations > 0 &&
          tbb::this_task_arena::max_concurrency() > 1 && blas_threads_for(vertices, p.solver.blas) == 1;

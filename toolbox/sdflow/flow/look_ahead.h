@@ -1,11 +1,11 @@
 #pragma once
 //! \file look_ahead.h
 //! \brief The next step's first trial taken beside the hook's look at the surface, the two on two
-//! threads (RunParameters::look_ahead, docs/design.md §8): the trial is held for its step when the
+//! threads (FlowOptions::look_ahead, docs/design.md §8): the trial is held for its step when the
 //! look leaves the surface as it was, and dropped, its bookkeeping rewound, when the look
 //! re-triangulates.
 
-#include "sdflow/flow/parameters.h"
+#include "sdflow/flow/flow_options.h"
 #include "sdflow/flow/retriangulation.h"
 #include "sdflow/flow/scheme.h"
 #include "sdflow/flow/step_record.h"
@@ -53,10 +53,10 @@ public:
     std::exception_ptr failure; //!< what the look threw
   };
 
-  //! Whether the parameters let a trial run beside the look of a surface of `vertices`: asked for,
+  //! Whether the options let a trial run beside the look of a surface of `vertices`: asked for,
   //! remeshing on (every run of the pipeline then changes the surface), TBB has a second thread,
   //! and the factorisation would run on one (two would compete with the look).
-  static bool possible(const RunParameters& parameters, long vertices);
+  static bool possible(const FlowOptions& options, long vertices);
 
   //! `look` at a copy of `surface` on one thread while `trial` runs on the other. A trial reads
   //! only what a look that leaves the surface alone leaves unchanged, so the one taken then is the

@@ -6,6 +6,7 @@
 
 #include "sdflow/geometry/topology.h"
 #include "sdflow/mesh.h"
+#include "sdflow/parameter_range.h"
 #include "sdflow/retri/pipeline.h"
 
 #include <functional>
@@ -54,6 +55,17 @@ struct RetriangulationSchedule {
   //! mean edge length, so that it stays the same for the whole run and its resumption.
   RetriangulationOptions pipeline;
 };
+
+//! The allowed values of a RetriangulationSchedule's numbers, stated here only: the flow's check
+//! (validate_flow_options, flow_options.h) reads them and the run schema's `retriangulation.*`
+//! entries take them (run/schema_retriangulation.cpp).
+struct RetriangulationScheduleRanges {
+  ParameterRange every{.min = 1};
+  ParameterRange min_angle{.min = 0, .max = 60, .max_open = true};  //!< degrees
+  ParameterRange edge_ratio{.min = 1, .min_open = true};
+  ParameterRange degraded_fraction{.min = 0, .max = 1, .max_open = true};
+};
+inline constexpr RetriangulationScheduleRanges retriangulation_schedule_ranges{};
 
 //! Where a re-triangulation hook is called: after step `step` reached `time`.
 struct RetriangulationContext {
@@ -142,9 +154,9 @@ struct RetriangulationReport {
 //! be deterministic for resumed runs to match uninterrupted ones.
 using RetriangulationHook = std::function<RetriangulationReport(Mesh&, const RetriangulationContext&)>;
 
-//! The hook a flow makes from its schedule (SurfaceDiffusion, surface_diffusion.h). The schedule's
-//! ranges are the run schema's, checked with the run's other parameters (validate_flow_parameters);
-//! `schedule.pipeline.edge_length` must be resolved (> 0). Deterministic: its only state is a cache of the self-intersection search
+//! The hook a flow makes from its schedule (SurfaceDiffusion, surface_diffusion.h). The schedule is
+//! checked with the flow's other options (validate_flow_options, against
+//! retriangulation_schedule_ranges); `schedule.pipeline.edge_length` must be resolved (> 0). Deterministic: its only state is a cache of the self-intersection search
 //! (refitted between steps), and what it reports in RetriangulationReport::degraded_left comes back
 //! through the context (and the checkpoint), so a resumed run re-triangulates exactly as the original.
 RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& schedule);

@@ -13,6 +13,7 @@
 #include "sdflow/geometry/curvature.h"
 #include "sdflow/geometry/normals.h"
 #include "sdflow/mesh.h"
+#include "sdflow/parameter_range.h"
 #include "sdflow/solve/solver.h"
 
 #include <Eigen/Core>
@@ -50,6 +51,14 @@ struct SchemeOptions {
   //! computed); an anisotropic γ takes the weighted curvature of anisotropic_energy.h instead.
   SurfaceEnergyOptions energy;
 };
+
+//! The allowed values of SchemeOptions' numbers, stated here only: the flow's check
+//! (validate_flow_options, flow_options.h) reads them and the run schema's entries take them. The
+//! substrate's are substrate_ranges (boundary_condition.h).
+struct SchemeRanges {
+  ParameterRange beta{.min = 0}; //!< 0: explicit
+};
+inline constexpr SchemeRanges scheme_ranges{};
 
 //! The scheme's replaceable parts (docs/design.md §11): a new energy or boundary condition is a
 //! new implementation of one of these interfaces, not a branch in the step.

@@ -6,18 +6,14 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/degraded_elements.cpp
   sdflow/flow/fixed_boundary.cpp
   sdflow/flow/flow_hook.cpp
+  sdflow/flow/flow_options.cpp
   sdflow/flow/intersection_guard.cpp
   sdflow/flow/isotropic_energy.cpp
   sdflow/flow/look_ahead.cpp
-  sdflow/flow/parameter_schema.cpp
-  sdflow/flow/parameters.cpp
   sdflow/flow/refinement.cpp
   sdflow/flow/retriangulation.cpp
-  sdflow/flow/schema_retriangulation.cpp
-  sdflow/flow/schema_run.cpp
-  sdflow/flow/schema_scheme.cpp
-  sdflow/flow/schema_time_step.cpp
   sdflow/flow/scheme.cpp
+  sdflow/flow/scheme_names.cpp
   sdflow/flow/step_event.cpp
   sdflow/flow/step_record.cpp
   sdflow/flow/substrate_boundary.cpp

@@ -51,7 +51,7 @@ struct StepRecord {
   int rejections = 0;      //!< trials rejected before the accepted one
   int cg_iterations = 0;
   bool factorised = false;
-  //! Its first trial ran beside the last step's look at the surface (RunParameters::look_ahead):
+  //! Its first trial ran beside the last step's look at the surface (FlowOptions::look_ahead):
   //! its stage times then overlap that step's, and its `total` leaves them out.
   bool taken_ahead = false;
   //! A start step (time_step.h): τ_s taken on stability alone, the volumes restored after it.

@@ -31,12 +31,12 @@ Mesh canonical(const Mesh& mesh) { return make_mesh(vertex_positions(mesh), face
 //! Thrown between the trials of a step taken ahead once the look re-triangulates.
 struct TrialsCancelled {};
 
-//! The parameters with their refinement fixed (refinement.h): an automatic one from `surface` and
+//! The options with their refinement fixed (refinement.h): an automatic one from `surface` and
 //! the run's ℓ (the re-triangulation's target when it is on and given, else the surface's mean edge
 //! length: without re-triangulation the mesh keeps its own resolution).
-RunParameters with_refinement(RunParameters p, const Mesh& surface)
+FlowOptions with_refinement(FlowOptions p, const Mesh& surface)
 {
-  if (p.refinement != 0) // given (validated with the rest)
+  if (p.refinement != 0) // given (checked with the rest)
     return p;
   const double target = p.retriangulation.pipeline.edge_length;
   const double ell = p.retriangulation.enabled && target > 0 ? target : mean_edge_length(surface);
@@ -46,7 +46,7 @@ RunParameters with_refinement(RunParameters p, const Mesh& surface)
 }
 
 //! The time-step options the run's controller works with: the adaptive bound refined.
-TimeStepOptions refined_time_step(const RunParameters& p)
+TimeStepOptions refined_time_step(const FlowOptions& p)
 {
   TimeStepOptions options = p.time_step;
   options.adaptive = refined(options.adaptive, p.refinement);
@@ -65,10 +65,10 @@ double natural_largest_tau(const Mesh& mesh)
 
 } // namespace
 
-SurfaceDiffusion::SurfaceDiffusion(const Mesh& initial, RunParameters parameters, RetriangulationHook retriangulate)
-    : p_(with_refinement(std::move(parameters), initial)), trials_(refined_time_step(p_), p_.solver)
+SurfaceDiffusion::SurfaceDiffusion(const Mesh& initial, const CheckedFlowOptions& options,
+                                   RetriangulationHook retriangulate)
+    : p_(with_refinement(*options, initial)), trials_(refined_time_step(p_), p_.solver)
 {
-  validate_flow_parameters(p_);
   parts_ = scheme_parts(p_.scheme);
   surface_.mesh = canonical(initial);
   parts_.boundary->check_surface(surface_.mesh);
@@ -78,12 +78,11 @@ SurfaceDiffusion::SurfaceDiffusion(const Mesh& initial, RunParameters parameters
   op_ = flow_operators(surface_.mesh, p_.scheme, parts_, &*surface_.cache);
 }
 
-SurfaceDiffusion::SurfaceDiffusion(const FlowState& state, RunParameters parameters,
+SurfaceDiffusion::SurfaceDiffusion(const FlowState& state, const CheckedFlowOptions& options,
                                    RetriangulationHook retriangulate)
-    : p_(with_refinement(std::move(parameters), make_mesh(state.positions, state.triangles))),
+    : p_(with_refinement(*options, make_mesh(state.positions, state.triangles))),
       trials_(refined_time_step(p_), p_.solver, state.bookkeeping.controller)
 {
-  validate_flow_parameters(p_);
   parts_ = scheme_parts(p_.scheme);
   step_ = state.step;
   time_ = state.time;
@@ -455,7 +454,7 @@ FirstTrial SurfaceDiffusion::first_trial(long next_step, const std::atomic<bool>
   return f;
 }
 
-//! Whether the next step's first trial may run beside the look at the surface: when the parameters
+//! Whether the next step's first trial may run beside the look at the surface: when the options
 //! let it (LookAhead::possible), with the flow's own hook, which changes the surface only by
 //! re-triangulating it, when the hook looks after this step and a next step is due.
 bool SurfaceDiffusion::can_look_ahead() const

@@ -6,18 +6,18 @@
 //! and the MeshLab plugin and tests step it directly.
 //!
 //! ```cpp
-//! RunParameters p;                          // sdflow's defaults: adaptive τ, cotangent H,
-//! p.end_time = 0.5;                         // re-triangulation on
-//! SurfaceDiffusion flow(mesh, p);
+//! FlowOptions o;                            // sdflow's defaults: adaptive τ, cotangent H,
+//! o.end_time = 0.5;                         // re-triangulation on
+//! SurfaceDiffusion flow(mesh, o);
 //! while (!flow.finished())
 //!   flow.step();
 //! const Mesh& result = flow.mesh();
 //! ```
 
 #include "sdflow/flow/flow_hook.h"
+#include "sdflow/flow/flow_options.h"
 #include "sdflow/flow/flow_state.h"
 #include "sdflow/flow/look_ahead.h"
-#include "sdflow/flow/parameters.h"
 #include "sdflow/flow/retriangulation.h"
 #include "sdflow/flow/scheme.h"
 #include "sdflow/flow/step_record.h"
@@ -37,20 +37,21 @@ namespace sdflow {
 class SurfaceDiffusion {
 public:
   //! Start from `initial` (a valid mesh, closed components oriented outward). Without a hook, the
-  //! flow makes one from `parameters.retriangulation` when it is enabled (the default), fixing its ℓ
-  //! (0: the initial mean edge length) in parameters(); when it is off, it stops at the first step
-  //! that makes the surface intersect itself (intersection_guard.h). Throws InvalidParameter on parameters out of range
-  //! (validate_flow_parameters; a stop condition is not needed), InvalidMesh on a mesh the scheme
-  //! cannot use.
-  SurfaceDiffusion(const Mesh& initial, RunParameters parameters, RetriangulationHook retriangulate = {});
+  //! flow makes one from `options.retriangulation` when it is enabled (the default), fixing its ℓ
+  //! (0: the initial mean edge length) in options(); when it is off, it stops at the first step
+  //! that makes the surface intersect itself (intersection_guard.h). The options are checked once,
+  //! when a CheckedFlowOptions is made of them (validate_flow_options: InvalidParameter on options
+  //! out of range; a stop condition is not needed), here when FlowOptions are passed, before when
+  //! checked ones are. Throws InvalidMesh on a mesh the scheme cannot use.
+  SurfaceDiffusion(const Mesh& initial, const CheckedFlowOptions& options, RetriangulationHook retriangulate = {});
 
-  //! Continue from `state` exactly as the flow that saved it would have (same parameters, as
-  //! parameters() of that flow, and the same hook).
-  SurfaceDiffusion(const FlowState& state, RunParameters parameters, RetriangulationHook retriangulate = {});
+  //! Continue from `state` exactly as the flow that saved it would have (same options, as
+  //! options() of that flow, and the same hook).
+  SurfaceDiffusion(const FlowState& state, const CheckedFlowOptions& options, RetriangulationHook retriangulate = {});
 
   //! Take one accepted step: trials until the time-step rule accepts one (a step that no τ makes
   //! acceptable is retried once after a forced re-triangulation), then the re-triangulation hook,
-  //! beside the next step's first trial when the parameters look ahead (docs/design.md §10).
+  //! beside the next step's first trial when the options look ahead (docs/design.md §10).
   //! Never past `end_time`. Throws SolverFailure when the flow cannot go on stably, or, without
   //! re-triangulation, when the step makes the surface intersect itself (the surface is that of
   //! the last accepted step).
@@ -67,8 +68,8 @@ public:
   //! w of the last step (the normal velocity is −w), on the current vertices; 0 after a
   //! re-triangulation and at the start.
   const Eigen::VectorXd& velocity() const { return w_.last; }
-  //! The parameters as resolved (the re-triangulation's ℓ fixed).
-  const RunParameters& parameters() const { return p_; }
+  //! The options as resolved (the re-triangulation's ℓ and the refinement fixed).
+  const FlowOptions& options() const { return p_; }
   FlowMetrics metrics() const;
   FlowState state() const;
   //! Trial steps rejected, and numeric factorisations made, since construction (up to the last
@@ -134,7 +135,7 @@ private:
   void renew_connectivity();
   //! The topology of the surface's mesh: its components, which are closed, the total genus.
   void renew_topology();
-  //! hook_: the caller's `hook`, or the one of the parameters' schedule with its ℓ fixed now; without
+  //! hook_: the caller's `hook`, or the one of the options' schedule with its ℓ fixed now; without
   //! either, the guard that stops the flow at a self-intersection (intersection_guard.h).
   void prepare_retriangulation(RetriangulationHook hook, long tolerated_degraded);
   //! The hook's look at `mesh`, the flow's surface or a copy of it, after the last step (FlowHook::look).
@@ -150,7 +151,7 @@ private:
   //! A note published at once, or held in `held` (TrialContext::held_notes) when that is not null.
   void note(long step, double time, std::string text, bool warning = false, std::vector<FlowNote>* held = nullptr);
 
-  RunParameters p_;
+  FlowOptions p_;
   FlowHook hook_;        // what happens to the surface between steps
   TrialSolvers trials_;  // the controller and the solvers: what trials change besides the surface
   Surface surface_;

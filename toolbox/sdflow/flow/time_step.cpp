@@ -146,35 +146,43 @@ std::string StepCheck::describe() const
   return text;
 }
 
+void validate_time_step_options(const TimeStepOptions& o)
+{
+  const TimeStepRanges& r = time_step_ranges;
+  const AdaptiveOptions& a = o.adaptive;
+  check_in_range(r.tolerance, a.tolerance, "adaptive.tolerance");
+  switch (o.mode) {
+  case TimeStepMode::constant:
+    check_in_range(r.tau, o.tau, "tau");
+    return;
+  case TimeStepMode::schedule:
+    if (o.schedule.entries().empty())
+      throw InvalidParameter("τ schedule mode without a schedule");
+    check_in_range(r.schedule_retries, o.schedule_retries, "schedule_retries");
+    break; // a table step that fails is covered by adaptive steps
+  case TimeStepMode::adaptive:
+    break;
+  }
+  check_in_range(r.initial_tau, a.initial_tau, "adaptive.initial_tau");
+  check_in_range(r.max_displacement, a.max_displacement, "adaptive.max_displacement");
+  check_in_range(r.growth, a.growth, "adaptive.growth");
+  check_in_range(r.shrink, a.shrink, "adaptive.shrink");
+  check_in_range(r.safety, a.safety, "adaptive.safety");
+  check_in_range(r.max_volume_change, a.max_volume_change, "adaptive.max_volume_change");
+  check_in_range(r.min_tau, a.min_tau, "adaptive.min_tau");
+  check_in_range(r.max_tau, a.max_tau, "adaptive.max_tau");
+  check_in_range(r.max_rejections, a.max_rejections, "adaptive.max_rejections");
+  check_in_range(r.start_steps, a.start_steps, "adaptive.start_steps");
+  check_in_range(r.start_damping, a.start_damping, "adaptive.start_damping");
+  if (a.max_tau < a.min_tau)
+    throw InvalidParameter(fmt::format("adaptive.max_tau ({}) must be at least adaptive.min_tau ({})", a.max_tau,
+                                       a.min_tau));
+}
+
 TimeStepController::TimeStepController(const TimeStepOptions& options, TimeStepState state)
     : options_(options), state_(state)
 {
-  const AdaptiveOptions& a = options_.adaptive;
-  switch (options_.mode) {
-  case TimeStepMode::constant:
-    if (!(options_.tau > 0) || !std::isfinite(options_.tau))
-      throw InvalidParameter(fmt::format("constant τ must be positive and finite, got {}", options_.tau));
-    break;
-  case TimeStepMode::schedule:
-    if (options_.schedule.entries().empty())
-      throw InvalidParameter("τ schedule mode without a schedule");
-    if (options_.schedule_retries < 0 || options_.schedule_retries > 60)
-      throw InvalidParameter(fmt::format("schedule_retries must be in [0, 60], got {}", options_.schedule_retries));
-    [[fallthrough]]; // a table step that fails is covered by adaptive steps
-  case TimeStepMode::adaptive:
-    if (!(a.max_displacement > 0) || !(a.safety > 0 && a.safety <= 1) || !(a.growth >= 1) ||
-        !(a.shrink > 0 && a.shrink < 1) || !(a.max_volume_change > 0) || !(a.min_tau > 0) ||
-        !(a.max_tau >= a.min_tau) || a.max_rejections < 1 || !(a.initial_tau >= 0) ||
-        !(a.tolerance >= 0 && std::isfinite(a.tolerance)) || a.start_steps < 0 ||
-        !(a.start_damping > 0 && std::isfinite(a.start_damping)))
-      throw InvalidParameter(fmt::format(
-          "adaptive τ: need max_displacement > 0 ({}), 0 < safety ≤ 1 ({}), growth ≥ 1 ({}), 0 < shrink < 1 ({}), "
-          "max_volume_change > 0 ({}), 0 < min_tau ≤ max_tau ({}, {}), max_rejections ≥ 1 ({}), initial_tau ≥ 0 ({}), "
-          "tolerance ≥ 0 ({}), start_steps ≥ 0 ({}), start_damping > 0 ({})",
-          a.max_displacement, a.safety, a.growth, a.shrink, a.max_volume_change, a.min_tau, a.max_tau,
-          a.max_rejections, a.initial_tau, a.tolerance, a.start_steps, a.start_damping));
-    break;
-  }
+  validate_time_step_options(options_);
 }
 
 double TimeStepController::propose(long step, double automatic_tau, double time_left)

@@ -51,6 +51,7 @@
 
 #include "sdflow/errors.h"
 #include "sdflow/mesh.h"
+#include "sdflow/parameter_range.h"
 
 #include <Eigen/Core>
 
@@ -116,6 +117,33 @@ struct TimeStepOptions {
   int schedule_retries = 0;        //!< halvings of a schedule's τ allowed for one step (0: stop at once)
   AdaptiveOptions adaptive;
 };
+
+//! The allowed values of TimeStepOptions, stated here only: validate_time_step_options (and so
+//! TimeStepController) checks them and the run schema's `tau`, `schedule_retries` and `adaptive.*`
+//! entries take them (run/schema_time_step.cpp).
+struct TimeStepRanges {
+  ParameterRange tau{.min = 0, .min_open = true};                                          //!< constant τ
+  ParameterRange schedule_retries{.min = 0, .max = 60};                                    //!< halvings
+  ParameterRange initial_tau{.min = 0};                                                    //!< 0: automatic
+  ParameterRange max_displacement{.min = 0, .min_open = true, .infinite_allowed = true};   //!< ∞: no bound
+  ParameterRange growth{.min = 1, .infinite_allowed = true};                               //!< ∞: no bound
+  ParameterRange shrink{.min = 0, .max = 1, .min_open = true, .max_open = true};
+  ParameterRange safety{.min = 0, .max = 1, .min_open = true};
+  ParameterRange max_volume_change{.min = 0, .min_open = true, .infinite_allowed = true};  //!< ∞: no bound
+  ParameterRange min_tau{.min = 0, .min_open = true};
+  ParameterRange max_tau{.min = 0, .min_open = true, .infinite_allowed = true};            //!< ∞: none
+  ParameterRange max_rejections{.min = 1};
+  ParameterRange start_steps{.min = 0};                                                    //!< 0: none
+  ParameterRange start_damping{.min = 0, .min_open = true};
+  ParameterRange tolerance{.min = 0};                                                      //!< 0: off
+};
+inline constexpr TimeStepRanges time_step_ranges{};
+
+//! Throws InvalidParameter, naming the scenario key, for options out of time_step_ranges or
+//! inconsistent: τ of the constant mode; the table and its retries of the schedule mode, whose
+//! failed steps adaptive steps cover; the adaptive rule's options in those two modes, with
+//! min_tau ≤ max_tau; the tolerance in every mode.
+void validate_time_step_options(const TimeStepOptions& options);
 
 //! A constant or tabled τ too large for the scheme: its step broke the volume bound, so it is no
 //! approximation of the flow. Neither a re-triangulation nor adaptive steps in its place change that.
@@ -227,6 +255,7 @@ struct TimeStepState {
 //! Decides τ for each trial and whether to accept it.
 class TimeStepController {
 public:
+  //! Throws InvalidParameter for options validate_time_step_options refuses.
   explicit TimeStepController(const TimeStepOptions& options, TimeStepState state = {});
 
   //! τ for the trial of step `step` (1-based); `automatic_tau` is used by the adaptive mode

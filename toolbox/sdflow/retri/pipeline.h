@@ -127,7 +127,7 @@ struct RetriangulationResult {
 };
 
 //! The allowed values of the options a caller sets, stated here only: validate_retriangulation_options
-//! checks them, and the run schema's [retriangulation] entries take them (flow/schema_retriangulation.cpp).
+//! checks them, and the run schema's [retriangulation] entries take them (run/schema_retriangulation.cpp).
 struct RetriangulationRanges {
   ParameterRange edge_length{.min = 0};                          //!< 0: automatic
   ParameterRange remesh_iterations{.min = 0};                    //!< 0: no remeshing

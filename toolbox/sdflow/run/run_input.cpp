@@ -1,11 +1,11 @@
 #include "sdflow/run/run_input.h"
 
 #include "sdflow/check/span.h"
-#include "sdflow/flow/parameter_schema.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/log.h"
 #include "sdflow/retri/input_checks.h"
 #include "sdflow/run/coarse_input.h"
+#include "sdflow/run/parameter_schema.h"
 #include "sdflow/run/resolution_check.h"
 
 #include <fmt/format.h>

@@ -6,9 +6,9 @@
 //! failing inside a step. The messages name the parameters in each front end's words, derived from
 //! the schema (parameter_schema.h).
 
-#include "sdflow/flow/parameters.h"
 #include "sdflow/limits.h"
 #include "sdflow/mesh.h"
+#include "sdflow/run/parameters.h"
 #include "sdflow/user_terms.h"
 
 #include <string_view>

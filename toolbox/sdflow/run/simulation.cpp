@@ -110,7 +110,7 @@ class RunRecorder {
 public:
   //! Take `dir` for a run (created if need be, locked): refused when it is not a directory, is in
   //! use, or (unless `resuming`) already holds a run.
-  RunRecorder(const RunParameters& parameters, bool resuming) : dir_(parameters.output_dir)
+  RunRecorder(const RunParameters& parameters, bool resuming) : run_(parameters), dir_(parameters.output_dir)
   {
     if (dir_.empty())
       throw InvalidParameter("no output directory given for the run");
@@ -147,7 +147,7 @@ public:
     snapshots_.clear();
     metrics_ = std::string(metrics_header) + '\n';
     timings_ = std::string(timings_header) + '\n';
-    write_atomically(dir_ / "run.toml", [&](std::ostream& out) { out << run_parameters_toml(flow.parameters()); });
+    write_atomically(dir_ / "run.toml", [&](std::ostream& out) { out << run_parameters_toml(with_flow_options(run_, flow.options())); });
     const FlowMetrics metrics = flow.metrics();
     log_event(flow, fmt::format("start: {} vertices, {} faces, {} components", metrics.vertices, metrics.faces,
                                 metrics.components));
@@ -164,7 +164,7 @@ public:
     timings_ = std::filesystem::exists(dir_ / "timings.csv") ? read_truncated(dir_ / "timings.csv", "", flow.steps(), true)
                                                               : std::string(timings_header) + '\n';
     events_ = read_truncated(dir_ / "events.log", "step ", flow.steps(), false);
-    write_atomically(dir_ / "run.toml", [&](std::ostream& out) { out << run_parameters_toml(flow.parameters()); });
+    write_atomically(dir_ / "run.toml", [&](std::ostream& out) { out << run_parameters_toml(with_flow_options(run_, flow.options())); });
     log_event(flow, fmt::format("resumed from the checkpoint at t = {}", flow.time()));
   }
 
@@ -174,16 +174,15 @@ public:
     Stopwatch watch;
     take_notes(flow);
     metrics_ += metrics_row(flow.steps(), flow.time(), step.tau, flow.metrics(), event_names(step.events));
-    const RunParameters& p = flow.parameters();
     const bool last = flow.finished();
-    if (last || (p.snapshot_every > 0 && flow.steps() % p.snapshot_every == 0))
+    if (last || (run_.snapshot_every > 0 && flow.steps() % run_.snapshot_every == 0))
       snapshot(flow);
     // The row's output time: the files written since the last row (that row's flush and
     // checkpoint, this step's metrics and snapshot), as a row is written before the files it is in.
     const double output = pending_output_ + watch.restart();
     timings_ += timings_row(flow.steps(), step.times, output);
     summary_.add(step.times, output);
-    if (last || flow.steps() % p.checkpoint_every == 0)
+    if (last || flow.steps() % run_.checkpoint_every == 0)
       save(flow);
     else if (Clock::now() - last_flush_ > flush_interval)
       flush();
@@ -278,6 +277,7 @@ private:
     events_ += line + '\n';
   }
 
+  RunParameters run_; // as given: its own fields, and the flow's options before the flow resolved them
   std::filesystem::path dir_;
   std::optional<RunLock> lock_;
   std::vector<SeriesEntry> snapshots_;
@@ -351,31 +351,28 @@ std::string timings_row(long step, const StepTimes& t, double output)
 
 SimulationResult run_simulation(const Mesh& initial, const SimulationOptions& options)
 {
-  // The flow checks its parameters (validate_flow_parameters) on construction, so it is made
-  // before the directory is taken: what is left to check here is the run's own stop condition.
-  validate_stop_condition(options.parameters);
-  SurfaceDiffusion flow(initial, options.parameters, options.retriangulate);
-  RunRecorder recorder(options.parameters, false);
+  // The parameters were checked when they were made (CheckedRunParameters). The flow is made
+  // before the directory is taken: a mesh it refuses leaves no run behind.
+  SurfaceDiffusion flow(initial, options.parameters.flow(), options.retriangulate);
+  RunRecorder recorder(*options.parameters, false);
   recorder.begin(flow);
   return run(flow, recorder, options);
 }
 
 SimulationResult resume_simulation(const SimulationOptions& options)
 {
-  // The flow checks the rest on construction, before any file is written (until then the
-  // recorder has only locked the directory and, for a run with no checkpoint, made its folders).
-  validate_stop_condition(options.parameters);
-  RunRecorder recorder(options.parameters, true);
+  // The parameters were checked when they were made (CheckedRunParameters).
+  RunRecorder recorder(*options.parameters, true);
   if (!recorder.has_checkpoint()) {
-    const Mesh initial = recorder.restart_surface(options.parameters);
-    SurfaceDiffusion flow(initial, options.parameters, options.retriangulate);
+    const Mesh initial = recorder.restart_surface(*options.parameters);
+    SurfaceDiffusion flow(initial, options.parameters.flow(), options.retriangulate);
     recorder.begin(flow);
     SimulationResult result = run(flow, recorder, options);
     result.restarted = true;
     return result;
   }
   const Checkpoint checkpoint = recorder.checkpoint();
-  SurfaceDiffusion flow(checkpoint, options.parameters, options.retriangulate);
+  SurfaceDiffusion flow(checkpoint, options.parameters.flow(), options.retriangulate);
   recorder.resume(flow, checkpoint);
   return run(flow, recorder, options);
 }

@@ -15,9 +15,9 @@
 //! checkpoint, at the end, and at most every two seconds otherwise, so a killed run leaves complete
 //! files that may lag the computation; `resume_simulation` truncates them to the checkpoint.
 
-#include "sdflow/flow/parameters.h"
 #include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/mesh.h"
+#include "sdflow/run/parameters.h"
 
 #include <functional>
 #include <string>
@@ -53,7 +53,9 @@ inline constexpr const char* timings_header =
 std::string timings_row(long step, const StepTimes& times, double output);
 
 struct SimulationOptions {
-  RunParameters parameters;
+  //! Checked where they are made (a front end, before it reads the input; `{.parameters = p}`
+  //! checks `p`), so the run checks nothing again.
+  CheckedRunParameters parameters;
   RetriangulationHook retriangulate;             //!< optional (else from the parameters' schedule)
   std::function<void(const StepRecord&)> progress; //!< optional, called after every accepted step
   //! Optional, asked before every step: when it answers true the run writes a checkpoint and
@@ -74,9 +76,9 @@ struct SimulationResult {
   std::vector<StepEvent> events;
 };
 
-//! Run the flow from `initial` into `options.parameters.output_dir`, which must not already hold a
+//! Run the flow from `initial` into `options.parameters->output_dir`, which must not already hold a
 //! run (metrics.csv or checkpoint.bin) nor be in use by another process (run_lock.h: the directory
-//! is locked while this runs). Throws InvalidParameter on bad parameters, a directory that is a
+//! is locked while this runs). Throws InvalidParameter on a directory that is a
 //! file or holds a run or is locked, InvalidMesh on a mesh the scheme cannot use, SolverFailure
 //! when the run becomes unstable (the files written so far stay complete), IoError when an output
 //! cannot be written (EnvironmentFailure when the disk is full).
@@ -84,7 +86,7 @@ struct SimulationResult {
 //! which refuses what the flow and its re-triangulation cannot take.
 SimulationResult run_simulation(const Mesh& initial, const SimulationOptions& options);
 
-//! Continue the run in `options.parameters.output_dir` from its checkpoint, exactly as if it had
+//! Continue the run in `options.parameters->output_dir` from its checkpoint, exactly as if it had
 //! not stopped (the parameters should be those of its run.toml; the step and time limits may be
 //! raised). A run stopped before its first checkpoint (killed in its first moments, or its first
 //! checkpoint hit a full disk) starts again at step 0 from its step-0 snapshot, or from its input

@@ -6,6 +6,7 @@
 //! (SuiteSparseQR, Davis 2011) on the non-symmetric form (I + τβΔ²) w = ΔH as a reference.
 
 #include "sdflow/geometry/laplacian.h"
+#include "sdflow/parameter_range.h"
 #include "sdflow/solve/blas_threads.h"
 
 #include <Eigen/Core>
@@ -58,6 +59,13 @@ struct SolverOptions {
   //! itself; beyond it the system is ordered afresh.
   double carried_fill_tolerance = 1.1;
 };
+
+//! The allowed values of the SolverOptions a run may set, stated here only: the flow's check
+//! (validate_flow_options, flow/flow_options.h) reads them and the run schema's entries take them.
+struct SolverRanges {
+  ParameterRange cg_tolerance{.min = 0, .min_open = true}; //!< with the reuse policy
+};
+inline constexpr SolverRanges solver_ranges{};
 
 //! What one solve did.
 struct SolveReport {

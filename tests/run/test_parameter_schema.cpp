@@ -1,9 +1,10 @@
 //! The schema of run parameters (parameter_schema.h): every entry round-trips through run.toml,
 //! has a flag and help, older names still read, errors name the key, README's table is the schema's.
 #include "sdflow/errors.h"
-#include "sdflow/flow/parameter_schema.h"
 #include "sdflow/flow/substrate_boundary.h"
 #include "sdflow/retri/pipeline.h"
+#include "sdflow/run/parameter_schema.h"
+#include "sdflow/run/parameters.h"
 #include "io/temp_dir.h"
 
 #include <gtest/gtest.h>
@@ -76,7 +77,7 @@ TEST(ParameterSchema, every_entry_round_trips_through_run_toml)
       continue;
     }
     EXPECT_NE(e.get(p), e.get(RunParameters{})) << "the test's value must differ from the default";
-    ASSERT_NO_THROW(validate_flow_parameters(p));
+    ASSERT_NO_THROW(validate_flow_options(p));
     test::write_file(dir / "run.toml", run_parameters_toml(p));
     RunParameters q;
     ASSERT_NO_THROW(read_run_parameters(dir / "run.toml", q)) << test::read_file(dir / "run.toml");
@@ -277,22 +278,42 @@ TEST(ParameterSchema, range_errors_name_the_file_line_and_key)
   }
 }
 
-//! The options whose range is stated beside them (retriangulation_ranges, substrate_ranges) and
-//! checked by their stage for its direct callers: that check and the schema's refuse the same values.
+//! Every range is stated beside its options and read by their own check (validate_flow_options,
+//! TimeStepController, validate_retriangulation_options, SubstrateBoundary, validate_run_parameters):
+//! that check and the schema's refuse the same values, at, just inside and just beyond each end, and
+//! non-finite ones.
 TEST(ParameterSchema, a_stages_own_check_refuses_exactly_what_the_schema_refuses)
 {
-  const std::set<std::string> pipeline{"retriangulation.edge_length",      "retriangulation.remesh_iterations",
-                                       "retriangulation.edges_per_radius", "retriangulation.min_edge_fraction",
-                                       "retriangulation.crease_angle",
-                                       "retriangulation.neighbours",       "retriangulation.max_hole_length",
-                                       "retriangulation.min_component_faces",
-                                       "retriangulation.min_component_thickness"};
-  const std::set<std::string> substrate{"substrate.z", "substrate.contact_angle", "substrate.mobility"};
-  int checked = 0;
+  const auto starts_with = [](const std::string& key, const char* prefix) { return key.rfind(prefix, 0) == 0; };
+  // The options as the entry's own check sees them: its mode in use, a stop condition given.
+  const auto prepared = [&](const ParameterEntry& e) {
+    RunParameters p;
+    p.end_time = e.key == "end_time" ? p.end_time : 1.0;
+    p.steps = e.key == "end_time" ? 1 : p.steps;
+    if (e.key == "tau")
+      p.time_step.mode = TimeStepMode::constant;
+    if (e.key == "schedule_retries") {
+      p.time_step.mode = TimeStepMode::schedule;
+      p.time_step.schedule = TauSchedule({{.first_step = 1, .last_step = 1, .tau = 0.1}});
+    }
+    return p;
+  };
+  const auto own_check = [&](const ParameterEntry& e, const RunParameters& p) {
+    if (starts_with(e.key, "substrate."))
+      SubstrateBoundary boundary(p.scheme.substrate);
+    else if (e.key == "tau" || e.key == "schedule_retries" || starts_with(e.key, "adaptive."))
+      TimeStepController controller(p.time_step);
+    else if (e.key == "snapshot_every" || e.key == "checkpoint_every")
+      validate_run_parameters(p);
+    else
+      validate_flow_options(p); // through validate_retriangulation_options, the pipeline's too
+  };
+  int checked = 0, keys = 0;
   for (const ParameterEntry& e : parameter_schema()) {
-    if (!pipeline.count(e.key) && !substrate.count(e.key))
+    if (e.type != ParameterType::integer && e.type != ParameterType::real)
       continue;
     SCOPED_TRACE(e.key);
+    ++keys;
     const bool integer = e.type == ParameterType::integer;
     std::vector<double> probes{std::nan(""), HUGE_VAL, -HUGE_VAL, -1, 0, 0.5, 1, 6, 90, 1e6};
     for (const double end : {e.range.min, e.range.max})
@@ -303,7 +324,7 @@ TEST(ParameterSchema, a_stages_own_check_refuses_exactly_what_the_schema_refuses
       if (integer && !(std::isfinite(x) && x == std::floor(x)))
         continue;
       SCOPED_TRACE(x);
-      RunParameters p;
+      RunParameters p = prepared(e);
       e.set(p, integer ? ParameterValue{static_cast<long>(x)} : ParameterValue{x});
       bool schema_refuses = false, stage_refuses = false;
       try {
@@ -312,10 +333,7 @@ TEST(ParameterSchema, a_stages_own_check_refuses_exactly_what_the_schema_refuses
         schema_refuses = true;
       }
       try {
-        if (pipeline.count(e.key))
-          validate_retriangulation_options(p.retriangulation.pipeline);
-        else
-          SubstrateBoundary boundary(p.scheme.substrate);
+        own_check(e, p);
       } catch (const InvalidParameter&) {
         stage_refuses = true;
       }
@@ -323,7 +341,8 @@ TEST(ParameterSchema, a_stages_own_check_refuses_exactly_what_the_schema_refuses
       ++checked;
     }
   }
-  EXPECT_GT(checked, 100);
+  EXPECT_GE(keys, 35);
+  EXPECT_GT(checked, 400);
 }
 
 TEST(ParameterSchema, unknown_keys_get_the_closest_known_one)

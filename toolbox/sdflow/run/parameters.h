@@ -16,59 +16,41 @@
 //! edge_length = 0.0            # ℓ; 0: the initial surface's mean edge length
 //! ```
 
-#include "sdflow/flow/retriangulation.h"
-#include "sdflow/flow/scheme.h"
-#include "sdflow/flow/time_step.h"
-#include "sdflow/solve/solver.h"
-
-#include <Eigen/Core>
+#include "sdflow/flow/flow_options.h"
+#include "sdflow/flow/scheme_names.h"
+#include "sdflow/parameter_range.h"
 
 #include <filesystem>
-#include <limits>
+#include <string>
 
 namespace sdflow {
 
-struct RunParameters {
+//! A recorded run's parameters: the flow's options (FlowOptions, which SurfaceDiffusion takes
+//! as they are) and what only the run uses, where it reads and writes.
+struct RunParameters : FlowOptions {
   std::filesystem::path input;       //!< the initial mesh
   //! Repair the input when validation refuses it for problems repair fixes (io/repair.h).
   bool repair = false;
   std::filesystem::path output_dir;  //!< the run directory
-  long steps = 0;                    //!< step limit, 0 for none
-  double end_time = std::numeric_limits<double>::infinity(); //!< time limit
-  //! Also stop after the first step whose re-triangulation changed the component count or the
-  //! genus (a pinch-off, a hole sealing, bodies fusing): for measuring event times.
-  bool stop_at_topology_change = false;
-  TimeStepOptions time_step;
-  SchemeOptions scheme;
-  SolverOptions solver;
-  bool conserve_volume = false;
-  //! Take the next step's first trial on a second core while the re-triangulation hook looks at the
-  //! surface, dropping it when the look re-triangulates (surface_diffusion.h): the same results,
-  //! sooner. Off: one after the other.
-  bool look_ahead = true;
   long snapshot_every = 10;          //!< 0: snapshots of the first and last surface only
   long checkpoint_every = 10;        //!< ≥ 1
-  Eigen::Vector3d reference_centre = Eigen::Vector3d::Zero();
-  double reference_radius = 1.0;
-  RetriangulationSchedule retriangulation;
-  //! s > 0, the refinement of the adapted sizing and the displacement bound (flow/refinement.h): the
-  //! run uses edges per radius × √s and max_displacement ÷ s; 0: automatic, from the initial
-  //! surface's typical radius of curvature and ℓ, fixed when the flow starts (written to run.toml).
-  double refinement = 0;
 };
 
-//! The names of the `curvature` key: "cotangent" (H = ½ N·ΔX, the default), "normal_integral"
-//! (eq. 9), "normal_integral_angle_sum" (eq. 9 divided by the angle sum).
-std::string curvature_name(const CurvatureOptions& options);
+//! `run` with its flow options replaced by `flow`, the options as a flow resolved them
+//! (SurfaceDiffusion::options: ℓ and the refinement fixed), for run.toml.
+inline RunParameters with_flow_options(RunParameters run, const FlowOptions& flow)
+{
+  static_cast<FlowOptions&>(run) = flow;
+  return run;
+}
 
-//! The options a `curvature` name stands for; throws InvalidParameter, listing the names, on another.
-CurvatureOptions curvature_options(const std::string& name);
-
-//! The names of the `mass` key: "voronoi" (eq. 10, the default) and "volume_gradient".
-std::string mass_name(VertexMass mass);
-
-//! The mass a `mass` name stands for; throws InvalidParameter, listing the names, on another.
-VertexMass vertex_mass(const std::string& name);
+//! The allowed values of a run's own numbers, stated here only: validate_run_parameters checks them
+//! and the run schema's entries take them (schema_run.cpp).
+struct RunRanges {
+  ParameterRange snapshot_every{.min = 0};   //!< 0: the first and last surface only
+  ParameterRange checkpoint_every{.min = 1};
+};
+inline constexpr RunRanges run_ranges{};
 
 //! The presets of the `preset` key and `--preset`: "paper" is the paper's scheme exactly (eq. 9 H,
 //! Voronoi areas, plain steps, no error control, uniform re-triangulation edge length, no volume
@@ -87,17 +69,32 @@ void apply_preset(const std::string& name, RunParameters& parameters);
 //! twice under two names, or a value of the wrong type or outside its range.
 void read_run_parameters(const std::filesystem::path& file, RunParameters& parameters);
 
-//! Check the range of every parameter in use (the schema's, parameter_schema.h, some taken from the
-//! option structs they configure: retriangulation_ranges, substrate_ranges) and their consistency (τ for the chosen mode, an error
-//! tolerance with extrapolated steps); throws InvalidParameter naming the key.
-void validate_flow_parameters(const RunParameters& parameters);
-
 //! A run's own rule, which the flow does not check: a stop condition (a number of steps or an end
 //! time); throws InvalidParameter.
 void validate_stop_condition(const RunParameters& parameters);
 
-//! validate_stop_condition and validate_flow_parameters: what a front end checks once, before it
-//! reads the input.
+//! RunParameters with a stop condition (validate_stop_condition), their own numbers in run_ranges,
+//! and their flow options checked (CheckedFlowOptions): the constructor is that check, made once on
+//! each path. A front end makes one before it reads the input, so that a bad parameter is reported
+//! before a bad file and before the input checks that read the parameters, and hands it to
+//! run_simulation or resume_simulation, which check nothing again.
+class CheckedRunParameters {
+public:
+  //! Throws InvalidParameter naming the key. Implicit, so that `{.parameters = p}` of a
+  //! SimulationOptions checks `p` there.
+  CheckedRunParameters(const RunParameters& parameters);
+  const RunParameters& operator*() const { return parameters_; }
+  const RunParameters* operator->() const { return &parameters_; }
+  //! The flow's options, checked with the rest.
+  const CheckedFlowOptions& flow() const { return flow_; }
+
+private:
+  RunParameters parameters_;
+  CheckedFlowOptions flow_;
+};
+
+//! The check of CheckedRunParameters, for a caller that keeps only the verdict (`sdflow run`'s
+//! scenario fuzzer, the samples' test): throws InvalidParameter naming the key.
 void validate_run_parameters(const RunParameters& parameters);
 
 //! The fully resolved parameters as TOML, under the canonical keys (the schedule inline, absolute

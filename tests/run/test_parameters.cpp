@@ -1,7 +1,7 @@
 //! Run parameters (parameters.h): scenario files, run.toml round trip, clear errors.
 #include "io/temp_dir.h"
 #include "sdflow/errors.h"
-#include "sdflow/flow/parameters.h"
+#include "sdflow/run/parameters.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
-#include "sdflow/flow/parameter_schema.h"
+#include "sdflow/run/parameter_schema.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/flow/detail/schema_sections.h"
+#include "sdflow/run/detail/schema_sections.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

@@ -1,7 +1,7 @@
-#include "sdflow/flow/parameters.h"
+#include "sdflow/run/parameters.h"
 
 #include "sdflow/errors.h"
-#include "sdflow/flow/parameter_schema.h"
+#include "sdflow/run/parameter_schema.h"
 #include "sdflow/version.h"
 
 #include <fmt/format.h>
@@ -200,39 +200,6 @@ std::vector<GivenKey> given_keys(const std::filesystem::path& file, const toml::
 
 } // namespace
 
-std::string curvature_name(const CurvatureOptions& options)
-{
-  if (options.method == CurvatureMethod::cotangent)
-    return "cotangent";
-  return options.normalisation == AngleNormalisation::angle_sum ? "normal_integral_angle_sum" : "normal_integral";
-}
-
-CurvatureOptions curvature_options(const std::string& name)
-{
-  if (name == "normal_integral")
-    return {};
-  if (name == "normal_integral_angle_sum")
-    return {.normalisation = AngleNormalisation::angle_sum};
-  if (name == "cotangent")
-    return {.method = CurvatureMethod::cotangent};
-  throw InvalidParameter(fmt::format("curvature must be \"normal_integral\", \"normal_integral_angle_sum\" or "
-                                     "\"cotangent\", got \"{}\"", name));
-}
-
-std::string mass_name(VertexMass mass)
-{
-  return mass == VertexMass::volume_gradient ? "volume_gradient" : "voronoi";
-}
-
-VertexMass vertex_mass(const std::string& name)
-{
-  if (name == "voronoi")
-    return VertexMass::voronoi;
-  if (name == "volume_gradient")
-    return VertexMass::volume_gradient;
-  throw InvalidParameter(fmt::format("mass must be \"voronoi\" or \"volume_gradient\", got \"{}\"", name));
-}
-
 void apply_preset(const std::string& name, RunParameters& p)
 {
   if (name != "paper" && name != "default")
@@ -284,30 +251,27 @@ void validate_stop_condition(const RunParameters& p)
     throw InvalidParameter("no stop condition: give a number of steps or an end time");
 }
 
-void validate_run_parameters(const RunParameters& p)
+namespace {
+
+//! What the flow does not check of `p`: its stop condition and its own numbers; returns `p`.
+const RunParameters& with_run_checks(const RunParameters& p)
 {
   validate_stop_condition(p);
-  validate_flow_parameters(p);
+  check_in_range(run_ranges.snapshot_every, static_cast<double>(p.snapshot_every), "snapshot_every");
+  check_in_range(run_ranges.checkpoint_every, static_cast<double>(p.checkpoint_every), "checkpoint_every");
+  return p;
 }
 
-void validate_flow_parameters(const RunParameters& p)
+} // namespace
+
+CheckedRunParameters::CheckedRunParameters(const RunParameters& parameters)
+    : parameters_(with_run_checks(parameters)), flow_(parameters)
 {
-  for (const ParameterEntry& e : parameter_schema())
-    if (!e.in_use || e.in_use(p))
-      check_range(e, e.get(p));
-  if (p.scheme.energy.kind != SurfaceEnergyKind::isotropic) {
-    make_anisotropy(p.scheme.energy); // energy.g's count and values for the kind, or a convex formula
-    if (p.scheme.curvature.method != CurvatureMethod::cotangent)
-      throw InvalidParameter(fmt::format("curvature = \"{}\" chooses how the isotropic energy's H is computed; "
-                                         "energy.kind = \"{}\" has a weighted curvature of its own: leave "
-                                         "curvature at \"cotangent\"",
-                                         curvature_name(p.scheme.curvature), surface_energy_name(p.scheme.energy.kind)));
-  }
-  TimeStepController check(p.time_step); // validates the time-step options together (min_tau ≤ max_tau...)
-  if (p.time_step.adaptive.tolerance > 0 && !p.scheme.extrapolate)
-    throw InvalidParameter(fmt::format("an error tolerance ({}) needs extrapolated steps (extrapolate = true): "
-                                       "they provide the error estimate",
-                                       p.time_step.adaptive.tolerance));
+}
+
+void validate_run_parameters(const RunParameters& parameters)
+{
+  (void)CheckedRunParameters(parameters);
 }
 
 std::string run_parameters_toml(const RunParameters& p)

@@ -4,13 +4,17 @@
 //! its MeshLab parameter, type, range, help, whether `--resume` may change it, and how to reach its
 //! field of RunParameters.
 //!
-//! Everything that names or checks a run parameter is derived from this table: the scenario and
-//! run.toml reader and the run.toml writer (parameters.cpp), the range checks of
-//! validate_flow_parameters, the flags of `sdflow run` and its `--resume` rules (cli/verb_run.cpp),
-//! the parameters of the MeshLab filter "Surface diffusion N steps" and their mapping onto a run
-//! (meshlab_plugin/toolbox_bridge.cpp), and README's table of scenario keys
-//! (`sdflow run --help-scenario`, checked by the test `ParameterSchema.readme_table_is_the_schemas`).
-//! A new run option is one field of RunParameters and one entry here.
+//! Everything that names a run parameter is derived from this table: the scenario and run.toml
+//! reader and the run.toml writer (parameters.cpp), the flags of `sdflow run` and its `--resume`
+//! rules (cli/verb_run.cpp), the parameters of the MeshLab filter "Surface diffusion N steps" and
+//! their mapping onto a run (meshlab_plugin/toolbox_bridge.cpp), and README's table of scenario
+//! keys (`sdflow run --help-scenario`, checked by the test `ParameterSchema.readme_table_is_the_schemas`).
+//! An entry's range is the one stated beside the option it sets (flow_ranges, time_step_ranges,
+//! retriangulation_ranges...), which the option's own check reads too (validate_flow_options,
+//! validate_run_parameters): the reader and the flags check a given value against it to name the
+//! file and line or the flag, the option's check is the one the flow and the run rely on.
+//! A new run option is one field of FlowOptions (or, if only a recorded run uses it, of
+//! RunParameters), its range beside it, and one entry here.
 //!
 //! **Names.** One name per concept. The scenario key is `name` (or `section.name` inside a table);
 //! the flag is `--name` with dashes, or `--section-name` where the name alone would not say what it
@@ -24,8 +28,8 @@
 //! scripts and .mlx files use them: `--retriangulate` (`retriangulation.enabled`), `--tolerance`
 //! (`adaptive.tolerance`), `--adaptive` (time_step = "adaptive") and MeshLab's `AutomaticTau`.
 
-#include "sdflow/flow/parameters.h"
 #include "sdflow/parameter_range.h"
+#include "sdflow/run/parameters.h"
 
 #include <Eigen/Core>
 

@@ -3,7 +3,7 @@
 //! (retri/pipeline.h) the surface is re-triangulated. The pipeline's ranges are its own
 //! (retriangulation_ranges), which its options check also reads.
 
-#include "sdflow/flow/detail/schema_sections.h"
+#include "sdflow/run/detail/schema_sections.h"
 
 #include "sdflow/retri/pipeline.h"
 
@@ -29,25 +29,25 @@ void add_retriangulation_entries(std::vector<ParameterEntry>& s)
   {
     auto& e = add(s, entry("retriangulation.every", "--retriangulate-every", ParameterType::integer,
                            "Look at the surface after every k-th step"));
-    e.range = at_least(1);
+    e.range = retriangulation_schedule_ranges.every;
     bind<long>(e, &RunParameters::retriangulation, &RS::every);
   }
   {
     auto& e = add(s, entry("retriangulation.min_angle", "--min-angle", ParameterType::real,
                            "Degraded: a triangle with an angle below this (degrees)"));
-    e.range = {.min = 0, .max = 60, .max_open = true};
+    e.range = retriangulation_schedule_ranges.min_angle;
     bind<double>(e, &RunParameters::retriangulation, &RS::min_angle_deg);
   }
   {
     auto& e = add(s, entry("retriangulation.edge_ratio", "--edge-ratio", ParameterType::real,
                            "Degraded: an edge longer than r·ℓ_v or shorter than ℓ_v/r of its local target ℓ_v"));
-    e.range = above(1);
+    e.range = retriangulation_schedule_ranges.edge_ratio;
     bind<double>(e, &RunParameters::retriangulation, &RS::edge_ratio);
   }
   {
     auto& e = add(s, entry("retriangulation.degraded_fraction", "--degraded-fraction", ParameterType::real,
                            "Re-triangulate when more than this fraction of the triangles is degraded (0: any one)"));
-    e.range = {.min = 0, .max = 1, .max_open = true};
+    e.range = retriangulation_schedule_ranges.degraded_fraction;
     bind<double>(e, &RunParameters::retriangulation, &RS::degraded_fraction);
   }
   {

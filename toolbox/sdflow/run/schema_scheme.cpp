@@ -2,7 +2,7 @@
 //! \brief The run schema's sections on the scheme (flow/scheme.h), its linear solver and the options
 //! of the flow: volume, refinement, look-ahead, boundary.
 
-#include "sdflow/flow/detail/schema_sections.h"
+#include "sdflow/run/detail/schema_sections.h"
 
 #include "sdflow/errors.h"
 #include "sdflow/flow/boundary_condition.h"
@@ -16,7 +16,7 @@ void add_scheme_entries(std::vector<ParameterEntry>& s)
 {
   {
     auto& e = add(s, entry("beta", "--beta", ParameterType::real, "Implicitness β of eq. (6): 0.5 the paper's, 0 explicit"));
-    e.range = at_least(0);
+    e.range = scheme_ranges.beta;
     e.meshlab = {.name = "Beta", .label = "Implicitness β",
                  .help = "Weight of the implicit part of the scheme (I + τβΔ²) w = ΔH: 0.5 is the paper's stable "
                          "choice, 0 the explicit scheme (which needs much smaller τ)."};
@@ -94,7 +94,7 @@ void add_scheme_entries(std::vector<ParameterEntry>& s)
   {
     auto& e = add(s, entry("cg_tolerance", "--cg-tolerance", ParameterType::real,
                            "Relative residual at which CG with a reused factor stops"));
-    e.range = above(0);
+    e.range = solver_ranges.cg_tolerance;
     bind<double>(e, &RunParameters::solver, &SolverOptions::cg_tolerance);
     e.in_use = [](const RunParameters& p) { return p.solver.policy == FactorisationPolicy::reuse; };
   }
@@ -119,7 +119,7 @@ void add_flow_option_entries(std::vector<ParameterEntry>& s)
                            "radius × √s, displacement bound ÷ s, so event times converge as ℓ shrinks (0: automatic, "
                            "max(1, R / (8 ℓ)) for the initial surface's typical radius of curvature R, written to "
                            "run.toml as a number; 1: the sizing and bound as given)"));
-    e.range = {.min = 0, .max = 1e6};
+    e.range = flow_ranges.refinement;
     bind<double>(e, &RunParameters::refinement);
     e.paper = 1.0;
   }

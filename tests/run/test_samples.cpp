@@ -1,6 +1,6 @@
 //! The paper's experiments in samples/: every scenario file reads and validates, and every
 //! schedule it names exists (their runs are long; samples/reproduce.sh runs them).
-#include "sdflow/flow/parameters.h"
+#include "sdflow/run/parameters.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 //! \brief The run schema's sections on time steps: the mode, τ, the table, and the adaptive rule
 //! (flow/time_step.h).
 
-#include "sdflow/flow/detail/schema_sections.h"
+#include "sdflow/run/detail/schema_sections.h"
 
 #include "sdflow/errors.h"
 
@@ -54,7 +54,7 @@ void add_time_step_entries(std::vector<ParameterEntry>& s)
   }
   {
     auto& e = add(s, entry("tau", "--tau", ParameterType::real, "Constant time step τ (implies time_step = constant)"));
-    e.range = above(0);
+    e.range = time_step_ranges.tau;
     e.get = [](const RunParameters& p) -> ParameterValue { return p.time_step.tau; };
     e.set = [](RunParameters& p, const ParameterValue& v) { p.time_step.tau = std::get<double>(v); };
     e.implies = {{"time_step", std::string("constant")}};
@@ -84,7 +84,7 @@ void add_time_step_entries(std::vector<ParameterEntry>& s)
   {
     auto& e = add(s, entry("schedule_retries", "--schedule-retries", ParameterType::integer,
                            "Halvings of the table's τ allowed for a step that turns triangles over (0: stop)"));
-    e.range = {.min = 0, .max = 60};
+    e.range = time_step_ranges.schedule_retries;
     bind<long>(e, &RunParameters::time_step, &TimeStepOptions::schedule_retries);
     e.in_use = e.written = [](const RunParameters& p) { return p.time_step.mode == TimeStepMode::schedule; };
   }
@@ -100,38 +100,35 @@ void add_adaptive_entries(std::vector<ParameterEntry>& s)
     e.in_use = adaptive_steps;
     return e;
   };
-  bind<double>(adaptive("adaptive.initial_tau", "--initial-tau", ParameterType::real, at_least(0),
+  bind<double>(adaptive("adaptive.initial_tau", "--initial-tau", ParameterType::real, time_step_ranges.initial_tau,
                         "Adaptive τ: the first step's τ (0: automatic, from ΔH and the edge lengths)"),
                &RunParameters::time_step, &TimeStepOptions::adaptive, &AdaptiveOptions::initial_tau);
-  bind<double>(adaptive("adaptive.max_displacement", "--max-displacement", ParameterType::real, {.min = 0, .min_open = true, .infinite_allowed = true},
+  bind<double>(adaptive("adaptive.max_displacement", "--max-displacement", ParameterType::real, time_step_ranges.max_displacement,
                         "Adaptive τ: bound on a step's normal displacement, relative to the local edge length"),
                &RunParameters::time_step, &TimeStepOptions::adaptive, &AdaptiveOptions::max_displacement);
-  bind<double>(adaptive("adaptive.growth", "--tau-growth", ParameterType::real,
-                        {.min = 1, .infinite_allowed = true},
+  bind<double>(adaptive("adaptive.growth", "--tau-growth", ParameterType::real, time_step_ranges.growth,
                         "Adaptive τ: largest growth factor of τ per accepted step"),
                &RunParameters::time_step, &TimeStepOptions::adaptive, &AdaptiveOptions::growth);
-  bind<double>(adaptive("adaptive.shrink", "--tau-shrink", ParameterType::real,
-                        {.min = 0, .max = 1, .min_open = true, .max_open = true},
+  bind<double>(adaptive("adaptive.shrink", "--tau-shrink", ParameterType::real, time_step_ranges.shrink,
                         "Adaptive τ: factor applied to τ on a rejected step"),
                &RunParameters::time_step, &TimeStepOptions::adaptive, &AdaptiveOptions::shrink);
-  bind<double>(adaptive("adaptive.safety", "--tau-safety", ParameterType::real, {.min = 0, .max = 1, .min_open = true},
+  bind<double>(adaptive("adaptive.safety", "--tau-safety", ParameterType::real, time_step_ranges.safety,
                         "Adaptive τ: aim this fraction of the bounds when predicting the next τ"),
                &RunParameters::time_step, &TimeStepOptions::adaptive, &AdaptiveOptions::safety);
-  bind<double>(adaptive("adaptive.max_volume_change", "--max-volume-change", ParameterType::real, {.min = 0, .min_open = true, .infinite_allowed = true},
+  bind<double>(adaptive("adaptive.max_volume_change", "--max-volume-change", ParameterType::real, time_step_ranges.max_volume_change,
                         "Adaptive τ: bound on a component's relative change of material volume per step"),
                &RunParameters::time_step, &TimeStepOptions::adaptive, &AdaptiveOptions::max_volume_change);
-  bind<double>(adaptive("adaptive.min_tau", "--min-tau", ParameterType::real, above(0),
+  bind<double>(adaptive("adaptive.min_tau", "--min-tau", ParameterType::real, time_step_ranges.min_tau,
                         "Adaptive τ: below this τ the run is declared unstable"),
                &RunParameters::time_step, &TimeStepOptions::adaptive, &AdaptiveOptions::min_tau);
-  bind<double>(adaptive("adaptive.max_tau", "--max-tau", ParameterType::real,
-                        {.min = 0, .min_open = true, .infinite_allowed = true},
+  bind<double>(adaptive("adaptive.max_tau", "--max-tau", ParameterType::real, time_step_ranges.max_tau,
                         "Adaptive τ: the largest τ (inf: none)"),
                &RunParameters::time_step, &TimeStepOptions::adaptive, &AdaptiveOptions::max_tau);
-  bind<long>(adaptive("adaptive.max_rejections", "--max-rejections", ParameterType::integer, at_least(1),
+  bind<long>(adaptive("adaptive.max_rejections", "--max-rejections", ParameterType::integer, time_step_ranges.max_rejections,
                       "Adaptive τ: rejected trials in a row before the run is declared unstable"),
              &RunParameters::time_step, &TimeStepOptions::adaptive, &AdaptiveOptions::max_rejections);
   {
-    auto& e = adaptive("adaptive.start_steps", "--start-steps", ParameterType::integer, at_least(0),
+    auto& e = adaptive("adaptive.start_steps", "--start-steps", ParameterType::integer, time_step_ranges.start_steps,
                        "Adaptive τ: a run's first steps that may be start steps, whose τ_s = start_damping·(ℓ/π)⁴ "
                        "damps what the mesh does not resolve (noise, sharp edges, creases) when that, not the "
                        "resolved scales, would set τ; the first step on each new triangulation may be one too, "
@@ -139,11 +136,11 @@ void add_adaptive_entries(std::vector<ParameterEntry>& s)
     bind<long>(e, &RunParameters::time_step, &TimeStepOptions::adaptive, &AdaptiveOptions::start_steps);
     e.paper = 0L;
   }
-  bind<double>(adaptive("adaptive.start_damping", "--start-damping", ParameterType::real, above(0),
+  bind<double>(adaptive("adaptive.start_damping", "--start-damping", ParameterType::real, time_step_ranges.start_damping,
                         "Adaptive τ: a start step's τ_s·(π/ℓ)⁴, the damping of the wavelength 2ℓ per start step"),
                &RunParameters::time_step, &TimeStepOptions::adaptive, &AdaptiveOptions::start_damping);
   {
-    auto& e = adaptive("adaptive.tolerance", "--tolerance", ParameterType::real, at_least(0),
+    auto& e = adaptive("adaptive.tolerance", "--tolerance", ParameterType::real, time_step_ranges.tolerance,
                        "Adaptive τ: bound on the extrapolated step's local error estimate, relative to the local "
                        "edge length (0: off); needs extrapolated steps, which the flag implies");
     e.in_use = nullptr; // checked in every mode, like its need for extrapolated steps

@@ -2,7 +2,7 @@
 //! \brief The run schema's sections on what runs, where and until when, what it writes, and the
 //! reference sphere of the d1/d2 columns.
 
-#include "sdflow/flow/detail/schema_sections.h"
+#include "sdflow/run/detail/schema_sections.h"
 
 #include <cmath>
 #include <filesystem>
@@ -44,7 +44,7 @@ void add_run_entries(std::vector<ParameterEntry>& s)
   }
   {
     auto& e = add(s, entry("steps", "--steps", ParameterType::integer, "Stop after this many steps (0: no limit)"));
-    e.range = at_least(0);
+    e.range = flow_ranges.steps;
     e.resumable = true;
     e.meshlab = {.name = "Steps", .label = "Steps",
                  .help = "Number of time steps to take. Each accepted step advances the time by its time step τ.",
@@ -55,7 +55,7 @@ void add_run_entries(std::vector<ParameterEntry>& s)
     auto& e = add(s, entry("end_time", "--end-time", ParameterType::real, "Stop at this time (absent: no limit)"));
     e.key_aliases = {"t_end"};
     e.flag_aliases = {"--t-end"};
-    e.range = {.min = 0, .min_open = true, .infinite_allowed = true};
+    e.range = flow_ranges.end_time;
     e.resumable = true;
     bind<double>(e, &RunParameters::end_time);
     e.written = [](const RunParameters& p) { return std::isfinite(p.end_time); };
@@ -75,14 +75,14 @@ void add_output_entries(std::vector<ParameterEntry>& s)
   {
     auto& e = add(s, entry("snapshot_every", "--snapshot-every", ParameterType::integer,
                            "A snapshot every K steps (0: of the first and last surface only)"));
-    e.range = at_least(0);
+    e.range = run_ranges.snapshot_every;
     e.resumable = true;
     bind<long>(e, &RunParameters::snapshot_every);
   }
   {
     auto& e = add(s, entry("checkpoint_every", "--checkpoint-every", ParameterType::integer,
                            "A checkpoint every K steps"));
-    e.range = at_least(1);
+    e.range = run_ranges.checkpoint_every;
     e.resumable = true;
     bind<long>(e, &RunParameters::checkpoint_every);
   }
@@ -99,7 +99,7 @@ void add_reference_sphere_entries(std::vector<ParameterEntry>& s)
   {
     auto& e = add(s, entry("reference_sphere.radius", "--reference-radius", ParameterType::real,
                            "Radius of that sphere"));
-    e.range = above(0);
+    e.range = flow_ranges.reference_radius;
     bind<double>(e, &RunParameters::reference_radius);
   }
 }

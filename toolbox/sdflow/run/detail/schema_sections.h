@@ -3,7 +3,7 @@
 //! \brief The run schema's sections (parameter_schema.h), one function each, and the small helpers
 //! their entries are written with. Private to the library.
 
-#include "sdflow/flow/parameter_schema.h"
+#include "sdflow/run/parameter_schema.h"
 
 #include <type_traits>
 #include <utility>
@@ -35,7 +35,6 @@ inline ParameterEntry entry(std::string key, std::string flag, ParameterType typ
 }
 
 inline ParameterRange at_least(double min) { return {.min = min}; }
-inline ParameterRange above(double min) { return {.min = min, .min_open = true}; }
 
 //! Appends `e` to the schema and returns it for the section to finish.
 inline ParameterEntry& add(std::vector<ParameterEntry>& schema, ParameterEntry e)
