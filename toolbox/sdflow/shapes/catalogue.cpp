@@ -295,7 +295,7 @@ ImplicitSurface film_with_hole_shape(const FilmWithHoleParameters& parameters)
   ImplicitSurface s;
   s.name = std::string(name);
   // The film less the cylinder: the smooth maximum max(f, g) = −smin(−f, −g), g = hole − ρ.
-  const auto sample = [film, hole, r](const Eigen::Vector3d& p) {
+  const auto sample = [film, hole = hole, r = r](const Eigen::Vector3d& p) {
     const double rho = std::hypot(p.x(), p.y());
     const Eigen::Vector3d radial = rho > 0 ? Eigen::Vector3d(p.x() / rho, p.y() / rho, 0) : Eigen::Vector3d::UnitX();
     const Sample outside = smooth_union({-film.value(p), -film.gradient(p)}, {rho - hole, radial}, r);
