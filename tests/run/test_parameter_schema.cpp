@@ -6,6 +6,7 @@
 #include "sdflow/run/parameter_schema.h"
 #include "sdflow/run/parameters.h"
 #include "io/temp_dir.h"
+#include "run/scenario_errors.h"
 
 #include <gtest/gtest.h>
 
@@ -244,17 +245,7 @@ radius = 1
 TEST(ParameterSchema, range_errors_name_the_file_line_and_key)
 {
   test::TempDir dir;
-  const auto expect_error = [&](const std::string& text, const std::string& needle) {
-    SCOPED_TRACE(text);
-    test::write_file(dir / "s.toml", text);
-    RunParameters p;
-    try {
-      read_run_parameters(dir / "s.toml", p);
-      FAIL() << "accepted";
-    } catch (const InvalidParameter& e) {
-      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    }
-  };
+  const test::ScenarioRefusal<InvalidParameter> expect_error{dir.path()};
   expect_error("steps = 3\n[retriangulation]\nmin_angle = 75\n", "s.toml:3: retriangulation.min_angle must be in [0, 60), got 75");
   expect_error("steps = -1\n", "s.toml:1: steps must be ≥ 0, got -1");
   expect_error("tau = 0\n", "s.toml:1: tau must be > 0, got 0");
@@ -348,17 +339,7 @@ TEST(ParameterSchema, a_stages_own_check_refuses_exactly_what_the_schema_refuses
 TEST(ParameterSchema, unknown_keys_get_the_closest_known_one)
 {
   test::TempDir dir;
-  const auto expect_error = [&](const std::string& text, const std::string& needle) {
-    SCOPED_TRACE(text);
-    test::write_file(dir / "s.toml", text);
-    RunParameters p;
-    try {
-      read_run_parameters(dir / "s.toml", p);
-      FAIL() << "accepted";
-    } catch (const InvalidParameter& e) {
-      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    }
-  };
+  const test::ScenarioRefusal<InvalidParameter> expect_error{dir.path()};
   expect_error("stpes = 20\n", "s.toml:1: unknown key `stpes` (did you mean `steps`?)");
   expect_error("[retriangulation]\nedge_lenght = 1\n",
                "unknown key `retriangulation.edge_lenght` (did you mean `retriangulation.edge_length`?)");

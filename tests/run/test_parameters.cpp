@@ -1,5 +1,6 @@
 //! Run parameters (parameters.h): scenario files, run.toml round trip, clear errors.
 #include "io/temp_dir.h"
+#include "run/scenario_errors.h"
 #include "sdflow/errors.h"
 #include "sdflow/run/parameters.h"
 
@@ -107,17 +108,7 @@ TEST(RunParameters, every_curvature_name_reads_back_to_its_options)
 TEST(RunParameters, scenario_errors_name_the_file_line_and_key)
 {
   test::TempDir dir;
-  const auto expect_error = [&](const std::string& text, const std::string& needle) {
-    SCOPED_TRACE(text);
-    test::write_file(dir / "s.toml", text);
-    RunParameters p;
-    try {
-      read_run_parameters(dir / "s.toml", p);
-      FAIL() << "accepted";
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    }
-  };
+  const test::ScenarioRefusal<> expect_error{dir.path()};
   expect_error("steps = 10\nstpes = 20\n", "s.toml:2: unknown key `stpes`");
   expect_error("beta = \"half\"\n", "`beta` has the wrong type");
   expect_error("solver = \"lu\"\n", "solver must be");

@@ -463,19 +463,13 @@ bool SurfaceDiffusion::can_look_ahead() const
          step_ % p_.retriangulation.every == 0 && !finished();
 }
 
-//! Trials of step `next_step` until the controller accepts one (returned: its τ); throws
-//! SolverFailure as the controller does.
-double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step, StepResult& trial,
-                                    StepRecord& record, int& rejections, std::vector<double>& volumes)
+//! The rule's view of the surface before step `next_step`'s trials (TrialPlan).
+SurfaceDiffusion::TrialPlan SurfaceDiffusion::plan_trials(long next_step, Eigen::VectorXd edge_lengths)
 {
-  StepTimes& times = record.times;
-  Stopwatch watch;
-  const VertexVectors positions = vertex_positions(surface_.mesh);
-  const Eigen::VectorXd edge_lengths = vertex_mean_edge_lengths(surface_.mesh);
-  const Topology& topology = surface_.topology;
-  volumes = material_volumes(positions, surface_.triangles, topology.face_component, topology.count, topology.loops);
-  times.acceptance += watch.seconds();
-  const AdaptiveOptions adaptive = refined(p_.time_step.adaptive, p_.refinement);
+  TrialPlan plan;
+  plan.edge_lengths = std::move(edge_lengths);
+  plan.adaptive = refined(p_.time_step.adaptive, p_.refinement);
+  const AdaptiveOptions& adaptive = plan.adaptive;
   // The start phase (time_step.h) decides on the surface's unresolved variation, every start step:
   // a run's first steps, and the first step on each new triangulation (whose warm starts were
   // reset), where the fresh triangles carry variation the mesh does not resolve that the scheme's
@@ -489,79 +483,116 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
   const Eigen::VectorXd explicit_speed =
       need_automatic_tau || may_start ? Eigen::VectorXd(op_.rhs.cwiseQuotient(op_.areas).cwiseAbs())
                                       : Eigen::VectorXd();
-  const double automatic = need_automatic_tau ? automatic_tau(explicit_speed, op_.held, edge_lengths, adaptive) : 0.0;
-  const std::vector<bool> resolved =
-      may_start ? resolved_vertices(explicit_speed, op_.held, edge_lengths) : std::vector<bool>{};
-  bool start = may_start && is_start_step(adaptive, new_triangulation ? 1 : next_step, resolved, op_.held);
-  const double time_left = std::isfinite(p_.end_time) ? p_.end_time - time_ : std::numeric_limits<double>::infinity();
+  plan.automatic =
+      need_automatic_tau ? automatic_tau(explicit_speed, op_.held, plan.edge_lengths, adaptive) : 0.0;
+  if (may_start)
+    plan.resolved = resolved_vertices(explicit_speed, op_.held, plan.edge_lengths);
+  plan.start = may_start && is_start_step(adaptive, new_triangulation ? 1 : next_step, plan.resolved, op_.held);
+  plan.time_left = std::isfinite(p_.end_time) ? p_.end_time - time_ : std::numeric_limits<double>::infinity();
   // Adaptive τ stops at D⁴ for the surface's bounding-box diagonal D, some 3500 decay times of its
   // slowest shape mode (limits.h). At rest nothing else bounds it: on a unit sphere it grew 1.25
   // times a step to 10¹¹ by step 500, where the β = ½ scheme damps no mode (each factor tends to
   // −1); the volume drifted by 1.8% and the factorisation lost the mass term (issue 33).
-  const double largest_tau =
+  plan.largest_tau =
       controller.adaptive() ? natural_largest_tau(surface_.mesh) : std::numeric_limits<double>::infinity();
   // On a new triangulation mid-run, no longer a step than the rule would take: the step stays as
   // accurate as the others, only its stiffest modes are damped rather than flipped.
-  double start_trial_tau = !may_start          ? 0.0
-                           : new_triangulation ? std::min(start_tau(adaptive, start_length_),
-                                                          controller.propose(next_step, automatic, time_left))
-                                               : start_tau(adaptive, start_length_);
+  plan.start_tau = !may_start          ? 0.0
+                   : new_triangulation ? std::min(start_tau(adaptive, start_length_),
+                                                  controller.propose(next_step, plan.automatic, plan.time_left))
+                                       : start_tau(adaptive, start_length_);
+  return plan;
+}
+
+//! The trial of `tau` from the surface: a start step is backward Euler, with the scheme's β = ½ a
+//! mode far shorter than its time scale would come out flipped, not damped (its factor
+//! (1 − τk⁴/2)/(1 + τk⁴/2) tends to −1). Its counts and times go to `record`.
+StepResult SurfaceDiffusion::solve_trial(double tau, bool start, const std::array<Eigen::VectorXd, 2>& guesses,
+                                         long next_step, StepRecord& record)
+{
+  StepResult trial =
+      start ? solve_step(surface_.mesh, op_, tau, kStartBeta, trials_.whole().solver(), guesses)
+      : p_.scheme.extrapolate
+          ? extrapolated_step(surface_.mesh, op_, tau, p_.scheme, trials_.whole().solver(), trials_.half().solver(),
+                              &*surface_.cache, guesses)
+          : solve_step(surface_.mesh, op_, tau, p_.scheme.beta, trials_.whole().solver(), guesses);
+  record.cg_iterations += trial.solve.iterations;
+  trials_.solved(trial);
+  StepTimes& times = record.times;
+  times.operators += trial.operators_seconds;
+  times.assembly += trial.solve.seconds.assembly;
+  times.factorisation += trial.solve.seconds.factorisation;
+  times.solve += trial.solve.seconds.solve;
+  if (trial.factorisations > 0) {
+    record.factorised = true;
+    logger().debug("step {}: {} factorisations (τ = {})", next_step, trial.factorisations, tau);
+  }
+  return trial;
+}
+
+//! The largest relative change of a component's material volume from `volumes` to the trial's
+//! positions (0 when they are not finite: the check refuses those anyway).
+double SurfaceDiffusion::largest_volume_change(const VertexVectors& next, const std::vector<double>& volumes) const
+{
+  double change = 0;
+  if (!next.allFinite())
+    return change;
+  const Topology& topology = surface_.topology;
+  const std::vector<double> after =
+      material_volumes(next, surface_.triangles, topology.face_component, topology.count, topology.loops);
+  for (int k = 0; k < topology.count; ++k)
+    if (volumes[k] != 0)
+      change = std::max(change, std::abs(after[k] - volumes[k]) / std::abs(volumes[k]));
+  return change;
+}
+
+//! Trials of step `next_step` until the controller accepts one (returned: its τ); throws
+//! SolverFailure as the controller does.
+double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step, StepResult& trial,
+                                    StepRecord& record, int& rejections, std::vector<double>& volumes)
+{
+  StepTimes& times = record.times;
+  Stopwatch watch;
+  const VertexVectors positions = vertex_positions(surface_.mesh);
+  Eigen::VectorXd edge_lengths = vertex_mean_edge_lengths(surface_.mesh);
+  const Topology& topology = surface_.topology;
+  volumes = material_volumes(positions, surface_.triangles, topology.face_component, topology.count, topology.loops);
+  times.acceptance += watch.seconds();
+  TrialPlan plan = plan_trials(next_step, std::move(edge_lengths));
+  const AdaptiveOptions& adaptive = plan.adaptive;
+  TimeStepController& controller = trials_.controller();
   int start_retries = 0;
   const std::array<Eigen::VectorXd, 2> guesses = warm_starts(w_.previous, w_.earlier);
   for (;;) {
     if (context.cancel && context.cancel->load())
       throw TrialsCancelled();
     // An adaptive τ stays within the boundary condition's bound (a contact line's, substrate_boundary.h)
-    // and the surface's own time scale (largest_tau above).
-    const double tau =
-        start ? std::min(start_trial_tau, time_left)
-              : std::min(controller.propose(next_step, automatic,
-                                             controller.adaptive() ? std::min(time_left, op_.tau_limit) : time_left),
-                         largest_tau);
-    // A start step is backward Euler: with the scheme's β = ½ a mode far shorter than its time
-    // scale would come out flipped, not damped (its factor (1 − τk⁴/2)/(1 + τk⁴/2) tends to −1).
-    trial = start ? solve_step(surface_.mesh, op_, tau, kStartBeta, trials_.whole().solver(), guesses)
-            : p_.scheme.extrapolate
-                ? extrapolated_step(surface_.mesh, op_, tau, p_.scheme, trials_.whole().solver(),
-                                    trials_.half().solver(), &*surface_.cache, guesses)
-                : solve_step(surface_.mesh, op_, tau, p_.scheme.beta, trials_.whole().solver(), guesses);
-    record.cg_iterations += trial.solve.iterations;
-    trials_.solved(trial);
-    times.operators += trial.operators_seconds;
-    times.assembly += trial.solve.seconds.assembly;
-    times.factorisation += trial.solve.seconds.factorisation;
-    times.solve += trial.solve.seconds.solve;
+    // and the surface's own time scale (TrialPlan::largest_tau).
+    const double time_bound = controller.adaptive() ? std::min(plan.time_left, op_.tau_limit) : plan.time_left;
+    const double tau = plan.start ? std::min(plan.start_tau, plan.time_left)
+                                  : std::min(controller.propose(next_step, plan.automatic, time_bound), plan.largest_tau);
+    trial = solve_trial(tau, plan.start, guesses, next_step, record);
     watch.restart();
-    if (trial.factorisations > 0) {
-      record.factorised = true;
-      logger().debug("step {}: {} factorisations (τ = {})", next_step, trial.factorisations, tau);
-    }
-    double volume_change = 0;
-    if (trial.positions.allFinite()) {
-      const std::vector<double> after =
-          material_volumes(trial.positions, surface_.triangles, topology.face_component, topology.count, topology.loops);
-      for (int k = 0; k < topology.count; ++k)
-        if (volumes[k] != 0)
-          volume_change = std::max(volume_change, std::abs(after[k] - volumes[k]) / std::abs(volumes[k]));
-    }
+    const double volume_change = largest_volume_change(trial.positions, volumes);
     StepCheck check = check_trial({.tau = tau,
                                    .now = positions,
                                    .next = trial.positions,
                                    .w = trial.w,
                                    .error = trial.error,
                                    .triangles = surface_.triangles,
-                                   .edge_lengths = edge_lengths,
+                                   .edge_lengths = plan.edge_lengths,
                                    .volume_change = volume_change},
                                   adaptive, controller.adaptive());
     logger().debug("step {}: the trial of τ = {} changes a component's material volume by {:.3g} (relative)", next_step,
                    tau, volume_change);
     if (check.volume_exceeded && !controller.adaptive())
-      check.adaptive_tau = automatic_tau(op_.rhs.cwiseQuotient(op_.areas).cwiseAbs(), op_.held, edge_lengths, adaptive);
+      check.adaptive_tau =
+          automatic_tau(op_.rhs.cwiseQuotient(op_.areas).cwiseAbs(), op_.held, plan.edge_lengths, adaptive);
     times.acceptance += watch.seconds();
-    if (start) {
+    if (plan.start) {
       // The displacement bound holds where the surface is resolved; elsewhere backward Euler damps
       // what the mesh cannot follow, and the volumes are restored after the step.
-      const double resolved_ratio = resolved_displacement_ratio(tau, trial.w, edge_lengths, resolved);
+      const double resolved_ratio = resolved_displacement_ratio(tau, trial.w, plan.edge_lengths, plan.resolved);
       if (!check.non_finite && check.inverted_triangles == 0 && resolved_ratio <= adaptive.max_displacement) {
         controller.accept_start_step(tau);
         record.start = true;
@@ -574,11 +605,11 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
                        "the surface is resolved",
                        tau, check.describe(), resolved_ratio),
            false, context.held_notes);
-      start_trial_tau = tau * (resolved_ratio > adaptive.max_displacement
-                                   ? std::min(adaptive.shrink, adaptive.safety * adaptive.max_displacement / resolved_ratio)
-                                   : kStartShrink);
+      plan.start_tau = tau * (resolved_ratio > adaptive.max_displacement
+                                  ? std::min(adaptive.shrink, adaptive.safety * adaptive.max_displacement / resolved_ratio)
+                                  : kStartShrink);
       // Below the τ the rule itself would try, a start step gains nothing.
-      start = ++start_retries <= kStartRetries && start_trial_tau > automatic;
+      plan.start = ++start_retries <= kStartRetries && plan.start_tau > plan.automatic;
       continue;
     }
     if (controller.judge(next_step, tau, check))

@@ -21,11 +21,13 @@
 #include "sdflow/flow/retriangulation.h"
 #include "sdflow/flow/scheme.h"
 #include "sdflow/flow/step_record.h"
+#include "sdflow/flow/time_step.h"
 #include "sdflow/flow/trial_solvers.h"
 #include "sdflow/geometry/cotangent_cache.h"
 #include "sdflow/geometry/material_volume.h"
 #include "sdflow/mesh.h"
 
+#include <array>
 #include <atomic>
 #include <functional>
 #include <optional>
@@ -146,6 +148,21 @@ private:
   void adopt_retriangulation(const RetriangulationReport& report, const VertexVectors& before,
                              std::vector<StepEvent>& events, StepTimes& times);
   void renew_operators(StepTimes& times);
+  //! What a step's trials share: the time-step rule's view of the surface before them.
+  struct TrialPlan {
+    Eigen::VectorXd edge_lengths; //!< h_v, each vertex's mean edge length
+    AdaptiveOptions adaptive;     //!< the rule, refined with the run's resolution
+    double automatic = 0;         //!< the rule's τ from the explicit speed (0: not needed)
+    std::vector<bool> resolved;   //!< in a start phase, where the surface is resolved
+    bool start = false;           //!< the next trial is a start step (backward Euler)
+    double start_tau = 0;         //!< its τ
+    double time_left = 0;         //!< to the end time (+∞ without one)
+    double largest_tau = 0;       //!< the surface's own time scale (+∞ for a constant τ or a table)
+  };
+  TrialPlan plan_trials(long next_step, Eigen::VectorXd edge_lengths);
+  StepResult solve_trial(double tau, bool start, const std::array<Eigen::VectorXd, 2>& guesses, long next_step,
+                         StepRecord& record);
+  double largest_volume_change(const VertexVectors& next, const std::vector<double>& volumes) const;
   double trial_step(const TrialContext& context, long next_step, StepResult& trial, StepRecord& record,
                     int& rejections, std::vector<double>& volumes);
   //! A note published at once, or held in `held` (TrialContext::held_notes) when that is not null.
