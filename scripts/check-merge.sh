@@ -4,7 +4,8 @@
 # BUILD_DIR is a configured and built tree (tests and CLI on); BASE (default: the merge base with
 # main) is where the branch's changes start. Three checks, each quick next to CI:
 #   1. clang 14 parses every toolbox, CLI, fuzz and test source the branch changed or that includes a
-#      header it changed (CI's sanitizer build is clang's, which refuses some things GCC accepts);
+#      header it changed, directly or not (BUILD_DIR's dependency lists say which): CI's sanitizer
+#      build is clang's, which refuses some things GCC accepts;
 #   2. clang parses the unity units of the tests and the CLI (CI builds them so: two files of one
 #      unit must not define one name in their anonymous namespaces);
 #   3. scripts/test-package.sh BUILD_DIR: the installed package, README's C++ snippets included.
@@ -27,39 +28,39 @@ cmake -S . -B "$check" -G Ninja -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=cl
 mapfile -t changed < <(git diff --name-only "$base" -- toolbox cli fuzz tests | grep -E '\.(cpp|h)$' || true)
 echo "check-merge.sh: ${#changed[@]} changed source file(s) since $(git rev-parse --short "$base")"
 
-# The compile commands to parse: changed sources, sources including a changed header (by its path
-# below the include root, e.g. sdflow/flow/stepper.h), and every unity unit.
-python3 - "$check/compile_commands.json" "${changed[@]}" > "$check.commands" <<'PYTHON'
-import json, os, re, shlex, sys
+# The compile commands to parse: changed sources, sources that include a changed header directly or
+# through others (by BUILD_DIR's dependency lists, `ninja -t deps`), and every unity unit.
+ninja -C "$build" -t deps > "$check.deps"
+python3 - "$check/compile_commands.json" "$build" "$check.deps" "${changed[@]}" > "$check.commands" <<'PYTHON'
+import json, os, shlex, sys
 entries = json.load(open(sys.argv[1]))
-changed = [os.path.abspath(p) for p in sys.argv[2:]]
-headers = [p for p in changed if p.endswith(".h")]
-# The spelling an #include uses: the path below toolbox/ (sdflow/...), or the file name for others.
-spellings = [p.split("/toolbox/", 1)[1] if "/toolbox/" in p else os.path.basename(p) for p in headers]
-def includes_changed(path):
-    try:
-        text = open(path, encoding="utf-8", errors="replace").read()
-    except OSError:
-        return False
-    return any(re.search(r'#include\s+"([^"]*/)?' + re.escape(s) + '"', text) for s in spellings)
+build, deps_file = sys.argv[2], sys.argv[3]
+changed = {os.path.abspath(p) for p in sys.argv[4:]}
+headers = {p for p in changed if p.endswith(".h")}
+# Sources whose dependency list names a changed header (each list starts with its source).
+affected, source = set(), None
+for line in open(deps_file):
+    if not line.startswith(" "):
+        source = None
+        continue
+    path = os.path.abspath(os.path.join(build, line.strip()))
+    if source is None:
+        source = path
+    elif path in headers:
+        affected.add(source)
 for entry in entries:
     source = os.path.abspath(os.path.join(entry["directory"], entry["file"]))
-    unity = "/Unity/unity_" in source
-    if not (unity or source in changed or (spellings and includes_changed(source))):
+    if not ("/Unity/unity_" in source or source in changed or source in affected):
         continue
     args = shlex.split(entry["command"]) if "command" in entry else entry["arguments"]
-    out = []
-    skip = False
+    out, skip = [], False
     for arg in args:
         if skip:
             skip = False
-            continue
-        if arg == "-o":
+        elif arg == "-o":
             skip = True
-            continue
-        if arg == "-c":
-            continue
-        out.append(arg)
+        elif arg != "-c":
+            out.append(arg)
     print(entry["directory"] + "\t" + shlex.join(out + ["-fsyntax-only"]))
 PYTHON
 count=$(wc -l < "$check.commands")
