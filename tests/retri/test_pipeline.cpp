@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace sdflow {
@@ -144,6 +145,37 @@ TEST(Pipeline, a_true_boundary_that_the_rebuild_shortens_stays_open)
   EXPECT_EQ(after[0].boundary_loops, 1);
   EXPECT_EQ(r.filled_holes, 0);
   EXPECT_NEAR(surface_area(r.mesh), 2 * std::numbers::pi, 0.05 * 2 * std::numbers::pi);
+}
+
+// A kept boundary whose edges are longer than the curvature-adapted targets beside it: a 2 × 2 × 0.5
+// cuboid island at ℓ = 0.25 keeps its contact line (edges of 0.25) while the corners of its
+// footprint, of radius 0.3, ask for 0.07 there. Stage 1 packed rows of vertices against the rim
+// edges, its lowest row 4·10⁻⁴ ℓ above the plane, folded over them (20 crossing pairs), and was
+// refused (remeshing-crossed), as a flow under the substrate or fixed condition was at every look.
+// The targets beside the kept rim are now no finer than its edges (kept_boundary_sizing.h).
+TEST(Pipeline, a_kept_rim_longer_than_the_targets_beside_it_is_remeshed_without_folding_over_it)
+{
+  constexpr double ell = 0.25;
+  constexpr double least_row_height = 0.1; // of ℓ: the row beside the rim stands off it (0.2 ℓ measured)
+  const Mesh island = mesh_implicit_surface(cuboid_island_shape({.a = 2, .b = 2, .c = 0.5}), {.edge_length = ell}).mesh;
+  ASSERT_EQ(component_topology(island).at(0).boundary_loops, 1);
+  const RetriangulationResult r = retriangulate(island, {.edge_length = ell, .keep_boundary = true});
+  EXPECT_FALSE(r.remeshing_refused);
+  EXPECT_EQ(r.remeshing_crossings, 0);
+  EXPECT_FALSE(r.rebuilt);
+  EXPECT_EQ(checks::self_intersecting_pairs(r.mesh), 0);
+  EXPECT_GT(r.mesh.n_vertices(), island.n_vertices()); // refined where the island is curved
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const auto v : r.mesh.vertices()) {
+    if (r.mesh.is_boundary(v)) {
+      EXPECT_EQ(r.mesh.point(v)[2], 0.0); // the contact line, kept bit for bit
+      continue;
+    }
+    for (const auto w : r.mesh.vv_range(v))
+      if (r.mesh.is_boundary(w))
+        lowest = std::min(lowest, r.mesh.point(v)[2]);
+  }
+  EXPECT_GT(lowest, least_row_height * ell);
 }
 
 TEST(Pipeline, intersecting_components_are_joined_into_the_boundary_of_their_union)

@@ -1,6 +1,7 @@
 #include "sdflow/flow/degraded_elements.h"
 
 #include "sdflow/geometry/quality.h"
+#include "sdflow/remesh/kept_boundary_sizing.h"
 #include "sdflow/remesh/remesh.h"
 
 #include <tbb/blocked_range.h>
@@ -26,6 +27,10 @@ DegradedElements degraded_elements(const Mesh& mesh, const RetriangulationSchedu
                       ? radius_targets(mesh, {.edges_per_radius = pipeline.edges_per_radius,
                                               .min_length = pipeline.min_edge_fraction * ell, .max_length = ell})
                       : std::vector<double>(mesh.n_vertices(), ell);
+      // A kept rim's edges are not remeshed: beside them the remesher aims no finer (and the
+      // edges at the rim are measured against that).
+      if (pipeline.edges_per_radius > 0 && pipeline.keep_boundary)
+        floor_targets_beside_kept_boundary(mesh, d.targets);
     },
     [&] {
       tbb::parallel_for(tbb::blocked_range<int>(0, static_cast<int>(mesh.n_faces()), 4096),

@@ -7,6 +7,7 @@
 #include "sdflow/io/validate.h"
 #include "sdflow/log.h"
 #include "sdflow/reconstruct/reconstruct_apart.h"
+#include "sdflow/remesh/kept_boundary_sizing.h"
 #include "sdflow/retri/components.h"
 #include "sdflow/retri/fixed_rim.h"
 #include "sdflow/retri/open_orientation.h"
@@ -175,7 +176,8 @@ constexpr int kLocalScaleRings = 4;
 //! Stage 1's curvature-adapted sizing (radius_targets), except within kLocalScaleRings of the faces
 //! that intersect others, where the target is the local mean edge length: sheets that crossed are
 //! not a curvature to resolve (refining where they cross leaves the rebuild slivers of enclosed
-//! space), and coarsening a neck that pinched through would tear it before the surgery.
+//! space), and coarsening a neck that pinched through would tear it before the surgery. With the
+//! boundary kept, no finer beside it than its edges (kept_boundary_sizing.h).
 //! `known_targets`, when given, are the radius targets of `clean`.
 std::vector<double> adapted_targets(const Mesh& clean, const std::vector<FacePair>& crossings,
                                     const RetriangulationOptions& options, double ell,
@@ -203,6 +205,8 @@ std::vector<double> adapted_targets(const Mesh& clean, const std::vector<FacePai
   for (const auto v : clean.vertices())
     if (near[v.idx()])
       target[v.idx()] = std::clamp(clean.valence(v) > 0 ? mean_edge_length_at(clean, v) : ell, min_length, ell);
+  if (options.keep_boundary)
+    floor_targets_beside_kept_boundary(clean, target);
   return target;
 }
 
@@ -347,6 +351,8 @@ StageOne remesh_without_own_crossings(const Mesh& input, const std::vector<FaceP
       targets.assign(input.n_vertices(), ell);
     refine_targets(input, crossing_points(s.mesh, s.pairs), *thickness, ell,
                    kFinestRefinement * options.min_edge_fraction * ell, targets);
+    if (options.keep_boundary)
+      floor_targets_beside_kept_boundary(input, targets);
     if (const double estimate = estimated_vertices(input, targets); estimate > refinement_bound(first_vertices)) {
       logger().debug("stage 1: the next round would remesh into about {:.0f} vertices, more than {:.0f} (the "
                      "first remeshing made {}): not run",
