@@ -2,6 +2,7 @@
 //! of its open components (retri/open_orientation.h): the whole pipeline, its rebuild from points
 //! forced or called for by a crossing, keeps the rim vertex for vertex, its loops and the surface's
 //! orientation, and the volume restoration then gives the material volume back.
+#include "sdflow/errors.h"
 #include "sdflow/flow/volume.h"
 #include "sdflow/geometry/material_volume.h"
 #include "sdflow/geometry/topology.h"
