@@ -6,6 +6,7 @@
 #include "sdflow/errors.h"
 
 #include <exception>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -36,15 +37,25 @@ QStringList choices(const std::vector<std::string>& names)
   return list;
 }
 
-//! Adds to `parameters`, as MeshLab's, the dialog of "Surface diffusion N steps" or, with
-//! `anisotropic`, of "Anisotropic surface diffusion N steps" (the same and the surface energy's),
-//! with defaults for a mesh of `mean_edge_length`: diffusion_parameters (toolbox_bridge.h) derives
-//! them from sdflow's schema of run parameters.
-void add_diffusion_parameters(RichParameterList& parameters, double mean_edge_length, bool anisotropic)
+//! The flow's filter of a plugin filter id, if it is one.
+std::optional<sdflow::MeshlabFilter> flow_filter(const int id)
+{
+  switch (id) {
+  case FilterSdflowPlugin::FP_SURFACE_DIFFUSION: return sdflow::MeshlabFilter::surface_diffusion;
+  case FilterSdflowPlugin::FP_ANISOTROPIC_DIFFUSION: return sdflow::MeshlabFilter::anisotropic;
+  case FilterSdflowPlugin::FP_SUBSTRATE_DIFFUSION: return sdflow::MeshlabFilter::substrate;
+  }
+  return std::nullopt;
+}
+
+//! Adds to `parameters`, as MeshLab's, the dialog of a filter that runs the flow, with defaults for
+//! a mesh of `mean_edge_length`: diffusion_parameters (toolbox_bridge.h) derives them from sdflow's
+//! schema of run parameters (the isotropic filter's; the anisotropic one's adds the surface
+//! energy's; the substrate one's adds the substrate's and the energy's, and has no FixedBoundary).
+void add_diffusion_parameters(RichParameterList& parameters, double mean_edge_length, sdflow::MeshlabFilter filter)
 {
   using Kind = sdflow::meshlab::DialogParameter::Kind;
-  for (const sdflow::meshlab::DialogParameter& d :
-       sdflow::meshlab::diffusion_parameters(mean_edge_length, anisotropic)) {
+  for (const sdflow::meshlab::DialogParameter& d : sdflow::meshlab::diffusion_parameters(mean_edge_length, filter)) {
     const QString name = QString::fromStdString(d.name), label = QString::fromStdString(d.label),
                   help = QString::fromStdString(d.help);
     switch (d.kind) {
@@ -67,11 +78,11 @@ void add_diffusion_parameters(RichParameterList& parameters, double mean_edge_le
   }
 }
 
-sdflow::meshlab::DiffusionSettings diffusion_settings(const RichParameterList& parameters, bool anisotropic)
+sdflow::meshlab::DiffusionSettings diffusion_settings(const RichParameterList& parameters, sdflow::MeshlabFilter filter)
 {
   using Kind = sdflow::meshlab::DialogParameter::Kind;
   sdflow::meshlab::DiffusionSettings settings;
-  for (const sdflow::meshlab::DialogParameter& d : sdflow::meshlab::diffusion_parameters(0, anisotropic)) {
+  for (const sdflow::meshlab::DialogParameter& d : sdflow::meshlab::diffusion_parameters(0, filter)) {
     const QString name = QString::fromStdString(d.name);
     sdflow::meshlab::DialogValue& value = settings[d.name];
     switch (d.kind) {
@@ -101,7 +112,7 @@ sdflow::meshlab::RetriangulationSettings retriangulation_settings(const RichPara
 FilterSdflowPlugin::FilterSdflowPlugin()
 {
   // In the enum's order: meshlabserver 2020.09 crashed running a script's filter when they differed.
-  typeList << FP_SURFACE_DIFFUSION << FP_RETRIANGULATE << FP_ANISOTROPIC_DIFFUSION;
+  typeList << FP_SURFACE_DIFFUSION << FP_RETRIANGULATE << FP_ANISOTROPIC_DIFFUSION << FP_SUBSTRATE_DIFFUSION;
   for (FilterIDType type : types())
     actionList << new QAction(filterName(type), this);
 }
@@ -110,14 +121,10 @@ QString FilterSdflowPlugin::pluginName() const { return "FilterSdflow"; }
 
 QString FilterSdflowPlugin::filterName(FilterIDType filter) const
 {
-  switch (filter) {
-  case FP_SURFACE_DIFFUSION:
-    return "Surface diffusion N steps";
-  case FP_ANISOTROPIC_DIFFUSION:
-    return "Anisotropic surface diffusion N steps";
-  case FP_RETRIANGULATE:
+  if (const auto flow = flow_filter(filter))
+    return sdflow::meshlab_filter_name(*flow);
+  if (filter == FP_RETRIANGULATE)
     return "Surface diffusion: re-triangulate";
-  }
   return {};
 }
 
@@ -164,6 +171,22 @@ QString FilterSdflowPlugin::filterInfo(FilterIDType filter) const
            "steps</i>.<br><br>"
            "See: <i>J. W. Barrett, H. Garcke, R. N&uuml;rnberg</i>, J. Comput. Phys. 227, 2008 (the "
            "ellipsoidal forms of &gamma;).";
+  case FP_SUBSTRATE_DIFFUSION:
+    return "<i>Surface diffusion N steps</i> for a film or an island on a flat rigid <b>substrate</b>, the plane "
+           "z = z<sub>0</sub> (solid-state dewetting): the mesh is open, and each of its boundary loops is a "
+           "<b>contact line</b> on the plane. No material crosses a contact line; it moves in the plane toward "
+           "Young's angle &theta;<sub>Y</sub>, at the speed &eta; (cos &theta;<sub>Y</sub> - cos &theta;) along its "
+           "outward normal for the current angle &theta;. The volume enclosed with the substrate is kept (to first "
+           "order in &tau;, exactly with <i>Conserve volume</i>), and an island relaxes to the spherical cap of "
+           "angle &theta;<sub>Y</sub> (with an anisotropic <i>surface energy</i>, cos &theta;<sub>Y</sub> is "
+           "&sigma; = &gamma;<sub>VS</sub> - &gamma;<sub>FS</sub> in &gamma;'s units, and the equilibrium is the Winterbottom shape). With <i>re-triangulate</i> on, the "
+           "substrate's topology changes happen too: a film touching down opens a hole, contact lines that meet "
+           "join, as <tt>sdflow run --boundary substrate</tt> does (the same surface for the same parameters). "
+           "The other parameters, the result and the checks are those of <i>Anisotropic surface diffusion N "
+           "steps</i>; besides, a mesh with a boundary loop off the plane, or a vertex below it, is refused before "
+           "any step, and the log names the loop or the vertex.<br><br>"
+           "See: <i>Y. Wang, W. Jiang, W. Bao</i>, 2015, and in three dimensions <i>Q. Zhao, W. Jiang, W. Bao</i>, "
+           "SIAM J. Sci. Comput., 2020 (the relaxed contact-line law); sdflow's docs/method.md, \"Substrate\".";
   case FP_RETRIANGULATE:
     return "Re-triangulates the surface by the pipeline of section 3.2.1 of the paper, the one <i>Surface "
            "diffusion N steps</i> applies between steps: components that intersect each other are joined into the "
@@ -187,6 +210,7 @@ MeshFilterInterface::FilterClass FilterSdflowPlugin::getClass(QAction* action)
   switch (ID(action)) {
   case FP_SURFACE_DIFFUSION:
   case FP_ANISOTROPIC_DIFFUSION:
+  case FP_SUBSTRATE_DIFFUSION:
   case FP_RETRIANGULATE:
     // A curvature-driven fairing flow: it belongs beside MeshLab's Laplacian, Taubin and HC
     // smoothing filters; its re-triangulation stays next to it.
@@ -208,12 +232,11 @@ int FilterSdflowPlugin::postCondition(QAction*) const
 void FilterSdflowPlugin::initParameterSet(QAction* action, MeshModel& model, RichParameterList& parameters)
 {
   const double mean_edge_length = sdflow::meshlab::mean_edge_length(sdflow::meshlab::to_surface(model.cm));
-  switch (ID(action)) {
-  case FP_SURFACE_DIFFUSION:
-  case FP_ANISOTROPIC_DIFFUSION:
-    add_diffusion_parameters(parameters, mean_edge_length, ID(action) == FP_ANISOTROPIC_DIFFUSION);
-    break;
-  case FP_RETRIANGULATE: {
+  if (const auto flow = flow_filter(ID(action))) {
+    add_diffusion_parameters(parameters, mean_edge_length, *flow);
+    return;
+  }
+  if (ID(action) == FP_RETRIANGULATE) {
     const sdflow::meshlab::RetriangulationSettings defaults = sdflow::meshlab::default_retriangulation_settings();
     parameters.addParam(RichFloat("EdgeLength", static_cast<float>(mean_edge_length), "Target edge length ℓ",
                                   "Edge length the surface is remeshed to (≥ 0; 0: the mesh's mean edge length). "
@@ -232,8 +255,6 @@ void FilterSdflowPlugin::initParameterSet(QAction* action, MeshModel& model, Ric
     parameters.addParam(RichInt("MinComponentFaces", defaults.min_component_faces, "Minimum component faces",
                                 "Connected components with fewer triangles are dropped as debris (≥ 1); closed "
                                 "components enclosing almost no volume are dropped too."));
-    break;
-  }
   }
 }
 
@@ -249,18 +270,12 @@ bool FilterSdflowPlugin::applyFilter(QAction* action, MeshDocument& document, co
     const auto reporter = reporter_for(*this, progress);
     const std::string label = (model->fullName().isEmpty() ? model->label() : model->fullName()).toStdString();
     sdflow::meshlab::ShadedSurface result;
-    switch (ID(action)) {
-    case FP_SURFACE_DIFFUSION:
-    case FP_ANISOTROPIC_DIFFUSION:
-      result = sdflow::meshlab::surface_diffusion(
-          input, label, diffusion_settings(parameters, ID(action) == FP_ANISOTROPIC_DIFFUSION), reporter);
-      break;
-    case FP_RETRIANGULATE:
+    if (const auto flow = flow_filter(ID(action)))
+      result = sdflow::meshlab::surface_diffusion(input, label, *flow, diffusion_settings(parameters, *flow), reporter);
+    else if (ID(action) == FP_RETRIANGULATE)
       result = sdflow::meshlab::retriangulate_surface(input, label, retriangulation_settings(parameters), reporter);
-      break;
-    default:
+    else
       throw std::logic_error("unknown filter " + name.toStdString());
-    }
     // Only a complete result touches the user's mesh.
     sdflow::meshlab::replace_mesh(model->cm, result);
     model->updateDataMask(MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTNORMAL);

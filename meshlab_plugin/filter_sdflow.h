@@ -14,7 +14,7 @@ class FilterSdflowPlugin : public QObject, public MeshFilterInterface {
   Q_INTERFACES(MeshFilterInterface)
 
 public:
-  enum { FP_SURFACE_DIFFUSION, FP_RETRIANGULATE, FP_ANISOTROPIC_DIFFUSION };
+  enum { FP_SURFACE_DIFFUSION, FP_RETRIANGULATE, FP_ANISOTROPIC_DIFFUSION, FP_SUBSTRATE_DIFFUSION };
 
   FilterSdflowPlugin();
 

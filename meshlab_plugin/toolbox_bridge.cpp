@@ -1,6 +1,7 @@
 #include "toolbox_bridge.h"
 
 #include "sdflow/errors.h"
+#include "sdflow/flow/boundary_condition.h"
 #include "sdflow/flow/scheme.h"
 #include "sdflow/flow/surface_diffusion.h"
 #include "sdflow/geometry/curvature.h"
@@ -128,14 +129,14 @@ double mean_edge_length(const Surface& input)
 
 double natural_time_step(const double mean_edge_length) { return std::pow(mean_edge_length, 4); }
 
-std::vector<DialogParameter> diffusion_parameters(const double mean_edge_length, const bool anisotropic)
+std::vector<DialogParameter> diffusion_parameters(const double mean_edge_length, const MeshlabFilter filter)
 {
   using Kind = DialogParameter::Kind;
   using Default = MeshlabParameter::Default;
   std::vector<DialogParameter> list;
   for (const ParameterEntry& e : parameter_schema()) {
     const MeshlabParameter& m = e.meshlab;
-    if (m.name.empty() || (m.anisotropic && !anisotropic))
+    if (!m.offered_by(filter))
       continue;
     DialogParameter d{.name = m.name, .label = m.label, .help = m.help.empty() ? e.help : m.help};
     const ParameterValue value = m.value ? *m.value : e.get(RunParameters{});
@@ -224,17 +225,20 @@ ParameterValue dialog_value(const ParameterEntry& e, const DialogValue& value)
   throw std::logic_error("the dialog has no parameter of type " + type_name(e.type));
 }
 
-//! The run the dialog's settings describe: sdflow's defaults, then each setting as its scenario key.
-RunParameters run_parameters(const DiffusionSettings& settings)
+//! The run `filter`'s settings describe: sdflow's defaults, the substrate filter's boundary, then
+//! each setting as its scenario key.
+RunParameters run_parameters(const MeshlabFilter filter, const DiffusionSettings& settings)
 {
   std::vector<const ParameterEntry*> given;
   for (const auto& [name, _] : settings) {
-    const ParameterEntry* e = find_meshlab_parameter(name);
+    const ParameterEntry* e = find_meshlab_parameter(name, filter);
     if (!e)
-      throw InvalidParameter(fmt::format("surface diffusion has no parameter {}", name));
+      throw InvalidParameter(fmt::format("{} has no parameter {}", meshlab_filter_name(filter), name));
     given.push_back(e);
   }
   RunParameters p;
+  if (filter == MeshlabFilter::substrate)
+    p.scheme.boundary = BoundaryCondition::substrate;
   for (const auto order : {ParameterEntry::Order::first, ParameterEntry::Order::normal, ParameterEntry::Order::last})
     for (const ParameterEntry* e : given)
       if (e->order == order) {
@@ -260,12 +264,12 @@ RunParameters run_parameters(const DiffusionSettings& settings)
 
 } // namespace
 
-ShadedSurface surface_diffusion(const Surface& input, const std::string& name, const DiffusionSettings& settings,
-                                const Reporter& reporter)
+ShadedSurface surface_diffusion(const Surface& input, const std::string& name, const MeshlabFilter filter,
+                                const DiffusionSettings& settings, const Reporter& reporter)
 {
   const LoggerScope scope(reporter);
   // The same flow as `sdflow run` with the same options, in memory.
-  const RunParameters p = run_parameters(settings);
+  const RunParameters p = run_parameters(filter, settings);
   Mesh initial = checked_mesh(input, name);
   check_run_input(initial, p, name, FrontEnd::meshlab, run_input_limits(FrontEnd::meshlab, false));
   SurfaceDiffusion flow(initial, p);

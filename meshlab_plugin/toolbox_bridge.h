@@ -10,6 +10,8 @@
 
 #include "surface.h"
 
+#include "sdflow/run/meshlab_filter.h"
+
 #include <functional>
 #include <map>
 #include <string>
@@ -25,9 +27,9 @@ struct Reporter {
   std::function<void(int percent, const std::string&)> progress;
 };
 
-//! One parameter of "Surface diffusion N steps", as the dialog and .mlx scripts show it. The list
-//! is derived from the run parameters' schema (sdflow/run/parameter_schema.h): each is one key of
-//! a scenario and one flag of `sdflow run`.
+//! One parameter of a filter that runs the flow (MeshlabFilter, sdflow/run/meshlab_filter.h), as
+//! the dialog and .mlx scripts show it. The list is derived from the run parameters' schema
+//! (sdflow/run/parameter_schema.h): each is one key of a scenario and one flag of `sdflow run`.
 struct DialogParameter {
   //! `text` is a line of text: a formula, or numbers separated by commas (a list of reals).
   enum class Kind { integer, real, boolean, choice, text };
@@ -42,10 +44,11 @@ struct DialogParameter {
   std::string text;                 //!< default of a text
 };
 
-//! The parameters of "Surface diffusion N steps", with defaults for a mesh of this mean edge length
-//! (the re-triangulation's ℓ, and h⁴ for the constant τ); with `anisotropic`, those of
-//! "Anisotropic surface diffusion N steps": the same and the surface energy's.
-std::vector<DialogParameter> diffusion_parameters(double mean_edge_length, bool anisotropic = false);
+//! The parameters of `filter`, with defaults for a mesh of this mean edge length (the
+//! re-triangulation's ℓ, and h⁴ for the constant τ): those the schema's entries offer to it
+//! (MeshlabParameter::filters), in the schema's order.
+std::vector<DialogParameter> diffusion_parameters(double mean_edge_length,
+                                                  MeshlabFilter filter = MeshlabFilter::surface_diffusion);
 
 //! A value the dialog gives a parameter, by its kind: `number` (integer, real), `flag` (boolean),
 //! `choice` (an index; meshlabserver passes a script's index unchecked) or `text`.
@@ -56,7 +59,7 @@ struct DialogValue {
   std::string text;
 };
 
-//! Settings of "Surface diffusion N steps": its parameters' values by name (diffusion_parameters).
+//! Settings of a filter that runs the flow: its parameters' values by name (diffusion_parameters).
 using DiffusionSettings = std::map<std::string, DialogValue>;
 
 //! Settings of "Surface diffusion: re-triangulate"; each maps to one option of `sdflow retriangulate`
@@ -82,16 +85,19 @@ double natural_time_step(double mean_edge_length);
 
 //! Validate and orient `input` exactly as `sdflow` validates a mesh file (`name`, the mesh's file
 //! or label, names it in messages and in the run's recorded parameters), run the surface diffusion
-//! flow for `Steps` steps with the other settings (throws InvalidParameter naming the dialog's
-//! parameter on a value out of its range or an unknown name), and return the final surface with its normals and mean
-//! curvature (the H the run steps with). All connected components evolve together, each stepped on
+//! flow of `filter` for `Steps` steps with the other settings (throws InvalidParameter naming the
+//! dialog's parameter on a value out of its range or a name `filter` does not offer), and return
+//! the final surface with its normals and mean curvature (the H the run steps with). The substrate
+//! filter runs with boundary = "substrate" (`sdflow run --boundary substrate`); a surface whose
+//! boundary loops are not on the plane z₀, or which crosses below it, is refused before any step
+//! with the loop or vertex named (SubstrateBoundary::check_surface, as `sdflow run` refuses it). All connected components evolve together, each stepped on
 //! its own (Appendix A of the paper); with `settings.retriangulate` the run re-triangulates as
 //! `sdflow run --retriangulate` does. The surface gets the checks of `sdflow run` first
 //! (check_run_input, sdflow/run/run_input.h), named in the dialog's terms: InvalidMesh for bodies
 //! that overlap or a surface too coarse to re-triangulate at the ℓ given, before any step (with ℓ = 0,
 //! a surface too coarse at its mean edge length is refined exactly first, coarse_input.h).
-ShadedSurface surface_diffusion(const Surface& input, const std::string& name, const DiffusionSettings& settings,
-                                const Reporter& reporter = {});
+ShadedSurface surface_diffusion(const Surface& input, const std::string& name, MeshlabFilter filter,
+                                const DiffusionSettings& settings, const Reporter& reporter = {});
 
 //! Validate and orient `input` as surface_diffusion does, re-triangulate it once by the pipeline of
 //! paper §3.2.1 (sdflow/retri/pipeline.h, as `sdflow retriangulate`), and return the result with

@@ -9,6 +9,9 @@
 #   anisotropic_filter_mlx ENERGY G FORMULA, then the eleven above
 # prints "Anisotropic surface diffusion N steps" with the same and the surface energy's: ENERGY an
 # index of isotropic, ellipsoidal, sum, formula; G numbers separated by commas.
+#   substrate_filter_mlx Z CONTACT_ANGLE MOBILITY ENERGY G FORMULA, then the eleven above
+# prints "Surface diffusion on a substrate N steps": the anisotropic filter's parameters less
+# FixedBoundary (FIXED_BOUNDARY is not written) and the substrate's.
 diffusion_filter_mlx() {
   printf ' <filter name="Surface diffusion N steps">\n'
   diffusion_parameters_mlx "$@"
@@ -23,6 +26,21 @@ anisotropic_filter_mlx() {
          enum_val2="sum" enum_val3="formula"/>
   <Param type="RichString" name="EnergyG" value="$2"/>
   <Param type="RichString" name="EnergyFormula" value="$3"/>
+ </filter>
+MLX
+}
+
+substrate_filter_mlx() {
+  printf ' <filter name="Surface diffusion on a substrate N steps">\n'
+  diffusion_parameters_mlx "${@:7}" | grep -v '"FixedBoundary"'
+  cat <<MLX
+  <Param type="RichFloat" name="SubstrateZ" value="$1"/>
+  <Param type="RichFloat" name="ContactAngle" value="$2"/>
+  <Param type="RichFloat" name="ContactLineMobility" value="$3"/>
+  <Param type="RichEnum" name="Energy" value="$4" enum_cardinality="4" enum_val0="isotropic" enum_val1="ellipsoidal"
+         enum_val2="sum" enum_val3="formula"/>
+  <Param type="RichString" name="EnergyG" value="$5"/>
+  <Param type="RichString" name="EnergyFormula" value="$6"/>
  </filter>
 MLX
 }

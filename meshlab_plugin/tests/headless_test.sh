@@ -11,6 +11,12 @@
 #       (which must change the number of vertices); and, from the constant-τ case, with each other
 #       mean curvature, the volume-gradient vertex areas and extrapolated steps (each of which must
 #       change the surface).
+#   headless_test.sh substrate-same-as-cli PREFIX WORKDIR SDFLOW COMPARE_MESHES
+#       "Surface diffusion on a substrate N steps" on a 2 × 2 × 0.5 cuboid island (`sdflow shape
+#       cuboid-island`) must give the surface `sdflow run --boundary substrate` gives with the same
+#       parameters (θ_Y = 60°, η = 10, volume conserved, re-triangulation on), which must differ from
+#       the input; the same island lifted off the plane must be refused with the loop named and no
+#       output written.
 #   headless_test.sh retriangulate-same-as-cli PREFIX WORKDIR SDFLOW COMPARE_MESHES
 #       "Surface diffusion: re-triangulate" on two overlapping spheres and a small one apart (made by
 #       `sdflow shape`) must give the surface `sdflow retriangulate` gives with the same parameters,
@@ -101,19 +107,20 @@ run_meshlabserver() {
 
 # Runs the filter with SETTINGS (those of write_diffusion_script after the file name) on
 # $work/input.ply, and `sdflow run` with FLAGS..., then compares the two final surfaces; after
-# `-- anisotropic ENERGY G FORMULA`, the anisotropic filter with those (anisotropic_filter_mlx).
-#   compare_with_cli NAME "SETTINGS" FLAGS... [-- anisotropic ENERGY G FORMULA]
+# `-- anisotropic ENERGY G FORMULA`, the anisotropic filter with those (anisotropic_filter_mlx);
+# after `-- substrate Z ANGLE MOBILITY ENERGY G FORMULA`, the substrate filter (substrate_filter_mlx).
+#   compare_with_cli NAME "SETTINGS" FLAGS... [-- anisotropic ENERGY G FORMULA | -- substrate ...]
 compare_with_cli() {
   local name=$1 settings=$2; shift 2
-  local steps flags=() energy=()
+  local steps flags=() filter=diffusion extra=()
   steps=$(cut -d' ' -f1 <<< "$settings")
-  # FLAGS... -- anisotropic ENERGY G FORMULA: the anisotropic filter with those energy settings.
+  # FLAGS... -- FILTER SETTINGS...: the anisotropic or substrate filter with those settings.
   while [[ $# -gt 0 && $1 != -- ]]; do flags+=("$1"); shift; done
-  [[ $# -eq 0 ]] || { shift 2; energy=("$@"); }
+  [[ $# -eq 0 ]] || { filter=$2; shift 2; extra=("$@"); }
   {
     printf '<!DOCTYPE FilterScript>\n<FilterScript>\n'
     # shellcheck disable=SC2086 # the settings are words on purpose
-    if [[ ${#energy[@]} -eq 0 ]]; then diffusion_filter_mlx $settings; else anisotropic_filter_mlx "${energy[@]}" $settings; fi
+    "${filter}_filter_mlx" "${extra[@]}" $settings
     printf '</FilterScript>\n'
   } > "$work/$name.mlx"
   run_meshlabserver -l "$work/$name.log" -i "$work/input.ply" -o "$work/$name.meshlab.ply" -s "$work/$name.mlx"
@@ -170,6 +177,27 @@ same-as-cli)
     -- anisotropic 3 "1" "1 + 0.05 * (nx^4 + ny^4 + nz^4)"
   expect_different constant ellipsoidal
   echo "headless_test same-as-cli: the plugin's surfaces equal sdflow run's"
+  ;;
+substrate-same-as-cli)
+  sdflow=$4 compare=$5
+  "$sdflow" --quiet shape cuboid-island --a 2 --b 2 --c 0.5 --edge-length 0.2 -o "$work/island.ply" > /dev/null \
+    || fail "sdflow shape failed"
+  run_meshlabserver -i "$work/island.ply" -o "$work/input.ply"
+  [[ $status -eq 0 && -s "$work/input.ply" ]] || fail "meshlabserver could not convert the island"
+  compare_with_cli island "6 true 0.001 0.5 true false true 0.2 0 0 false" --adaptive --beta 0.5 --conserve-volume \
+    --edge-length 0.2 --boundary substrate --substrate-z 0 --contact-angle 60 --contact-line-mobility 10 \
+    -- substrate 0 60 10 0 "1, 1, 4" "1"
+  "$compare" "$work/input.ply" "$work/island.meshlab.ply" > /dev/null 2>&1 && fail "the island did not change"
+  # The plane 0.1 above the island's rim: refused before any step, naming the loop.
+  { printf '<!DOCTYPE FilterScript>\n<FilterScript>\n'
+    substrate_filter_mlx 0.1 60 10 0 "1, 1, 4" "1" 3 true 0.001 0.5 true false true 0.2 0 0 false
+    printf '</FilterScript>\n'; } > "$work/lifted.mlx"
+  run_meshlabserver -l "$work/lifted.log" -i "$work/input.ply" -o "$work/lifted.ply" -s "$work/lifted.mlx"
+  [[ $status -ne 0 ]] || fail "meshlabserver exited with 0 with the rim off the substrate"
+  grep -q "boundary loop 0 .* is not on the plane" "$work/lifted.log" \
+    || fail "the log does not name the loop: $(cat "$work/lifted.log")"
+  [[ ! -e "$work/lifted.ply" ]] || fail "an output file was written"
+  echo "headless_test substrate-same-as-cli: the plugin's island equals sdflow run's; a rim off the plane is refused"
   ;;
 retriangulate-same-as-cli)
   sdflow=$4 compare=$5
@@ -233,6 +261,6 @@ bad-choice)
   echo "headless_test bad-choice: exit code $status, choices logged, no output written"
   ;;
 *)
-  fail "unknown case (nonmanifold, same-as-cli, retriangulate-same-as-cli, nothing-left, example, bad-choice)"
+  fail "unknown case (nonmanifold, same-as-cli, substrate-same-as-cli, retriangulate-same-as-cli, nothing-left, example, bad-choice)"
   ;;
 esac

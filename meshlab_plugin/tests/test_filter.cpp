@@ -30,6 +30,7 @@ protected:
   QAction* action() { return plugin.AC(FilterSdflowPlugin::FP_SURFACE_DIFFUSION); }
   QAction* retriangulate_action() { return plugin.AC(FilterSdflowPlugin::FP_RETRIANGULATE); }
   QAction* anisotropic_action() { return plugin.AC(FilterSdflowPlugin::FP_ANISOTROPIC_DIFFUSION); }
+  QAction* substrate_action() { return plugin.AC(FilterSdflowPlugin::FP_SUBSTRATE_DIFFUSION); }
 
   //! The default parameters of `filter` (the flow's unless given) for the current mesh, with `steps` steps.
   RichParameterList parameters(int steps, QAction* filter = nullptr)
@@ -100,6 +101,77 @@ protected:
     for (const CVertexO& v : document.mm()->cm.vert)
       positions.push_back(v.cP());
     return positions;
+  }
+
+  //! A unit hemisphere standing on z = 0, open at the bottom, its rim the unit circle on the plane
+  //! (exactly: z = 0): a pole and `rings` rings of 6k vertices at the polar angles (π/2) k / rings,
+  //! each ring joined to the one above it by walking both in angle; normals out of the material.
+  MeshModel* add_hemisphere(int rings = 8)
+  {
+    MeshModel* model = document.addNewMesh("", "hemisphere");
+    CMeshO& m = model->cm;
+    vcg::tri::Allocator<CMeshO>::AddVertices(m, 1 + 3 * rings * (rings + 1));
+    std::vector<std::vector<int>> ring(rings + 1);
+    int next = 0;
+    for (int k = 0; k <= rings; ++k) {
+      const double polar = M_PI / 2 * k / rings;
+      const int count = k == 0 ? 1 : 6 * k;
+      for (int j = 0; j < count; ++j) {
+        const double azimuth = 2 * M_PI * j / count;
+        const double z = k == rings ? 0.0 : std::cos(polar);
+        m.vert[next].P() = Point3m(std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth), z);
+        ring[k].push_back(next++);
+      }
+    }
+    const auto face = [&m](int a, int b, int c) {
+      vcg::tri::Allocator<CMeshO>::AddFace(m, &m.vert[a], &m.vert[b], &m.vert[c]);
+    };
+    for (int k = 1; k <= rings; ++k) {
+      const std::vector<int>&inner = ring[k - 1], &outer = ring[k];
+      const int n0 = static_cast<int>(inner.size()), n1 = static_cast<int>(outer.size());
+      if (n0 == 1) { // the pole's fan
+        for (int j = 0; j < n1; ++j)
+          face(inner[0], outer[j], outer[(j + 1) % n1]);
+        continue;
+      }
+      // Both rings start at azimuth 0; advance along the one whose next vertex comes first.
+      for (int i = 0, j = 0; i < n0 || j < n1;) {
+        if (j < n1 && (i == n0 || double(j + 1) / n1 <= double(i + 1) / n0)) {
+          face(inner[i % n0], outer[j], outer[(j + 1) % n1]);
+          ++j;
+        } else {
+          face(inner[i], outer[j % n1], inner[(i + 1) % n0]);
+          ++i;
+        }
+      }
+    }
+    return model;
+  }
+
+  //! The volume the current mesh encloses with the plane z = 0 (∫ z n_z dA: the plane adds nothing).
+  double volume_on_plane()
+  {
+    double volume = 0;
+    for (const CFaceO& f : document.mm()->cm.face) {
+      const vcg::Point3d a = vcg::Point3d::Construct(f.cP(0)), b = vcg::Point3d::Construct(f.cP(1)),
+                         c = vcg::Point3d::Construct(f.cP(2));
+      volume += (a[2] + b[2] + c[2]) / 3 * ((b - a) ^ (c - a))[2] / 2;
+    }
+    return volume;
+  }
+
+  //! Boundary vertices of the current mesh (on an edge of one triangle only), as positions.
+  std::vector<Point3m> rim()
+  {
+    MeshModel* model = document.mm();
+    model->updateDataMask(MeshModel::MM_FACEFACETOPO);
+    vcg::tri::UpdateTopology<CMeshO>::FaceFace(model->cm);
+    vcg::tri::UpdateFlags<CMeshO>::VertexBorderFromFaceAdj(model->cm);
+    std::vector<Point3m> points;
+    for (const CVertexO& v : model->cm.vert)
+      if (v.IsB())
+        points.push_back(v.cP());
+    return points;
   }
 
   //! Two unit spheres centred at (±0.6, 0, 0): two components that intersect each other.
@@ -258,7 +330,8 @@ TEST_F(FilterTest, the_anisotropic_flow_has_the_flows_parameters_and_the_surface
   std::vector<std::string> isotropic, anisotropic;
   for (const sdflow::meshlab::DialogParameter& d : sdflow::meshlab::diffusion_parameters(1.0))
     isotropic.push_back(d.name);
-  const std::vector<sdflow::meshlab::DialogParameter> expected = sdflow::meshlab::diffusion_parameters(1.0, true);
+  const std::vector<sdflow::meshlab::DialogParameter> expected =
+      sdflow::meshlab::diffusion_parameters(1.0, sdflow::MeshlabFilter::anisotropic);
   for (const sdflow::meshlab::DialogParameter& d : expected)
     anisotropic.push_back(d.name);
   std::sort(isotropic.begin(), isotropic.end());
@@ -331,6 +404,110 @@ TEST_F(FilterTest, the_surface_energy_reaches_the_flow_from_the_dialog)
   EXPECT_TRUE(plugin.errorMsg().contains("(EnergyG) must be numbers separated by commas, got \"one\""))
       << plugin.errorMsg().toStdString();
   EXPECT_EQ(model->cm.vert[7].cP(), before);
+}
+
+TEST_F(FilterTest, the_substrate_flow_has_the_flows_parameters_less_the_boundary_and_the_substrates)
+{
+  using Kind = sdflow::meshlab::DialogParameter::Kind;
+  add_hemisphere();
+  EXPECT_EQ(plugin.filterName(substrate_action()), QString("Surface diffusion on a substrate N steps"));
+  EXPECT_EQ(plugin.getClass(substrate_action()), plugin.getClass(action()));
+  std::vector<std::string> anisotropic, substrate;
+  for (const sdflow::meshlab::DialogParameter& d :
+       sdflow::meshlab::diffusion_parameters(1.0, sdflow::MeshlabFilter::anisotropic))
+    anisotropic.push_back(d.name);
+  const std::vector<sdflow::meshlab::DialogParameter> expected =
+      sdflow::meshlab::diffusion_parameters(1.0, sdflow::MeshlabFilter::substrate);
+  for (const sdflow::meshlab::DialogParameter& d : expected)
+    substrate.push_back(d.name);
+  std::sort(anisotropic.begin(), anisotropic.end());
+  std::sort(substrate.begin(), substrate.end());
+  std::vector<std::string> added, left_out;
+  std::set_difference(substrate.begin(), substrate.end(), anisotropic.begin(), anisotropic.end(),
+                      std::back_inserter(added));
+  std::set_difference(anisotropic.begin(), anisotropic.end(), substrate.begin(), substrate.end(),
+                      std::back_inserter(left_out));
+  // The .mlx names are an interface: the flags in CamelCase.
+  EXPECT_EQ(added, (std::vector<std::string>{"ContactAngle", "ContactLineMobility", "SubstrateZ"}));
+  EXPECT_EQ(left_out, (std::vector<std::string>{"FixedBoundary"})) << "the boundary is the substrate";
+  // Every default is the schema's (diffusion_parameters reads it), none typed in the plugin.
+  const RichParameterList list = parameters(2, substrate_action());
+  ASSERT_EQ(list.size(), expected.size());
+  for (const sdflow::meshlab::DialogParameter& d : expected) {
+    SCOPED_TRACE(d.name);
+    const QString name = QString::fromStdString(d.name);
+    ASSERT_TRUE(list.hasParameter(name));
+    EXPECT_EQ(list.getParameterByName(name).fieldDescription().toStdString(), d.label);
+    if (d.kind == Kind::real && name != "Tau" && name != "EdgeLength") { // those two: this mesh's
+      EXPECT_EQ(list.getFloat(name), static_cast<float>(d.number));
+    }
+  }
+  // The substrate filter's own parameters are not the other filters'.
+  for (QAction* other : {action(), anisotropic_action()}) {
+    RichParameterList others;
+    plugin.initParameterSet(other, *document.mm(), others);
+    EXPECT_FALSE(others.hasParameter("ContactAngle"));
+  }
+}
+
+// A hemisphere (contact angle 90°) on z = 0 relaxes toward Young's angle: with θ_Y = 60° its
+// contact line spreads, with θ_Y = 120° it retracts; either way every rim vertex stays exactly on
+// the plane and the volume enclosed with the substrate is kept.
+TEST_F(FilterTest, an_island_on_the_substrate_moves_its_contact_line_toward_youngs_angle)
+{
+  constexpr double volume_tolerance = 1e-4; // relative; ConserveVolume restores it each step
+  constexpr double least_rim_motion = 0.03; // of the unit radius in 10 steps at η = 10 (0.07 measured)
+  const auto mean_rim_radius = [this] {
+    const std::vector<Point3m> points = rim();
+    double sum = 0;
+    for (const Point3m& p : points)
+      sum += std::hypot(double(p[0]), double(p[1]));
+    return points.empty() ? 0.0 : sum / static_cast<double>(points.size());
+  };
+  for (const float young : {60.0f, 120.0f}) {
+    SCOPED_TRACE(young);
+    add_hemisphere();
+    const double volume = volume_on_plane();
+    ASSERT_NEAR(mean_rim_radius(), 1.0, 1e-6);
+    RichParameterList list = parameters(10, substrate_action());
+    list.setValue("ContactAngle", FloatValue(young));
+    list.setValue("ContactLineMobility", FloatValue(10));
+    list.setValue("ConserveVolume", BoolValue(true));
+    ASSERT_TRUE(plugin.applyFilter(substrate_action(), document, list, nullptr)) << log_text().toStdString();
+    const std::vector<Point3m> points = rim();
+    ASSERT_FALSE(points.empty());
+    for (const Point3m& p : points)
+      EXPECT_EQ(p[2], 0.0f);
+    for (const CVertexO& v : document.mm()->cm.vert)
+      EXPECT_GE(v.cP()[2], 0.0f);
+    EXPECT_NEAR(volume_on_plane(), volume, volume_tolerance * volume);
+    if (young < 90)
+      EXPECT_GT(mean_rim_radius(), 1 + least_rim_motion);
+    else
+      EXPECT_LT(mean_rim_radius(), 1 - least_rim_motion);
+  }
+}
+
+// The substrate's check of `sdflow run` (SubstrateBoundary::check_surface): a rim off the plane
+// z₀, or a vertex below it, is refused before any step with the loop or vertex named, the mesh
+// left as it was.
+TEST_F(FilterTest, a_surface_off_the_substrate_is_refused_naming_the_loop_and_left_unchanged)
+{
+  MeshModel* model = add_hemisphere();
+  const Point3m before = model->cm.vert[7].cP();
+  RichParameterList list = parameters(3, substrate_action());
+  list.setValue("SubstrateZ", FloatValue(0.25f));
+  EXPECT_FALSE(plugin.applyFilter(substrate_action(), document, list, nullptr));
+  EXPECT_TRUE(plugin.errorMsg().contains("boundary loop 0")) << plugin.errorMsg().toStdString();
+  EXPECT_TRUE(plugin.errorMsg().contains("is not on the plane")) << plugin.errorMsg().toStdString();
+  EXPECT_TRUE(log_text().contains("boundary loop 0")) << log_text().toStdString();
+  EXPECT_EQ(model->cm.vert[7].cP(), before);
+
+  model = add_sphere(); // radius 2 about the origin: no boundary, half of it below z = 0
+  const Point3m sphere_before = model->cm.vert[7].cP();
+  EXPECT_FALSE(plugin.applyFilter(substrate_action(), document, parameters(3, substrate_action()), nullptr));
+  EXPECT_TRUE(plugin.errorMsg().contains("below the substrate")) << plugin.errorMsg().toStdString();
+  EXPECT_EQ(model->cm.vert[7].cP(), sphere_before);
 }
 
 TEST_F(FilterTest, each_scheme_option_changes_the_flow)

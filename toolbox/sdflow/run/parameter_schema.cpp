@@ -145,10 +145,15 @@ const ParameterEntry* find_parameter(const std::string& key)
   return nullptr;
 }
 
-const ParameterEntry* find_meshlab_parameter(const std::string& name)
+bool MeshlabParameter::offered_by(const MeshlabFilter filter) const
+{
+  return !name.empty() && std::find(filters.begin(), filters.end(), filter) != filters.end();
+}
+
+const ParameterEntry* find_meshlab_parameter(const std::string& name, const MeshlabFilter filter)
 {
   for (const ParameterEntry& e : parameter_schema())
-    if (!e.meshlab.name.empty() && e.meshlab.name == name)
+    if (e.meshlab.name == name && e.meshlab.offered_by(filter))
       return &e;
   return nullptr;
 }
@@ -269,8 +274,13 @@ std::string meshlab_parameter_table_markdown()
       flag += ", `" + shorthand.flag + "`";
     if (e.type == ParameterType::boolean)
       flag += ", `--no-" + e.flag.substr(2) + "`";
-    if (e.meshlab.anisotropic)
-      cell += " (*Anisotropic surface diffusion N steps* only)";
+    if (e.meshlab.filters.size() < meshlab_filters.size()) {
+      std::string only;
+      for (std::size_t i = 0; i < e.meshlab.filters.size(); ++i)
+        only += fmt::format("{}*{}*", i == 0 ? "" : i + 1 == e.meshlab.filters.size() ? " and " : ", ",
+                            meshlab_filter_name(e.meshlab.filters[i]));
+      cell += " (" + only + " only)";
+    }
     s += fmt::format("| {} (`{}`) | {} | {} |\n", e.meshlab.label, e.meshlab.name, cell, flag);
   }
   return s;

@@ -6,7 +6,7 @@
 //!
 //! Everything that names a run parameter is derived from this table: the scenario and run.toml
 //! reader and the run.toml writer (parameters.cpp), the flags of `sdflow run` and its `--resume`
-//! rules (cli/verb_run.cpp), the parameters of the MeshLab filter "Surface diffusion N steps" and
+//! rules (cli/verb_run.cpp), the parameters of the MeshLab filters that run the flow (meshlab_filter.h) and
 //! their mapping onto a run (meshlab_plugin/toolbox_bridge.cpp), and README's table of scenario
 //! keys (`sdflow run --help-scenario`, checked by the test `ParameterSchema.readme_table_is_the_schemas`).
 //! An entry's range is the one stated beside the option it sets (flow_ranges, time_step_ranges,
@@ -29,6 +29,7 @@
 //! (`adaptive.tolerance`), `--adaptive` (time_step = "adaptive") and MeshLab's `AutomaticTau`.
 
 #include "sdflow/parameter_range.h"
+#include "sdflow/run/meshlab_filter.h"
 #include "sdflow/run/parameters.h"
 
 #include <Eigen/Core>
@@ -72,7 +73,7 @@ struct ScheduleSetting {
 using ParameterValue = std::variant<long, double, bool, std::string, std::filesystem::path, Eigen::Vector3d,
                                     ScheduleSetting, std::vector<double>>;
 
-//! How the MeshLab filter "Surface diffusion N steps" offers a parameter.
+//! How the MeshLab filters that run the flow (meshlab_filter.h) offer a parameter.
 struct MeshlabParameter {
   //! Where the dialog's default comes from.
   enum class Default {
@@ -90,9 +91,14 @@ struct MeshlabParameter {
   //! too (`fixed_boundary = true`, the older boolean key of `boundary`).
   std::optional<std::pair<std::string, std::string>> boolean_choices;
   ParameterRange range; //!< the dialog's own range, where narrower (Steps ≥ 1)
-  //! Offered only by "Anisotropic surface diffusion N steps": meshlabserver refuses a filter script
-  //! that lacks one of a filter's parameters, so the isotropic filter keeps its list.
-  bool anisotropic = false;
+  //! The filters that offer it: every one unless narrowed. meshlabserver refuses a filter script
+  //! that lacks one of a filter's parameters, so a released filter keeps its list (the energy's
+  //! parameters are not the isotropic filter's) and one that sets the parameter itself leaves it
+  //! out (the substrate filter's boundary).
+  std::vector<MeshlabFilter> filters{meshlab_filters.begin(), meshlab_filters.end()};
+
+  //! Whether `filter` offers it (a name is given and `filters` has the filter).
+  bool offered_by(MeshlabFilter filter) const;
 };
 
 struct ParameterEntry {
@@ -150,8 +156,8 @@ const std::vector<ParameterEntry>& parameter_schema();
 //! The entry whose key, or one of whose older keys, is `key`; null if none.
 const ParameterEntry* find_parameter(const std::string& key);
 
-//! The entry whose MeshLab name is `name`; null if none.
-const ParameterEntry* find_meshlab_parameter(const std::string& name);
+//! The entry whose MeshLab name is `name` and which `filter` offers; null if none.
+const ParameterEntry* find_meshlab_parameter(const std::string& name, MeshlabFilter filter);
 
 //! The known key closest to an unknown one, for "did you mean"; "" if none is close.
 std::string closest_parameter_key(const std::string& key);
@@ -165,7 +171,8 @@ void check_range(const ParameterEntry& entry, const ParameterValue& value);
 //! README's table of scenario keys (markdown): key, flag, type, default, range, `--resume`, meaning.
 std::string parameter_table_markdown();
 
-//! README's table of the MeshLab filter's parameters (markdown): label and .mlx name, tooltip, flag.
+//! README's table of the MeshLab filters' parameters (markdown): label and .mlx name, tooltip (with
+//! the filters that offer it, unless every one does), flag.
 std::string meshlab_parameter_table_markdown();
 
 } // namespace sdflow

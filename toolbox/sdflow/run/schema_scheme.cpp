@@ -150,7 +150,9 @@ void add_flow_option_entries(std::vector<ParameterEntry>& s)
                          "flows through it (the surface ends on a large body that does not move), so the volume "
                          "under the surface is conserved. Off: boundary vertices move like interior ones, with zero "
                          "mean curvature there (the paper's rule; the volume is not conserved).",
-                 .boolean_choices = std::pair<std::string, std::string>{"paper", "fixed"}};
+                 .boolean_choices = std::pair<std::string, std::string>{"paper", "fixed"},
+                 // The substrate filter's boundary is the substrate.
+                 .filters = {MeshlabFilter::surface_diffusion, MeshlabFilter::anisotropic}};
     e.paper = std::string("paper");
   }
   const auto on_substrate = [](const RunParameters& p) { return p.scheme.boundary == BoundaryCondition::substrate; };
@@ -161,6 +163,11 @@ void add_flow_option_entries(std::vector<ParameterEntry>& s)
     e.range = substrate_ranges.z;
     bind<double>(e, &RunParameters::scheme, &SchemeOptions::substrate, &SubstrateOptions::z);
     e.in_use = e.written = on_substrate;
+    e.meshlab = {.name = "SubstrateZ", .label = "Substrate plane z₀",
+                 .help = "The film or island stands on the plane z = z₀: every boundary loop of the mesh must lie "
+                         "on it (each is a contact line, which moves in the plane) and no vertex below it; "
+                         "otherwise the filter stops and names the loop.",
+                 .filters = {MeshlabFilter::substrate}};
   }
   {
     auto& e = add(s, entry("substrate.contact_angle", "--contact-angle", ParameterType::real,
@@ -169,6 +176,11 @@ void add_flow_option_entries(std::vector<ParameterEntry>& s)
     e.range = substrate_ranges.contact_angle;
     bind<double>(e, &RunParameters::scheme, &SchemeOptions::substrate, &SubstrateOptions::contact_angle);
     e.in_use = e.written = on_substrate;
+    e.meshlab = {.name = "ContactAngle", .label = "Contact angle θ_Y (degrees)",
+                 .help = "Young's angle between the film and the substrate at equilibrium, in degrees (0 < θ_Y < "
+                         "180), cos θ_Y = (γ_VS − γ_FS)/γ_FV: an island relaxes to the spherical cap of that angle "
+                         "(with an anisotropic energy, cos θ_Y is σ = γ_VS − γ_FS in γ's units: a Winterbottom shape).",
+                 .filters = {MeshlabFilter::substrate}};
   }
   {
     auto& e = add(s, entry("substrate.mobility", "--contact-line-mobility", ParameterType::real,
@@ -177,6 +189,10 @@ void add_flow_option_entries(std::vector<ParameterEntry>& s)
     e.range = substrate_ranges.mobility;
     bind<double>(e, &RunParameters::scheme, &SchemeOptions::substrate, &SubstrateOptions::mobility);
     e.in_use = e.written = on_substrate;
+    e.meshlab = {.name = "ContactLineMobility", .label = "Contact-line mobility η",
+                 .help = "How fast the contact line moves toward Young's angle (> 0): in the plane, along its outward "
+                         "normal, at η (cos θ_Y − cos θ) for the current angle θ; inf holds the angle at θ_Y.",
+                 .filters = {MeshlabFilter::substrate}};
   }
 }
 
@@ -198,7 +214,7 @@ void add_energy_entries(std::vector<ParameterEntry>& s)
                          "nz²), with the three numbers of γ's g; sum: of rotated ellipsoidal terms, six numbers "
                          "per term in γ's g (g1, g2, g3 and rotations about x, y, z in degrees); formula: γ's "
                          "formula. The flow then lowers ∫ γ dA toward the Wulff shape.",
-                 .anisotropic = true};
+                 .filters = {MeshlabFilter::anisotropic, MeshlabFilter::substrate}};
     e.paper = std::string("isotropic");
   }
   {
@@ -211,7 +227,7 @@ void add_energy_entries(std::vector<ParameterEntry>& s)
                  .help = "The numbers of an ellipsoidal γ (g1, g2, g3, each > 0: its Wulff shape has semi-axes "
                          "∝ √g) or of a sum (six per term), separated by commas",
                  .value = std::vector<double>{1, 1, 4},
-                 .anisotropic = true};
+                 .filters = {MeshlabFilter::anisotropic, MeshlabFilter::substrate}};
     e.in_use = [](const RunParameters& p) {
       return p.scheme.energy.kind == SurfaceEnergyKind::ellipsoidal || p.scheme.energy.kind == SurfaceEnergyKind::sum;
     };
@@ -226,7 +242,7 @@ void add_energy_entries(std::vector<ParameterEntry>& s)
                  .help = "γ(nx, ny, nz) on unit normals, in muparser syntax, for the energy `formula`: positive "
                          "and convex, e.g. 1 + 0.05 * (nx^4 + ny^4 + nz^4)",
                  .value = std::string("1 + 0.05 * (nx^4 + ny^4 + nz^4)"),
-                 .anisotropic = true};
+                 .filters = {MeshlabFilter::anisotropic, MeshlabFilter::substrate}};
     e.in_use = [](const RunParameters& p) { return p.scheme.energy.kind == SurfaceEnergyKind::formula; };
   }
 }
