@@ -47,7 +47,8 @@ toml::table to_json_table(const std::string& file, const BuiltMesh& built, const
                   {"boundary_loops", c.topology.boundary_loops},
                   {"closed", c.topology.closed()},
                   {"area", c.area},
-                  {"volume", c.volume}};
+                  {"volume", c.volume},
+                  {"material_volume", c.material_volume}};
     if (c.tetgen_volume) {
       t.insert("tetgen_volume", *c.tetgen_volume);
       t.insert("tetrahedra", c.tetrahedra);
@@ -68,6 +69,7 @@ toml::table to_json_table(const std::string& file, const BuiltMesh& built, const
                    {"boundary_loops", s.boundary_loops},
                    {"area", s.area},
                    {"volume", s.volume},
+                   {"material_volume", s.material_volume},
                    {"self_intersecting_pairs", static_cast<int64_t>(s.self_intersecting_pairs)},
                    {"mean_curvature", s.curvature.mean},
                    {"curvature_deviation", s.curvature.deviation},
@@ -100,6 +102,8 @@ void print_text(const std::string& file, const BuiltMesh& built, const MeshStati
                              c.topology.genus, c.topology.boundary_loops, c.area);
     if (c.topology.closed())
       std::cout << fmt::format(", volume {:.10g}", c.volume);
+    else
+      std::cout << fmt::format(", material volume {:.10g}", c.material_volume);
     if (c.tetgen_volume)
       std::cout << fmt::format(" (TetGen {:.10g}, {} tetrahedra)", *c.tetgen_volume, c.tetrahedra);
     if (c.crossing_faces > 0)
@@ -114,6 +118,9 @@ void print_text(const std::string& file, const BuiltMesh& built, const MeshStati
                                               std::abs(*s.tetgen_volume - s.volume)));
   if (!s.tetgen_skipped.empty())
     std::cout << fmt::format("  ({})", s.tetgen_skipped);
+  if (s.boundary_loops > 0)
+    std::cout << fmt::format("\n  material volume {:.10g} (each boundary loop closed by a flat cap, as a run measures it)",
+                             s.material_volume);
   std::cout << fmt::format("\n  mean curvature H̃ {:.8g}, deviation H_dev {:.6g} ({})\n", s.curvature.mean,
                            s.curvature.deviation,
                            std::isfinite(s.curvature.deviation_pct) ? fmt::format("{:.4g}% of |H̃|", s.curvature.deviation_pct)

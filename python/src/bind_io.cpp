@@ -60,6 +60,7 @@ py::dict stats_dict(const std::optional<std::string>& file, BuiltMesh& built, bo
     t["closed"] = c.topology.closed();
     t["area"] = c.area;
     t["volume"] = c.volume;
+    t["material_volume"] = c.material_volume;
     if (c.tetgen_volume) {
       t["tetgen_volume"] = *c.tetgen_volume;
       t["tetrahedra"] = c.tetrahedra;
@@ -94,6 +95,7 @@ py::dict stats_dict(const std::optional<std::string>& file, BuiltMesh& built, bo
   root["boundary_loops"] = s.boundary_loops;
   root["area"] = s.area;
   root["volume"] = s.volume;
+  root["material_volume"] = s.material_volume;
   if (s.tetgen_volume)
     root["tetgen_volume"] = *s.tetgen_volume;
   if (!s.tetgen_skipped.empty())

@@ -1,12 +1,15 @@
 //! `sdflow stats` end to end: good meshes, bad meshes, exit codes and the JSON keys.
 #include "sdflow/io/io.h"
 #include "support/analytic_meshes.h"
+#include "support/json_query.h"
+#include "support/test_meshes.h"
 #include "support/run_command.h"
 
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
 
 #include <filesystem>
+#include <numbers>
 #include <fstream>
 
 namespace sdflow {
@@ -61,6 +64,36 @@ TEST_F(StatsCommand, disk_is_reported_with_its_boundary)
   ASSERT_EQ(text.exit_code, 0) << text.output;
   EXPECT_NE(text.output.find("no relative deviation: H̃ = 0"), std::string::npos) << text.output;
   EXPECT_EQ(text.output.find("inf%"), std::string::npos) << text.output;
+}
+
+// An open surface's material volume, as a run measures it (each boundary loop closed by a flat
+// cap): a hemisphere's is about 2π/3 and does not depend on where it stands, a closed surface's is
+// its volume; `volume` stays the closed components' (0 here).
+TEST_F(StatsCommand, an_open_surface_reports_its_material_volume_wherever_it_stands)
+{
+  const Mesh cap = analytic::spherical_cap(12, 1.0, 90);
+  write_mesh(cap, dir / "cap.ply");
+  write_mesh(test::mapped(cap, [](const Eigen::Vector3d& p) { return Eigen::Vector3d(p + Eigen::Vector3d(40, -25, 9)); }),
+             dir / "moved.ply");
+  const auto here = analytic::run_sdflow_streams("stats --json " + (dir / "cap.ply").string());
+  const auto there = analytic::run_sdflow_streams("stats --json " + (dir / "moved.ply").string());
+  ASSERT_EQ(here.exit_code, 0) << here.out << here.err;
+  ASSERT_EQ(there.exit_code, 0) << there.out << there.err;
+  const double material = std::stod(test::json_query(here.out, "repr(d['material_volume'])").value_or("nan"));
+  const double moved = std::stod(test::json_query(there.out, "repr(d['material_volume'])").value_or("nan"));
+  const double hemisphere = 2 * std::numbers::pi / 3;
+  EXPECT_NEAR(material, hemisphere, 0.02 * hemisphere);
+  EXPECT_NEAR(moved, material, 1e-9 * material) << "the caps close the surface wherever it stands";
+  EXPECT_EQ(test::json_query(here.out, "repr(d['volume'])"), "0.0");
+  EXPECT_EQ(test::json_query(here.out, "repr(d['components'][0]['material_volume'] == d['material_volume'])"), "True");
+  const auto text = analytic::run_sdflow("stats " + (dir / "cap.ply").string());
+  EXPECT_NE(text.output.find("material volume"), std::string::npos) << text.output;
+
+  write_mesh(analytic::icosphere(3, 2.0), dir / "sphere.ply");
+  const auto closed = analytic::run_sdflow_streams("stats --json " + (dir / "sphere.ply").string());
+  ASSERT_EQ(closed.exit_code, 0) << closed.err;
+  EXPECT_EQ(test::json_query(closed.out, "repr(abs(d['material_volume'] - d['volume']) <= 1e-12 * d['volume'])"), "True")
+      << closed.out;
 }
 
 TEST_F(StatsCommand, bad_input_exits_with_code_two_and_says_why)

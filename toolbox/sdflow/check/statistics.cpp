@@ -3,6 +3,7 @@
 #include "sdflow/check/tetgen_volume.h"
 #include "sdflow/geometry/curvature.h"
 #include "sdflow/geometry/laplacian.h"
+#include "sdflow/geometry/material_volume.h"
 #include "sdflow/geometry/normals.h"
 #include "sdflow/spatial/intersect.h"
 
@@ -19,6 +20,7 @@ MeshStatistics mesh_statistics(const Mesh& mesh, const StatisticsOptions& option
 
   const std::vector<int> face_id = face_component_ids(mesh);
   const std::vector<double> volumes = component_volumes(mesh);
+  const std::vector<double> material = material_volumes(mesh);
   for (const ComponentTopology& topology : component_topology(mesh)) {
     s.components.push_back({.topology = topology});
     s.genus += topology.genus;
@@ -29,6 +31,8 @@ MeshStatistics mesh_statistics(const Mesh& mesh, const StatisticsOptions& option
   for (std::size_t c = 0; c < s.components.size(); ++c) {
     ComponentStatistics& component = s.components[c];
     s.area += component.area;
+    component.material_volume = material[c];
+    s.material_volume += material[c];
     if (component.topology.closed()) {
       component.volume = volumes[c];
       s.volume += volumes[c];

@@ -17,6 +17,9 @@ struct ComponentStatistics {
   ComponentTopology topology;
   double area = 0;
   double volume = 0;                   //!< divergence theorem; 0 for components with boundary
+  //! The volume a run measures (material_volume.h): each boundary loop closed by a flat cap; the
+  //! divergence-theorem volume on a closed component.
+  double material_volume = 0;
   std::optional<double> tetgen_volume; //!< TetGen's tetrahedral volume, closed components only
   int tetrahedra = 0;
   //! Faces of this component in an intersecting pair: TetGen is not called on it (it refuses a
@@ -31,6 +34,7 @@ struct MeshStatistics {
   int boundary_loops = 0; //!< summed over components
   double area = 0;
   double volume = 0;                   //!< summed over closed components
+  double material_volume = 0;          //!< summed over all components (ComponentStatistics)
   //! Summed over closed components, when every one was checked (none crosses a face).
   std::optional<double> tetgen_volume;
   //! Why TetGen was not called on some closed components (empty when it was on all or not asked).
