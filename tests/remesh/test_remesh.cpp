@@ -4,6 +4,7 @@
 #include "sdflow/geometry/measures.h"
 #include "sdflow/geometry/quality.h"
 #include "sdflow/geometry/topology.h"
+#include "sdflow/io/validate.h"
 #include "sdflow/remesh/face_patch.h"
 #include "sdflow/remesh/remesh.h"
 #include "sdflow/remesh/star_projection.h"
@@ -280,6 +281,28 @@ TEST(Remesh, stops_at_its_vertex_bound_with_a_valid_mesh_and_says_so)
   const RemeshResult free = isotropic_remesh(sphere, {.edge_length = 0.05, .iterations = 3});
   EXPECT_FALSE(free.statistics.stopped);
   EXPECT_GT(free.mesh.n_vertices(), 4000u);
+}
+
+TEST(Remesh, a_split_whose_projection_lands_on_a_vertex_makes_no_zero_area_triangle)
+{
+  // A projection that sends every point to one vertex of the input, as a reference surface far
+  // from the mesh or a broken one might: each split would put its new vertex there, on top of that
+  // vertex and of the splits before it. A split must keep the new triangles as sound as the
+  // straight midpoint makes them, so that the remeshing never returns a zero-area face (issue 33).
+  const Mesh disk = analytic::disk(4, 1.0);
+  const Eigen::Vector3d centre = to_eigen(disk.point(Mesh::VertexHandle(0)));
+  const PointProjection onto_centre = [centre](const Eigen::Vector3d&) { return centre; };
+  const RemeshResult result = isotropic_remesh(
+      disk, {.edge_length = 0.1, .iterations = 2, .project = onto_centre, .boundary = BoundaryMode::keep});
+  EXPECT_GT(result.statistics.splits, 100);
+  int zero_area = 0;
+  for (const auto f : result.mesh.faces()) {
+    std::vector<Eigen::Vector3d> corner;
+    for (const auto v : result.mesh.fv_range(f))
+      corner.push_back(to_eigen(result.mesh.point(v)));
+    zero_area += has_zero_area(corner[0], corner[1], corner[2], 1e-12);
+  }
+  EXPECT_EQ(zero_area, 0);
 }
 
 TEST(Remesh, refuses_bad_options)

@@ -283,6 +283,23 @@ private:
     return r == 0 || new_normal.dot(reference) >= kMinNormalCosine * area2 * r;
   }
 
+  //! Whether splitting h's edge at p makes acceptable triangles: on each side, the triangle
+  //! (a, b, c) becomes (a, p, c) and (p, b, c), each judged against the triangle it replaces.
+  bool split_acceptable(Mesh::HalfedgeHandle h, const Eigen::Vector3d& p, double target) const
+  {
+    for (const auto side : {h, mesh_.opposite_halfedge_handle(h)}) {
+      if (mesh_.is_boundary(side))
+        continue;
+      const Eigen::Vector3d a = point(mesh_, mesh_.from_vertex_handle(side)),
+                            b = point(mesh_, mesh_.to_vertex_handle(side)),
+                            c = point(mesh_, mesh_.to_vertex_handle(mesh_.next_halfedge_handle(side)));
+      const Eigen::Vector3d reference = area_normal(a, b, c);
+      if (!acceptable(area_normal(a, p, c), reference, target) || !acceptable(area_normal(p, b, c), reference, target))
+        return false;
+    }
+    return true;
+  }
+
   void split_long_edges()
   {
     // Longest first, in passes over the edges that exist when the pass starts. Splitting a
@@ -327,9 +344,14 @@ private:
         // A crease is split where it runs, at its straight midpoint: lifting it onto a smooth
         // surface would round it.
         const bool crease = is_crease(a, b);
-        const Eigen::Vector3d p = crease                             ? mid
-                                  : same_bits(mid, projected[k].query) ? projected[k].result
-                                  : (mesh_.is_boundary(e) ? project_boundary_(mid) : project_(mid));
+        Eigen::Vector3d p = crease                             ? mid
+                            : same_bits(mid, projected[k].query) ? projected[k].result
+                            : (mesh_.is_boundary(e) ? project_boundary_(mid) : project_(mid));
+        // A projection that would make a new triangle degenerate or turn it over (a reference
+        // surface far from the mesh, or a broken one) gives way to the straight midpoint, whose
+        // halves are as sound as the triangles split.
+        if (!split_acceptable(h, p, edge_target(a, b)) && split_acceptable(h, mid, edge_target(a, b)))
+          p = mid;
         const auto m = mesh_.add_vertex(to_point(p));
         target_.push_back(options_.sizing ? target_at(p) : ell_);
         locked_.push_back(0);
