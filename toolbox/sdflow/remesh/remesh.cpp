@@ -283,9 +283,11 @@ private:
     return r == 0 || new_normal.dot(reference) >= kMinNormalCosine * area2 * r;
   }
 
-  //! Whether splitting h's edge at p makes acceptable triangles: on each side, the triangle
-  //! (a, b, c) becomes (a, p, c) and (p, b, c), each judged against the triangle it replaces.
-  bool split_acceptable(Mesh::HalfedgeHandle h, const Eigen::Vector3d& p, double target) const
+  //! Whether splitting h's edge at p makes no degenerate triangle: on each side, the triangle
+  //! (a, b, c) becomes (a, p, c) and (p, b, c). (Only their area is judged, not their turn as for
+  //! the collapses: in the middle of a pass the triangle split may be a sliver, whose normal says
+  //! nothing and whose halves tilt far when p leaves its plane by the surface's sagitta.)
+  bool split_sound(Mesh::HalfedgeHandle h, const Eigen::Vector3d& p, double target) const
   {
     for (const auto side : {h, mesh_.opposite_halfedge_handle(h)}) {
       if (mesh_.is_boundary(side))
@@ -293,9 +295,9 @@ private:
       const Eigen::Vector3d a = point(mesh_, mesh_.from_vertex_handle(side)),
                             b = point(mesh_, mesh_.to_vertex_handle(side)),
                             c = point(mesh_, mesh_.to_vertex_handle(mesh_.next_halfedge_handle(side)));
-      const Eigen::Vector3d reference = area_normal(a, b, c);
-      if (!acceptable(area_normal(a, p, c), reference, target) || !acceptable(area_normal(p, b, c), reference, target))
-        return false;
+      for (const Eigen::Vector3d& half : {area_normal(a, p, c), area_normal(p, b, c)})
+        if (!(half.norm() > kDegenerateArea * target * target))
+          return false;
     }
     return true;
   }
@@ -347,10 +349,12 @@ private:
         Eigen::Vector3d p = crease                             ? mid
                             : same_bits(mid, projected[k].query) ? projected[k].result
                             : (mesh_.is_boundary(e) ? project_boundary_(mid) : project_(mid));
-        // A projection that would make a new triangle degenerate or turn it over (a reference
-        // surface far from the mesh, or a broken one) gives way to the straight midpoint, whose
-        // halves are as sound as the triangles split.
-        if (!split_acceptable(h, p, edge_target(a, b)) && split_acceptable(h, mid, edge_target(a, b)))
+        // A projection that lands farther than half the edge from its midpoint (no sagitta of a
+        // surface the edge resolves: a reference surface far from the mesh, a broken one, another
+        // sheet nearby) or that would make a new triangle degenerate gives way to the straight
+        // midpoint, whose halves have half the area of the triangles split.
+        if (((p - mid).norm() > 0.5 * (pb - pa).norm() || !split_sound(h, p, edge_target(a, b))) &&
+            split_sound(h, mid, edge_target(a, b)))
           p = mid;
         const auto m = mesh_.add_vertex(to_point(p));
         target_.push_back(options_.sizing ? target_at(p) : ell_);
