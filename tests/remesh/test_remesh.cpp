@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -285,15 +286,21 @@ TEST(Remesh, stops_at_its_vertex_bound_with_a_valid_mesh_and_says_so)
 
 TEST(Remesh, a_split_whose_projection_lands_on_a_vertex_makes_no_zero_area_triangle)
 {
-  // A projection that sends every point to one vertex of the input, as a reference surface far
-  // from the mesh or a broken one might: each split would put its new vertex there, on top of that
-  // vertex and of the splits before it. A split must keep the new triangles as sound as the
-  // straight midpoint makes them, so that the remeshing never returns a zero-area face (issue 33).
+  // A projection that snaps every point to the nearest vertex of the input, as a broken reference
+  // surface might: each split would put its new vertex on top of a vertex of the triangles it
+  // splits. A split must keep its new triangles as sound as the straight midpoint makes them, so
+  // that the remeshing never returns a zero-area face (issue 33).
   const Mesh disk = analytic::disk(4, 1.0);
-  const Eigen::Vector3d centre = to_eigen(disk.point(Mesh::VertexHandle(0)));
-  const PointProjection onto_centre = [centre](const Eigen::Vector3d&) { return centre; };
-  const RemeshResult result = isotropic_remesh(
-      disk, {.edge_length = 0.1, .iterations = 2, .project = onto_centre, .boundary = BoundaryMode::keep});
+  std::vector<Eigen::Vector3d> corners;
+  for (const auto v : disk.vertices())
+    corners.push_back(to_eigen(disk.point(v)));
+  const PointProjection snap = [&corners](const Eigen::Vector3d& p) {
+    return *std::min_element(corners.begin(), corners.end(), [&p](const auto& x, const auto& y) {
+      return (x - p).squaredNorm() < (y - p).squaredNorm();
+    });
+  };
+  const RemeshResult result =
+      isotropic_remesh(disk, {.edge_length = 0.1, .iterations = 2, .project = snap, .boundary = BoundaryMode::keep});
   EXPECT_GT(result.statistics.splits, 100);
   int zero_area = 0;
   for (const auto f : result.mesh.faces()) {

@@ -349,12 +349,10 @@ private:
         Eigen::Vector3d p = crease                             ? mid
                             : same_bits(mid, projected[k].query) ? projected[k].result
                             : (mesh_.is_boundary(e) ? project_boundary_(mid) : project_(mid));
-        // A projection that lands farther than half the edge from its midpoint (no sagitta of a
-        // surface the edge resolves: a reference surface far from the mesh, a broken one, another
-        // sheet nearby) or that would make a new triangle degenerate gives way to the straight
+        // A projection that would make a new triangle degenerate (onto a vertex or an edge of the
+        // mesh: a reference surface far from it, or a broken one) gives way to the straight
         // midpoint, whose halves have half the area of the triangles split.
-        if (((p - mid).norm() > 0.5 * (pb - pa).norm() || !split_sound(h, p, edge_target(a, b))) &&
-            split_sound(h, mid, edge_target(a, b)))
+        if (!split_sound(h, p, edge_target(a, b)) && split_sound(h, mid, edge_target(a, b)))
           p = mid;
         const auto m = mesh_.add_vertex(to_point(p));
         target_.push_back(options_.sizing ? target_at(p) : ell_);
