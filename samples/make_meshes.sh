@@ -12,7 +12,7 @@ fi
 [[ $# -eq 1 ]] || { usage >&2; exit 2; }
 sdflow=$(realpath "$1")
 cd "$(dirname "$0")/meshes"
-count=7 index=0
+count=8 index=0
 make_mesh() { # file, then the arguments of sdflow shape
   local file=$1; shift
   index=$((index + 1))
@@ -26,7 +26,8 @@ make_mesh() { # file, then the arguments of sdflow shape
 make_mesh torus_15250.ply torus --vertices 15250
 make_mesh dumbbell.ply dumbbell --edge-length 0.5 --edges-per-radius 4 # the neck resolved from the start
 make_mesh sintering_51311.ply sintering --vertices 51311
-make_mesh spheres_on_plane_95657.ply spheres-on-plane --vertices 95657
+make_mesh spheres_on_plane_25000.ply spheres-on-plane --vertices 25000   # the sample's
+make_mesh spheres_on_plane_95657.ply spheres-on-plane --vertices 95657   # the paper's resolution, for --input
 make_mesh compact_27.ply packing --nx 3 --ny 3 --nz 3 --spacing 1.8 --edge-length 0.12
 make_mesh cuboid_island.ply cuboid-island --a 2 --b 1 --c 0.5 --radius 0.2 --edge-length 0.06
 make_mesh compact_100.ply packing --count 100 --seed 1 --spacing 1.8 --min-distance 2.4 --edge-length 0.15
