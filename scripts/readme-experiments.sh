@@ -33,6 +33,8 @@ measure() { # RUN_DIR
     stopped="stops (a re-triangulation failed) after"
   elif grep -q ': stopped: ' "$run/events.log" 2>/dev/null; then
     stopped="stops (numerical failure) after"
+  elif tail -n 3 "$run/events.log" 2>/dev/null | grep -q ': interrupted: '; then
+    stopped="interrupted (to go on: sdflow run --resume DIR) after"
   fi
   awk -F, -v stopped="$stopped" '
     NR == 2 { a0 = $8; v0 = $9; c = $6; g = $7; h0 = $11; on_sphere = ($12 + 0 < 1e-3) }
