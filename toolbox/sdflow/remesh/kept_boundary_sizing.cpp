@@ -3,6 +3,7 @@
 #include "sdflow/errors.h"
 #include "sdflow/spatial/nearest_points.h"
 
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -31,12 +32,27 @@ void floor_targets_beside_kept_boundary(const Mesh& mesh, std::vector<double>& t
   }
   if (rim.empty())
     return;
+  // Only vertices within the longest L_b of the rim's bounding box can have a positive floor: the
+  // others (most of an island's, or of a film's top) are not searched.
+  Eigen::AlignedBox3d reach;
+  for (const Eigen::Vector3d& x : rim)
+    reach.extend(x);
+  const double longest = *std::max_element(rim_length.begin(), rim_length.end());
+  reach.min().array() -= longest;
+  reach.max().array() += longest;
   const VertexVectors positions = vertex_positions(mesh);
-  const std::vector<int> nearest = nearest_points(point_rows(rim), positions);
-  for (const auto v : mesh.vertices()) {
-    const auto b = static_cast<std::size_t>(nearest[static_cast<std::size_t>(v.idx())]);
-    const double floor = rim_length[b] - (positions.row(v.idx()).transpose() - rim[b]).norm();
-    double& target = targets[static_cast<std::size_t>(v.idx())];
+  std::vector<int> near;
+  for (Eigen::Index v = 0; v < positions.rows(); ++v)
+    if (reach.contains(positions.row(v).transpose()))
+      near.push_back(static_cast<int>(v));
+  VertexVectors queries(static_cast<Eigen::Index>(near.size()), 3);
+  for (std::size_t i = 0; i < near.size(); ++i)
+    queries.row(static_cast<Eigen::Index>(i)) = positions.row(near[i]);
+  const std::vector<int> nearest = nearest_points(point_rows(rim), queries);
+  for (std::size_t i = 0; i < near.size(); ++i) {
+    const auto b = static_cast<std::size_t>(nearest[i]);
+    const double floor = rim_length[b] - (queries.row(static_cast<Eigen::Index>(i)).transpose() - rim[b]).norm();
+    double& target = targets[static_cast<std::size_t>(near[i])];
     target = std::max(target, floor);
   }
 }

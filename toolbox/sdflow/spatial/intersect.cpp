@@ -74,6 +74,22 @@ bool triangles_meet_2d(const P t[3], const P u[3], int axis)
   return false;
 }
 
+//! Triangles (v, a, b) and (v, c, d), each non-degenerate in the projection, lie in angular sectors
+//! at v (each under π) that share only v: each sector holds neither ray of the other. Two arcs of a
+//! circle that overlap hold an end of one another, so this decides it exactly.
+bool sectors_apart_2d(P v, P a, P b, P c, P d, int axis)
+{
+  const int first = orient2d(v, a, b, axis), second = orient2d(v, c, d, axis);
+  if (first == 0 || second == 0)
+    return false;
+  if (first < 0) // each sector counter-clockwise from its first ray to its second
+    std::swap(a, b);
+  if (second < 0)
+    std::swap(c, d);
+  const auto within = [&](P from, P to, P x) { return orient2d(v, from, x, axis) >= 0 && orient2d(v, x, to, axis) >= 0; };
+  return !within(a, b, c) && !within(a, b, d) && !within(c, d, a) && !within(c, d, b);
+}
+
 // ---- Three dimensions. ----
 
 //! Closed segment pq meets closed triangle abc; sp and sq are the sides of p and q relative to
@@ -273,8 +289,14 @@ public:
   //! Faces s = (v, a, b) and t = (v, c, d) share exactly vertex v (indices, in either face's
   //! cyclic order): they intersect iff an edge opposite v meets the other triangle. Both tests
   //! fail at once when one triangle lies strictly on one side of the other's plane apart from v.
+  //! First, projected along s's normal, the two may lie in sectors at v that share only v: then
+  //! they meet at v alone. That decides most pairs of a flat part of a surface with orient2d's
+  //! filter, where every corner lies within round-off of the other's plane and the side tests
+  //! below need exact arithmetic (triangles projected one-to-one meet only where their images do).
   bool share_vertex(int s, int v, int a, int b, int t, int c, int d) const
   {
+    if (sectors_apart_2d(point(v), point(a), point(b), point(c), point(d), plane_[s].dominant_axis()))
+      return false;
     P pc = point(c), pd = point(d);
     const int sc = side_of(s, pc), sd = side_of(s, pd);
     if (sc * sd > 0)
@@ -289,14 +311,13 @@ public:
 
   //! Face s = (p, q, r) and a face t with edge pq and third corner w intersect iff they fold onto
   //! each other: w in the plane of s, strictly on r's side of pq.
+  //! The in-plane test goes first: on a flat part of a surface w is clearly across pq from r, while
+  //! its side of s's plane needs exact arithmetic.
   bool share_edge(int s, int p, int q, int r, int w) const
   {
-    P pw = point(w);
-    if (side_of(s, pw) != 0)
-      return false;
-    P pp = point(p), pq = point(q), pr = point(r);
+    P pp = point(p), pq = point(q), pr = point(r), pw = point(w);
     const int axis = exact::projection_axis(pp, pq, pr);
-    return orient2d(pp, pq, pr, axis) * orient2d(pp, pq, pw, axis) > 0;
+    return orient2d(pp, pq, pr, axis) * orient2d(pp, pq, pw, axis) > 0 && side_of(s, pw) == 0;
   }
 
   //! Triangle s of `x` and triangle t of `y` (no shared vertices) have a point in common.

@@ -110,6 +110,14 @@ public:
     return det > bound ? 1 : (-det > bound ? -1 : undecided);
   }
 
+  //! The coordinate of the largest normal component as rounded: a projection that keeps the
+  //! triangle large (a heuristic; exact tests in that projection stay exact whichever axis).
+  int dominant_axis() const
+  {
+    const double n0 = std::abs(normal_[0]), n1 = std::abs(normal_[1]), n2 = std::abs(normal_[2]);
+    return n0 >= n1 ? (n0 >= n2 ? 0 : 2) : (n1 >= n2 ? 1 : 2);
+  }
+
   //! True when some normal component is certainly non-zero (orient2d's filter on each coordinate
   //! plane), so the triangle is certainly not degenerate; false means "ask projection_axis".
   bool surely_proper() const
