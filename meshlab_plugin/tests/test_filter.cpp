@@ -489,8 +489,8 @@ TEST_F(FilterTest, an_island_on_the_substrate_moves_its_contact_line_toward_youn
 }
 
 // The substrate's check of `sdflow run` (SubstrateBoundary::check_surface): a rim off the plane
-// z₀, or a vertex below it, is refused before any step with the loop or vertex named, the mesh
-// left as it was.
+// z₀, or a vertex below it, is refused before any step with the loop or vertex and the dialog's
+// parameter named, the mesh left as it was.
 TEST_F(FilterTest, a_surface_off_the_substrate_is_refused_naming_the_loop_and_left_unchanged)
 {
   MeshModel* model = add_hemisphere();
@@ -499,7 +499,10 @@ TEST_F(FilterTest, a_surface_off_the_substrate_is_refused_naming_the_loop_and_le
   list.setValue("SubstrateZ", FloatValue(0.25f));
   EXPECT_FALSE(plugin.applyFilter(substrate_action(), document, list, nullptr));
   EXPECT_TRUE(plugin.errorMsg().contains("boundary loop 0")) << plugin.errorMsg().toStdString();
-  EXPECT_TRUE(plugin.errorMsg().contains("is not on the plane")) << plugin.errorMsg().toStdString();
+  // In the dialog's words, not the scenario key's.
+  EXPECT_TRUE(plugin.errorMsg().contains("is not on the plane (Substrate plane z₀ (SubstrateZ) = 0.25)"))
+      << plugin.errorMsg().toStdString();
+  EXPECT_FALSE(plugin.errorMsg().contains("substrate.z")) << plugin.errorMsg().toStdString();
   EXPECT_TRUE(log_text().contains("boundary loop 0")) << log_text().toStdString();
   EXPECT_EQ(model->cm.vert[7].cP(), before);
 

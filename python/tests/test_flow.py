@@ -307,3 +307,17 @@ def test_flow_refines_a_cube_too_coarse_for_its_mean_edge_length_and_keeps_an_ed
     assert len(flow.advance(steps=2)) == 2
     with pytest.raises(sdflow.InvalidParameter, match="fewer than the 20 it needs"):
         sdflow.Flow(V, F, retriangulation={"edge_length": 1.0})
+
+
+def test_a_film_off_its_substrate_is_refused_in_pythons_words():
+    """`boundary="substrate"` takes a film whose contact lines lie on the plane; lifted off it, Flow and
+    run refuse it before step 1, naming the loop and the keyword as Python writes it."""
+    V, F = sdflow.shape("cuboid-island", a=2, b=1, c=0.5, radius=0.2, edge_length=0.15)
+    flow = sdflow.Flow(V, F, boundary="substrate", substrate={"contact_angle": 60})
+    assert len(flow.advance(steps=2)) == 2
+    for call in (lambda: sdflow.Flow(V, F, boundary="substrate", substrate={"z": 0.25}),
+                 lambda: sdflow.run(V, F, out="unused", steps=2, boundary="substrate", substrate={"z": 0.25})):
+        with pytest.raises(sdflow.InvalidParameter, match="boundary loop 0") as e:
+            call()
+        assert 'is not on the plane (substrate={"z": 0.25})' in str(e.value)
+        assert e.value.exit_code == 2

@@ -194,7 +194,7 @@ TEST(RunCommand, substrate_flags_reach_run_toml_and_bad_values_exit_2_naming_the
   for (const auto& [flags, key] : std::vector<std::pair<std::string, std::string>>{
          {" --contact-angle 180", "contact_angle"}, {" --contact-angle 0", "contact_angle"},
          {" --contact-line-mobility 0", "mobility"}, {" --contact-line-mobility -2", "mobility"},
-         {" --substrate-z 0.25", "substrate.z"}}) {
+         {" --substrate-z 0.25", "is not on the plane (--substrate-z 0.25)"}}) { // in the flag's words
     SCOPED_TRACE(flags);
     const auto bad = analytic::run_sdflow(run + (dir / "bad").string() + flags);
     EXPECT_EQ(bad.exit_code, 2) << bad.output;

@@ -117,7 +117,7 @@ TEST(SubstrateBoundary, refuses_a_surface_whose_rim_is_off_the_plane_or_that_lie
   const Mesh cap = analytic::spherical_cap(4, 1, 90);
   const auto message = [&](const Mesh& mesh, double z) -> std::string {
     try {
-      SubstrateBoundary({.z = z}).check_surface(mesh);
+      SubstrateBoundary({.z = z}).check_surface(mesh, UserTerms{.setting = scenario_setting});
     } catch (const InvalidParameter& e) {
       return e.what();
     }
@@ -125,7 +125,7 @@ TEST(SubstrateBoundary, refuses_a_surface_whose_rim_is_off_the_plane_or_that_lie
   };
   EXPECT_EQ(message(cap, 0), "");
   const std::string off = message(cap, 0.01);
-  EXPECT_NE(off.find("substrate.z"), std::string::npos) << off;
+  EXPECT_NE(off.find("substrate.z = 0.01"), std::string::npos) << off;
   EXPECT_NE(off.find("boundary loop 0"), std::string::npos) << off;
   Mesh sunk = cap;
   auto p = sunk.point(Mesh::VertexHandle(0));

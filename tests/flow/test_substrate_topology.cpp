@@ -115,7 +115,7 @@ void expect_on_substrate(const Mesh& mesh)
       EXPECT_EQ(mesh.point(v)[2], 0.0) << "rim vertex " << v.idx();
     }
   }
-  EXPECT_NO_THROW(SubstrateBoundary({.z = 0}).check_surface(mesh));
+  EXPECT_NO_THROW(SubstrateBoundary({.z = 0}).check_surface(mesh, UserTerms{}));
 }
 
 TEST(SubstrateTopology, an_island_whose_middle_comes_down_to_the_plane_breaks_into_two_islands)

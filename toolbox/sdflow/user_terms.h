@@ -40,4 +40,11 @@ struct UserTerms {
   std::string name(std::string_view key) const { return setting(key, ""); }
 };
 
+//! A setting as a scenario file writes it, `substrate.z = 0` (the key alone without a value): the
+//! library's words, whose callers set RunParameters by these keys.
+inline std::string scenario_setting(std::string_view key, std::string_view value)
+{
+  return value.empty() ? std::string(key) : std::string(key) + " = " + std::string(value);
+}
+
 } // namespace sdflow

@@ -10,6 +10,7 @@
 #include "sdflow/flow/retriangulation.h"
 #include "sdflow/geometry/laplacian.h"
 #include "sdflow/mesh.h"
+#include "sdflow/user_terms.h"
 
 #include <Eigen/Core>
 
@@ -39,9 +40,10 @@ public:
   //! unit normal (eq. 8) is `normal`; zero holds it where the step left it.
   virtual Eigen::Vector3d rim_restoration_direction(const Mesh& mesh, int v, const Eigen::Vector3d& normal) const = 0;
 
-  //! Throw InvalidParameter, naming the loop and the key, when `mesh` cannot start a flow under this
-  //! condition (a contact line off its substrate). The fixed and paper conditions take any surface.
-  virtual void check_surface(const Mesh& /*mesh*/) const {}
+  //! Throw InvalidParameter, naming the loop and the setting in the caller's `terms`, when `mesh`
+  //! cannot start a flow under this condition (a contact line off its substrate). The fixed and
+  //! paper conditions take any surface.
+  virtual void check_surface(const Mesh& /*mesh*/, const UserTerms& /*terms*/) const {}
 
   //! A rim with a motion of its own (a contact line in its plane): move it in `positions`, the
   //! step's X − τ w N from `mesh` with `operators`, and give back the material volume its motion

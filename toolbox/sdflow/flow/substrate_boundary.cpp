@@ -89,8 +89,9 @@ SubstrateBoundary::SubstrateBoundary(const SubstrateOptions& options) : options_
   cos_young_ = std::cos(options.contact_angle * std::numbers::pi / 180);
 }
 
-void SubstrateBoundary::check_surface(const Mesh& mesh) const
+void SubstrateBoundary::check_surface(const Mesh& mesh, const UserTerms& terms) const
 {
+  const std::string plane = terms.setting("substrate.z", fmt::format("{}", options_.z));
   const VertexVectors x = vertex_positions(mesh);
   if (x.rows() == 0)
     return;
@@ -102,15 +103,15 @@ void SubstrateBoundary::check_surface(const Mesh& mesh) const
       const int v = mesh.from_vertex_handle(h).idx();
       if (std::abs(x(v, 2) - options_.z) > tolerance)
         throw InvalidParameter(fmt::format(
-          "boundary = \"substrate\": boundary loop {} ({} vertices) is not on the plane substrate.z = {}: its vertex "
-          "{} has z = {}; every boundary loop must be a contact line on the substrate",
-          l, loops[l].size(), options_.z, v, x(v, 2)));
+          "on a substrate, boundary loop {} ({} vertices) is not on the plane ({}): its vertex {} has z = {}; every "
+          "boundary loop must be a contact line on the substrate's plane",
+          l, loops[l].size(), plane, v, x(v, 2)));
     }
   for (Eigen::Index v = 0; v < x.rows(); ++v)
     if (x(v, 2) < options_.z - tolerance)
-      throw InvalidParameter(fmt::format("boundary = \"substrate\": vertex {} has z = {}, below the substrate "
-                                         "substrate.z = {}; the film must lie above the plane",
-                                         v, x(v, 2), options_.z));
+      throw InvalidParameter(fmt::format("on a substrate, vertex {} has z = {}, below the substrate ({}); the film "
+                                         "must lie above its plane",
+                                         v, x(v, 2), plane));
   int count = 0;
   const std::vector<int> component = face_component_ids(mesh, &count);
   const std::vector<BoundaryLoop> rims = boundary_loop_vertices(mesh, component);
@@ -118,10 +119,10 @@ void SubstrateBoundary::check_surface(const Mesh& mesh) const
   for (std::size_t l = 0; l < rims.size(); ++l) {
     const double volume = volumes[static_cast<std::size_t>(rims[l].component)];
     if (!(volume > 0))
-      throw InvalidParameter(fmt::format("boundary = \"substrate\": the component of boundary loop {} bounds the "
-                                         "material volume {} with the substrate, not a positive one: its normals "
-                                         "must point out of the film",
-                                         l, volume));
+      throw InvalidParameter(fmt::format("on a substrate, the component of boundary loop {} bounds the material "
+                                         "volume {} with the substrate's plane ({}), not a positive one: its "
+                                         "normals must point out of the film",
+                                         l, volume, plane));
   }
 }
 

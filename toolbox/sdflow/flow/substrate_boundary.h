@@ -48,7 +48,7 @@ public:
   }
   //! Every boundary loop lies on z = z₀ (to 1e-9 of the surface's size), no vertex below it, and
   //! each open component bounds material above the plane (normals outward, positive material volume).
-  void check_surface(const Mesh& mesh) const override;
+  void check_surface(const Mesh& mesh, const UserTerms& terms) const override;
   //! The contact-line step above, then the component's interior offset along its normals by the
   //! volume the rim swept. Rim vertices change x and y only: their z stays bit for bit.
   void move_rim(const Mesh& mesh, const FlowOperators& operators, double tau, VertexVectors& positions) const override;

@@ -71,7 +71,7 @@ SurfaceDiffusion::SurfaceDiffusion(const Mesh& initial, const CheckedFlowOptions
 {
   parts_ = scheme_parts(p_.scheme);
   surface_.mesh = canonical(initial);
-  parts_.boundary->check_surface(surface_.mesh);
+  parts_.boundary->check_surface(surface_.mesh, UserTerms{.setting = scenario_setting});
   renew_connectivity();
   prepare_retriangulation(std::move(retriangulate), 0);
   w_.last = Eigen::VectorXd::Zero(surface_.mesh.n_vertices());

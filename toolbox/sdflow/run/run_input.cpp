@@ -1,6 +1,7 @@
 #include "sdflow/run/run_input.h"
 
 #include "sdflow/check/span.h"
+#include "sdflow/flow/substrate_boundary.h"
 #include "sdflow/geometry/measures.h"
 #include "sdflow/log.h"
 #include "sdflow/retri/input_checks.h"
@@ -118,6 +119,8 @@ void check_run_input(Mesh& mesh, const RunParameters& p, std::string_view source
   check_count(p.steps, limits.max_steps, terms.name("steps"), limits);
   check_span(mesh, source, terms);
   check_crossings(mesh, source, terms);
+  if (p.scheme.boundary == BoundaryCondition::substrate) // in the front end's words, before any refinement
+    SubstrateBoundary(p.scheme.substrate).check_surface(mesh, terms);
   if (p.retriangulation.enabled) {
     refine_coarse_input(mesh, p.retriangulation.pipeline, source, terms);
     const double ell = p.retriangulation.pipeline.edge_length;

@@ -32,7 +32,8 @@ SizeLimits run_input_limits(FrontEnd front_end, bool force);
 
 //! Refuse a run of `mesh` (read from `source`) with `p` before step 1, in `front_end`'s words:
 //! more steps than the limit (check_count), a vertex far from the others (check_span, span.h),
-//! components that cross themselves or each other (check_crossings), with re-triangulation on a
+//! components that cross themselves or each other (check_crossings), a film off its substrate
+//! (SubstrateBoundary::check_surface, with boundary = "substrate"), with re-triangulation on a
 //! remeshed size beyond the limits (check_remeshed_size) or a surface it cannot take
 //! (check_retriangulation_input, retri/input_checks.h) or a part thinner than its sizing resolves
 //! (resolution_check.h: refused when ℓ is the automatic one, a warning when it was given), and an
