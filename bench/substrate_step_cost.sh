@@ -10,15 +10,18 @@
 #          factorisation, solve, acceptance, and the contact line's part for the island);
 #   full:  the defaults (reused factorisations, the look at the surface after each step and its
 #          re-triangulations): what a run pays.
-#   bench/substrate_step_cost.sh [--sdflow PATH] [--runs N] [--steps N]
+# Last, the figures as a Markdown table; with --docs it replaces docs/validation.md's table between
+# "<!-- tables: substrate-cost -->" and "<!-- end of tables: substrate-cost -->".
+#   bench/substrate_step_cost.sh [--sdflow PATH] [--runs N] [--steps N] [--docs]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-sdflow=build/release/cli/sdflow runs=5 steps=15
+sdflow=build/release/cli/sdflow runs=5 steps=15 docs=0
 while (($#)); do
   case $1 in
     --sdflow) sdflow=$2; shift 2 ;;
     --runs) runs=$2; shift 2 ;;
     --steps) steps=$2; shift 2 ;;
+    --docs) docs=1; shift ;;
     *) echo "substrate_step_cost.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -47,7 +50,7 @@ for edge in 0.03 0.015; do
     rm -rf "$work/a" "$work/b"
     $run --input "$island" --boundary substrate --contact-angle 60 --out "$work/a"
     $run --input "$sphere" --out "$work/b"
-    python3 - "$work/$mode.json" "$steps" "$n_island" "$n_sphere" "$mode" "$work/a/timings.csv" "$work/b/timings.csv" <<'EOF'
+    python3 - "$work/$mode.json" "$steps" "$n_island" "$n_sphere" "$mode" "$work/a/timings.csv" "$work/b/timings.csv" "$work/rows.md" <<'EOF'
 import csv, json, statistics, sys
 results = json.load(open(sys.argv[1]))["results"]
 steps, counts, mode = int(sys.argv[2]), (int(sys.argv[3]), int(sys.argv[4])), sys.argv[5]
@@ -62,6 +65,24 @@ for r, w, c, sc in zip(results, wall, cpu, step_cpu):
 per_vertex = lambda t: (t[0] / counts[0]) / (t[1] / counts[1])
 print(f"  island / sphere, whole run: wall {wall[0] / wall[1]:.2f}, CPU {cpu[0] / cpu[1]:.2f}; a step alone: CPU "
       f"{step_cpu[0] / step_cpu[1]:.2f}, per vertex {per_vertex(step_cpu):.2f}")
+spaced = lambda n: f"{n:,}".replace(",", " ")
+with open(sys.argv[8], "a") as rows:
+    rows.write(f"| {spaced(counts[0])}, {spaced(counts[1])} | {mode} | {1000 * step_cpu[0]:.1f} / "
+               f"{1000 * step_cpu[1]:.1f} ms | {step_cpu[0] / step_cpu[1]:.2f} | {cpu[0] / cpu[1]:.2f} |\n")
 EOF
   done
 done
+table=$(printf '%s\n%s\n' "| vertices (island, sphere) | mode | a step alone, CPU (island / sphere) | ratio | whole run, CPU ratio |" \
+  "|---|---|---|---|---|"; cat "$work/rows.md")
+echo "$table"
+if ((docs)); then
+  python3 - docs/validation.md "$table" <<'EOF'
+import sys
+path, table = sys.argv[1], sys.argv[2]
+text = open(path).read()
+begin, end = "<!-- tables: substrate-cost -->", "<!-- end of tables: substrate-cost -->"
+head, rest = text.split(begin)
+_, tail = rest.split(end)
+open(path, "w").write(f"{head}{begin}\n{table}\n{end}{tail}")
+EOF
+fi
