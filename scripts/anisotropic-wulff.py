@@ -8,14 +8,10 @@ table gives the semi-axes of the ellipsoid fitted to the last surface against th
 (largest relative error), the volume drift over the run, the steps in which ∫ γ dA (metrics.csv's
 `energy`) increased by more than 10⁻¹² relative and the largest such increase, and the same two
 figures and the drift for the run without the volume restoration.
-Then the cost of a step: the same ellipsoid-shaped start stepped COST_STEPS times with one constant
-τ under the isotropic and two anisotropic energies; the mean wall time per step (timings.csv's
-`total`, the first step with its analysis left out), the least of COST_ROUNDS interleaved
-repetitions, and the ratios.
+The cost of a step is bench/anisotropic_step_cost.sh's.
 
     scripts/anisotropic-wulff.py [--sdflow build/release/cli/sdflow] [--out runs/wulff]
                                  [--vertices 640,2500,10000] [--end-time 2]
-                                 [--cost-steps 100] [--cost-rounds 3]
 """
 import argparse
 import array
@@ -117,34 +113,12 @@ def wulff_row(sdflow, out, mesh, g, end_time):
             "energy_drop": 1 - float(metrics[-1]["energy"]) / float(metrics[0]["energy"])}
 
 
-def cost_rows(sdflow, out, vertices, steps, rounds):
-    """The least over `rounds` interleaved repetitions of each energy's mean wall time per step: the
-    machine is shared, and the least is the figure other jobs disturbed least."""
-    start = os.path.join(out, f"ellipsoid_{vertices}.ply")
-    if not os.path.exists(start):
-        run(sdflow, "shape", "ellipsoid", "--a", 1.2, "--b", 1, "--c", 0.8, "--vertices", vertices, "-o", start)
-    energies = (("isotropic", []), ("ellipsoidal", ["--energy", "ellipsoidal", "--energy-g", "1,2,3"]),
-                ("sum", ["--energy", "sum", "--energy-g", "1,1,4,0,0,0,1,1,4,90,0,0,1,1,4,0,90,0"]))
-    means = {}
-    for repetition in range(rounds):
-        for label, flags in energies:
-            name = os.path.join(out, f"cost_{label}_{vertices}_{repetition}")
-            if not os.path.exists(os.path.join(name, "timings.csv")):
-                run(sdflow, "run", "--input", start, "--out", name, "--tau", 1e-5, "--steps", steps,
-                    "--no-retriangulate", "--snapshot-every", 0, "--no-look-ahead", "--quiet", *flags)
-            totals = [float(r["total"]) for r in rows_of(os.path.join(name, "timings.csv"))[1:]]
-            means[label] = min(means.get(label, math.inf), sum(totals) / len(totals))
-    return means
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sdflow", default="build/release/cli/sdflow")
     parser.add_argument("--out", default="runs/wulff")
     parser.add_argument("--vertices", default="640,2500,10000")
     parser.add_argument("--end-time", type=float, default=2.0)
-    parser.add_argument("--cost-steps", type=int, default=100)
-    parser.add_argument("--cost-rounds", type=int, default=3)
     a = parser.parse_args()
     os.makedirs(a.out, exist_ok=True)
     resolutions = [int(v) for v in a.vertices.split(",")]
@@ -157,13 +131,6 @@ def main():
         print(f"| ({', '.join(map(str, r['g']))}) | {r['vertices']} | {r['steps']} | {100 * r['axes_error']:.3f}% | "
               f"{r['drift']:.1e} | {100 * r['energy_drop']:.2f}% | {r['increases'][0]} ({r['increases'][1]:.1e}) | "
               f"{r['free_increases'][0]}; {r['free_drift']:.1e} |")
-    print()
-    print("| vertices | isotropic step | ellipsoidal step (ratio) | sum of 3 terms step (ratio) |")
-    print("|---|---|---|---|")
-    for n in resolutions:
-        m = cost_rows(a.sdflow, a.out, n, a.cost_steps, a.cost_rounds)
-        print(f"| {n} | {1e3 * m['isotropic']:.2f} ms | {1e3 * m['ellipsoidal']:.2f} ms "
-              f"({m['ellipsoidal'] / m['isotropic']:.2f}×) | {1e3 * m['sum']:.2f} ms ({m['sum'] / m['isotropic']:.2f}×) |")
 
 
 if __name__ == "__main__":
