@@ -18,4 +18,5 @@ target_sources(sdflow_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/test_time_step.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_topology_guard.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_trial_solvers.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/test_volume.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/test_volume.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_willmore_energy.cpp)

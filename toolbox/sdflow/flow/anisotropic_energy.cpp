@@ -2,12 +2,13 @@
 
 #include "sdflow/flow/scheme.h"
 
+#include <algorithm>
 #include <utility>
 
 namespace sdflow {
 
 AnisotropicEnergy::AnisotropicEnergy(std::shared_ptr<const Anisotropy> gamma)
-    : gamma_(std::move(gamma)), stiffness_(gamma_->max_tangent_stiffness())
+    : gamma_(std::move(gamma)), stiffness_(std::max(0.0, gamma_->max_tangent_stiffness()))
 {
 }
 

@@ -36,7 +36,7 @@ public:
   }
 
   const Anisotropy& anisotropy() const { return *gamma_; }
-  double stiffness() const { return stiffness_; } //!< s
+  double stiffness() const { return stiffness_; } //!< s (0 if γ has no convex direction at all)
 
 private:
   std::shared_ptr<const Anisotropy> gamma_;

@@ -30,8 +30,13 @@ void validate_flow_options(const FlowOptions& o)
   check_in_range(r.degraded_fraction, o.retriangulation.degraded_fraction, "retriangulation.degraded_fraction");
   validate_retriangulation_options(o.retriangulation.pipeline);
   validate_time_step_options(o.time_step);
+  check_in_range(willmore_range, o.scheme.energy.willmore, "energy.willmore");
+  if (o.scheme.energy.willmore > 0 && o.scheme.boundary == BoundaryCondition::substrate)
+    throw InvalidParameter(fmt::format("energy.willmore = {}: a Willmore term needs a closed surface, and "
+                                       "boundary = \"substrate\" is for films with contact lines",
+                                       o.scheme.energy.willmore));
   if (o.scheme.energy.kind != SurfaceEnergyKind::isotropic) {
-    make_anisotropy(o.scheme.energy); // energy.g's count and values for the kind, or a convex formula
+    make_anisotropy(o.scheme.energy); // energy.g's count and values for the kind, or a formula (convex without ε)
     if (o.scheme.curvature.method != CurvatureMethod::cotangent)
       throw InvalidParameter(fmt::format("curvature = \"{}\" chooses how the isotropic energy's H is computed; "
                                          "energy.kind = \"{}\" has a weighted curvature of its own: leave "

@@ -3,6 +3,7 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/anisotropic_energy.h"
 #include "sdflow/flow/isotropic_energy.h"
+#include "sdflow/flow/willmore_energy.h"
 #include "sdflow/stopwatch.h"
 
 #include <fmt/format.h>
@@ -19,6 +20,8 @@ SchemeParts scheme_parts(const SchemeOptions& options)
     energy = std::make_shared<const IsotropicEnergy>(options.curvature);
   else
     energy = std::make_shared<const AnisotropicEnergy>(make_anisotropy(options.energy));
+  if (options.energy.willmore != 0)
+    energy = std::make_shared<const WillmoreRegularisedEnergy>(std::move(energy), options.energy.willmore);
   return {std::move(energy), flow_boundary(options.boundary, options.substrate)};
 }
 

@@ -24,4 +24,5 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/time_step.cpp
   sdflow/flow/topology_guard.cpp
   sdflow/flow/trial_solvers.cpp
-  sdflow/flow/volume.cpp)
+  sdflow/flow/volume.cpp
+  sdflow/flow/willmore_energy.cpp)

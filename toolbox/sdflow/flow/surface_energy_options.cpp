@@ -67,7 +67,7 @@ std::vector<AnisotropyTerm> anisotropy_terms(const SurfaceEnergyOptions& options
 std::shared_ptr<const Anisotropy> make_anisotropy(const SurfaceEnergyOptions& options)
 {
   if (options.kind == SurfaceEnergyKind::formula)
-    return std::make_shared<const FormulaAnisotropy>(options.formula);
+    return std::make_shared<const FormulaAnisotropy>(options.formula, options.willmore == 0);
   return std::make_shared<const FormSumAnisotropy>(anisotropy_terms(options));
 }
 

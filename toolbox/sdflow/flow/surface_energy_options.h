@@ -6,6 +6,7 @@
 
 #include "sdflow/geometry/anisotropy.h"
 #include "sdflow/geometry/form_sum_anisotropy.h"
+#include "sdflow/parameter_range.h"
 
 #include <memory>
 
@@ -28,7 +29,13 @@ struct SurfaceEnergyOptions {
   std::vector<double> g{1, 1, 1};
   //! f(nx, ny, nz) for `formula`, e.g. "1 + 0.05 * (nx^4 + ny^4 + nz^4)"; unused for the others.
   std::string formula;
+  //! ε ≥ 0 of the Willmore regularisation (ε²/2) ∫ κ² dA added to the energy (willmore_energy.h),
+  //! with any kind; 0: none. With ε > 0 a `formula` need not be convex.
+  double willmore = 0;
 };
+
+//! The allowed values of `energy.willmore`, stated here only (the flow's check and the run schema read it).
+inline constexpr ParameterRange willmore_range{.min = 0};
 
 //! "isotropic", "ellipsoidal", "sum", "formula".
 std::string surface_energy_name(SurfaceEnergyKind kind);
@@ -42,8 +49,8 @@ SurfaceEnergyKind surface_energy_kind(const std::string& name);
 std::vector<AnisotropyTerm> anisotropy_terms(const SurfaceEnergyOptions& options);
 
 //! The γ of an anisotropic kind: the terms of `energy.g`, or the checked `energy.formula`. Throws
-//! InvalidParameter naming the key on bad numbers, a formula that does not parse or is not convex
-//! (FormulaAnisotropy), and on the `isotropic` kind.
+//! InvalidParameter naming the key on bad numbers, a formula that does not parse or, without a
+//! Willmore term, is not convex (FormulaAnisotropy), and on the `isotropic` kind.
 std::shared_ptr<const Anisotropy> make_anisotropy(const SurfaceEnergyOptions& options);
 
 } // namespace sdflow

@@ -41,7 +41,7 @@ struct FormulaAnisotropy::Parser {
   }
 };
 
-FormulaAnisotropy::FormulaAnisotropy(const std::string& formula) : formula_(formula)
+FormulaAnisotropy::FormulaAnisotropy(const std::string& formula, bool require_convex) : formula_(formula)
 {
   const auto bad = [&](const std::string& what) {
     return InvalidParameter(fmt::format("energy.formula \"{}\": {}", formula, what));
@@ -63,11 +63,13 @@ FormulaAnisotropy::FormulaAnisotropy(const std::string& formula) : formula_(form
   for (const Eigen::Vector3d& n : directions)
     value(n); // throws where γ is not finite and > 0
   for (const Eigen::Vector3d& n : directions) {
+    if (!require_convex)
+      break;
     const double gamma = value(n);
     if (const double least = least_tangent_stiffness(n); !(least >= -1e-5 * gamma))
       throw bad(fmt::format("γ is not convex: at n = ({:.4f}, {:.4f}, {:.4f}) its Hessian has the tangent eigenvalue "
                             "{:.3g}, where γ = {:.4g}. The flow of a non-convex γ is ill-posed (the weighted "
-                            "curvature's diffusion runs backward); make the anisotropy weaker",
+                            "curvature's diffusion runs backward); make the anisotropy weaker, or regularise it with energy.willmore",
                             n.x(), n.y(), n.z(), least, gamma));
   }
 }

@@ -15,9 +15,9 @@ class FormulaAnisotropy final : public Anisotropy {
 public:
   //! Throws InvalidParameter naming `energy.formula` when `formula` is empty, does not parse or
   //! gives more than one value, or when, on the 2000 directions of a Fibonacci lattice, f is not
-  //! finite and > 0 or D²γ has a negative tangent eigenvalue (below −10⁻⁵ γ: a concave γ, whose
-  //! flow is ill-posed), naming the direction.
-  explicit FormulaAnisotropy(const std::string& formula);
+  //! finite and > 0 or, with `require_convex`, D²γ has a negative tangent eigenvalue (below −10⁻⁵ γ:
+  //! a non-convex γ, whose flow is ill-posed without a Willmore term), naming the direction.
+  explicit FormulaAnisotropy(const std::string& formula, bool require_convex = true);
   ~FormulaAnisotropy() override;
 
   //! |p| f(p/|p|); throws InvalidParameter naming the formula and the direction where f is not

@@ -21,6 +21,27 @@ double corner_angle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Ei
   return angle_between(a - p, b - p);
 }
 
+//! The sum of the corner angles at each vertex.
+Eigen::VectorXd vertex_angle_sums(const Mesh& mesh)
+{
+  Eigen::VectorXd angle_sums = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(mesh.n_vertices()));
+  for (auto f : mesh.faces()) {
+    const TriangleCorners t = triangle_corners(mesh, f);
+    for (int c = 0; c < 3; ++c)
+      angle_sums[t.index[c]] += corner_angle(t.point[c], t.point[(c + 1) % 3], t.point[(c + 2) % 3]);
+  }
+  return angle_sums;
+}
+
+//! Whether vertex v carries a curvature: interior, with area.
+bool curved(const Mesh& mesh, Mesh::VertexHandle v, const Eigen::VectorXd& areas)
+{
+  return !mesh.is_boundary(v) && areas[v.idx()] > 0;
+}
+
+//! K = (2π − Σα)/A at vertex i.
+double angle_defect(double angle_sum, double area) { return (2 * std::numbers::pi - angle_sum) / area; }
+
 //! κ = |H| + √max(H² − K, 0) with K = (2π − Σα)/A at interior vertices with area; boundary vertices
 //! take the largest κ of their interior neighbours, the others 0.
 Eigen::VectorXd kappa_from(const Mesh& mesh, const Eigen::VectorXd& mean_curvature, const Eigen::VectorXd& areas,
@@ -29,9 +50,9 @@ Eigen::VectorXd kappa_from(const Mesh& mesh, const Eigen::VectorXd& mean_curvatu
   Eigen::VectorXd kappa = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(mesh.n_vertices()));
   for (auto v : mesh.vertices()) {
     const int i = v.idx();
-    if (mesh.is_boundary(v) || !(areas[i] > 0))
+    if (!curved(mesh, v, areas))
       continue;
-    const double gaussian = (2 * std::numbers::pi - angle_sums[i]) / areas[i];
+    const double gaussian = angle_defect(angle_sums[i], areas[i]);
     const double h = mean_curvature[i];
     kappa[i] = std::abs(h) + std::sqrt(std::max(h * h - gaussian, 0.0));
   }
@@ -45,16 +66,20 @@ Eigen::VectorXd kappa_from(const Mesh& mesh, const Eigen::VectorXd& mean_curvatu
 
 } // namespace
 
+Eigen::VectorXd gaussian_curvature(const Mesh& mesh, const Eigen::VectorXd& areas)
+{
+  const Eigen::VectorXd angle_sums = vertex_angle_sums(mesh);
+  Eigen::VectorXd gaussian = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(mesh.n_vertices()));
+  for (auto v : mesh.vertices())
+    if (curved(mesh, v, areas))
+      gaussian[v.idx()] = angle_defect(angle_sums[v.idx()], areas[v.idx()]);
+  return gaussian;
+}
+
 Eigen::VectorXd largest_principal_curvature(const Mesh& mesh, const Eigen::VectorXd& mean_curvature,
                                             const Eigen::VectorXd& areas)
 {
-  Eigen::VectorXd angle_sums = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(mesh.n_vertices()));
-  for (auto f : mesh.faces()) {
-    const TriangleCorners t = triangle_corners(mesh, f);
-    for (int c = 0; c < 3; ++c)
-      angle_sums[t.index[c]] += corner_angle(t.point[c], t.point[(c + 1) % 3], t.point[(c + 2) % 3]);
-  }
-  return kappa_from(mesh, mean_curvature, areas, angle_sums);
+  return kappa_from(mesh, mean_curvature, areas, vertex_angle_sums(mesh));
 }
 
 Eigen::VectorXd largest_principal_curvature(const Mesh& mesh)

@@ -15,6 +15,10 @@ namespace sdflow {
 Eigen::VectorXd largest_principal_curvature(const Mesh& mesh, const Eigen::VectorXd& mean_curvature,
                                             const Eigen::VectorXd& areas);
 
+//! The Gaussian curvature K = (2π − Σα)/A by the angle defect over vertex `areas` at interior
+//! vertices with area; 0 at boundary vertices and vertices without area.
+Eigen::VectorXd gaussian_curvature(const Mesh& mesh, const Eigen::VectorXd& areas);
+
 //! κ_max with H = ½ N·ΔX from the cotangent Laplacian and mixed Voronoi areas (eq. 8 normals):
 //! it converges under refinement on any smooth surface.
 Eigen::VectorXd largest_principal_curvature(const Mesh& mesh);

@@ -245,6 +245,20 @@ void add_energy_entries(std::vector<ParameterEntry>& s)
                  .filters = {MeshlabFilter::anisotropic, MeshlabFilter::substrate}};
     e.in_use = [](const RunParameters& p) { return p.scheme.energy.kind == SurfaceEnergyKind::formula; };
   }
+  {
+    auto& e = add(s, entry("energy.willmore", "--energy-willmore", ParameterType::real,
+                           "ε of a Willmore term (ε²/2) ∫ κ² dA added to the energy (κ = 2H, closed surfaces): it "
+                           "keeps a strongly anisotropic γ well posed, rounding its facets' corners at the length "
+                           "ε, and lets energy.formula be non-convex; 0: none"));
+    e.range = willmore_range;
+    bind<double>(e, &RunParameters::scheme, &SchemeOptions::energy, &SurfaceEnergyOptions::willmore);
+    e.meshlab = {.name = "EnergyWillmore", .label = "Willmore ε",
+                 .help = "ε ≥ 0 of a Willmore term (ε²/2) ∫ κ² dA added to the energy, for closed surfaces: a "
+                         "strongly anisotropic γ, even a non-convex formula, then grows facets whose corners round "
+                         "off at the length ε; 0: none",
+                 .filters = {MeshlabFilter::anisotropic}};
+    e.paper = 0.0;
+  }
 }
 
 } // namespace sdflow::detail

@@ -31,12 +31,15 @@ void check_system(const FlowSystem& s, const Eigen::VectorXd& rhs)
                                        s.held.size()));
   if (!(s.tau_beta >= 0) || !std::isfinite(s.tau_beta))
     throw InvalidParameter(fmt::format("flow solver: τβ must be finite and non-negative, got {}", s.tau_beta));
+  if (!(s.sixth_order >= 0) || !std::isfinite(s.sixth_order))
+    throw InvalidParameter(
+        fmt::format("flow solver: the sixth-order coefficient must be finite and non-negative, got {}", s.sixth_order));
   for (Eigen::Index i = 0; i < n; ++i)
     if (!(s.areas[i] > 0))
       throw SolverFailure(fmt::format("flow solver: vertex {} has area {} (degenerate star)", i, s.areas[i]));
 }
 
-//! A w for the SPD form, without assembling L M⁻¹ L: two products with L.
+//! A w for the SPD form, without assembling L M⁻¹ L: two products with L (three with a sixth-order term).
 Eigen::VectorXd apply_flow_matrix(const FlowSystem& s, const Eigen::VectorXd& x)
 {
   Eigen::VectorXd lx;
@@ -52,7 +55,14 @@ Eigen::VectorXd apply_flow_matrix(const FlowSystem& s, const Eigen::VectorXd& x)
   lx.array() /= s.areas.array();
   Eigen::VectorXd y;
   y.noalias() = s.laplacian * lx;
+  Eigen::VectorXd sixth;
+  if (s.sixth_order > 0) {
+    const Eigen::VectorXd llx = y.cwiseQuotient(s.areas);
+    sixth.noalias() = s.laplacian * llx;
+  }
   y.array() = s.tau_beta * y.array() + s.areas.array() * x.array();
+  if (s.sixth_order > 0)
+    y -= s.sixth_order * sixth;
   for (Eigen::Index i = 0; i < x.size(); ++i)
     if (is_held(s.held, i))
       y[i] = s.areas[i] * x[i];
@@ -99,6 +109,18 @@ SparseMatrix flow_matrix(const FlowSystem& s)
   const Eigen::VectorXd inverse_areas = s.areas.cwiseInverse();
   const SparseMatrix scaled = inverse_areas.asDiagonal() * s.laplacian;
   SparseMatrix a = s.laplacian * scaled;
+  if (s.sixth_order > 0) { // τβ L M⁻¹ L − c L M⁻¹ L M⁻¹ L, its wider pattern fixed by L's as well
+    const SparseMatrix sixth = a * scaled;
+    SparseMatrix combined = s.tau_beta * a - s.sixth_order * sixth;
+    for (Eigen::Index j = 0; j < combined.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(combined, j); it; ++it) {
+        if (is_held(s.held, it.row()) || is_held(s.held, it.col()))
+          it.valueRef() = 0.0;
+        if (it.row() == it.col())
+          it.valueRef() += s.areas[it.row()];
+      }
+    return combined;
+  }
   // Entries of held rows and columns are zeroed rather than pruned so that the sparsity pattern,
   // hence CHOLMOD's symbolic analysis, does not depend on which vertices are held.
   for (Eigen::Index j = 0; j < a.outerSize(); ++j)
@@ -117,14 +139,17 @@ struct FlowSolver::Impl {
   //! The factor in float: CG's preconditioner, read at half the bytes (single_precision_factor.h).
   std::optional<SinglePrecisionFactor> preconditioner;
   bool analysed = false, factorised = false;
-  // The pattern of M + τβ L M⁻¹ L is determined by L's, so L's pattern identifies the analysis.
+  // The pattern of M + τβ L M⁻¹ L is determined by L's, so L's pattern identifies the analysis
+  // (with whether a sixth-order term widens it).
   std::vector<int> laplacian_outer, laplacian_inner;
+  bool sixth_order_pattern = false;
   double factorisation_cost = 0; // in CG iterations
   SolverState state;
 
-  bool same_pattern(const SparseMatrix& l) const
+  bool same_pattern(const SparseMatrix& l, bool sixth_order) const
   {
-    return analysed && laplacian_outer.size() == static_cast<std::size_t>(l.outerSize() + 1) &&
+    return analysed && sixth_order == sixth_order_pattern &&
+           laplacian_outer.size() == static_cast<std::size_t>(l.outerSize() + 1) &&
            std::equal(laplacian_outer.begin(), laplacian_outer.end(), l.outerIndexPtr()) &&
            laplacian_inner.size() == static_cast<std::size_t>(l.nonZeros()) &&
            std::equal(laplacian_inner.begin(), laplacian_inner.end(), l.innerIndexPtr());
@@ -161,13 +186,14 @@ struct FlowSolver::Impl {
     Stopwatch watch;
     const SparseMatrix a = flow_matrix(s);
     report.seconds.assembly += watch.restart();
-    if (!same_pattern(s.laplacian)) {
+    if (!same_pattern(s.laplacian, s.sixth_order > 0)) {
       if (analysed) // the pattern changed without carry_ordering: nothing to carry
         state.ordering.clear();
       analysed = false;
       analyse(a);
       laplacian_outer.assign(s.laplacian.outerIndexPtr(), s.laplacian.outerIndexPtr() + s.laplacian.outerSize() + 1);
       laplacian_inner.assign(s.laplacian.innerIndexPtr(), s.laplacian.innerIndexPtr() + s.laplacian.nonZeros());
+      sixth_order_pattern = s.sixth_order > 0;
       analysed = true;
       report.analysed = true;
     }
@@ -245,7 +271,7 @@ struct FlowSolver::Impl {
     if (s.tau_beta == 0) // the explicit scheme: A = M is diagonal
       return b.cwiseQuotient(s.areas);
 
-    if (!same_pattern(s.laplacian) || refactor_due()) {
+    if (!same_pattern(s.laplacian, s.sixth_order > 0) || refactor_due()) {
       factorise(s, report);
     } else {
       Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
@@ -279,6 +305,8 @@ struct FlowSolver::Impl {
   Eigen::VectorXd solve_qr(const FlowSystem& s, const Eigen::VectorXd& rhs, SolveReport& report) const
   {
     // The paper's operator I + τβ Δ², Δ = M⁻¹ L, non-symmetric unless all areas are equal.
+    if (s.sixth_order > 0)
+      throw InvalidParameter("the paper's QR solver has no sixth-order term (a Willmore term): use solver = \"cholmod\"");
     const Eigen::VectorXd inverse_areas = s.areas.cwiseInverse();
     const SparseMatrix delta = inverse_areas.asDiagonal() * s.laplacian;
     SparseMatrix a = delta * delta;

@@ -26,6 +26,10 @@ struct FlowSystem {
   const Eigen::VectorXd& areas;   //!< diagonal of M, all positive
   const std::vector<bool>& held;  //!< held[v]: w_v = 0; empty means no vertex is held
   double tau_beta = 0;            //!< τβ ≥ 0 (0 is the explicit scheme, w = M⁻¹ L H)
+  //! c ≥ 0 of a sixth-order implicit term − c K M⁻¹ K M⁻¹ K (positive semi-definite: K is negative
+  //! semi-definite), τβε² for a Willmore term of length ε (flow/willmore_energy.h); the Cholesky
+  //! solver only.
+  double sixth_order = 0;
 };
 
 enum class SolverKind {
