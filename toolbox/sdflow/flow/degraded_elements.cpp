@@ -29,7 +29,7 @@ DegradedElements degraded_elements(const Mesh& mesh, const RetriangulationSchedu
                       : std::vector<double>(mesh.n_vertices(), ell);
       // A kept rim's edges are not remeshed: beside them the remesher aims no finer (and the
       // edges at the rim are measured against that).
-      if (pipeline.edges_per_radius > 0 && pipeline.keep_boundary)
+      if (pipeline.edges_per_radius > 0 && rim_kept_in_stage_one(pipeline))
         floor_targets_beside_kept_boundary(mesh, d.targets);
     },
     [&] {

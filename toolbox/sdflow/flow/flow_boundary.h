@@ -36,6 +36,10 @@ public:
   //! than remeshing it with the interior.
   virtual bool keeps_rim() const = 0;
 
+  //! With keeps_rim: whether the rim's vertices are still resampled along it by the remeshing
+  //! (RetriangulationOptions::resample_boundary), as a moving contact line needs.
+  virtual bool resamples_rim() const { return false; }
+
   //! The direction along which the volume restoration (volume.h) may offset rim vertex `v`, whose
   //! unit normal (eq. 8) is `normal`; zero holds it where the step left it.
   virtual Eigen::Vector3d rim_restoration_direction(const Mesh& mesh, int v, const Eigen::Vector3d& normal) const = 0;

@@ -38,9 +38,11 @@ public:
   {
     fixed_.impose(mesh, laplacian, first_variation, held);
   }
-  //! Yes: re-triangulations keep the contact lines bit for bit (their edges stretch and shrink with
-  //! the contact line; they are not resampled).
+  //! Yes: the rebuilds of re-triangulations keep the contact lines, and the remeshing resamples
+  //! them along themselves (resamples_rim), in the plane: their edges stretch and shrink with the
+  //! moving line and are split and collapsed back toward the targets.
   bool keeps_rim() const override { return true; }
+  bool resamples_rim() const override { return true; }
   //! Zero: the contact line moves by its own law only; the restoration offsets the interior.
   Eigen::Vector3d rim_restoration_direction(const Mesh&, int, const Eigen::Vector3d&) const override
   {

@@ -477,19 +477,25 @@ private:
       for (auto w : mesh_.vv_range(v))
         if (w != v0 && w != v1 && (point(mesh_, w) - p).norm() > kRemeshSplitRatio * edge_target(v1, w))
           return false;
-    // Every surviving triangle around v0 or v1 must stay well-shaped and unturned.
+    // Every surviving triangle around v0 or v1 must stay well-shaped and unturned, and where the
+    // boundary is remeshed none that v0 hands to v1 may end with all three corners on it (an ear
+    // across two boundary edges: on a contact line, a triangle lying flat on the substrate).
     for (auto v : {v0, v1}) {
       const Eigen::Vector3d reference = star_normal(v);
       for (auto f : mesh_.vf_range(v)) {
         bool has_other = false;
+        int on_boundary = 0;
         std::array<Eigen::Vector3d, 3> q;
         int k = 0;
         for (auto u : mesh_.fv_range(f)) {
           has_other |= u == (v == v0 ? v1 : v0);
+          on_boundary += mesh_.is_boundary(u == v0 ? v1 : u);
           q[k++] = u == v0 || u == v1 ? p : point(mesh_, u);
         }
         if (has_other)
           continue; // the triangle on the collapsed edge disappears
+        if (v == v0 && on_boundary == 3 && movable_on_boundary())
+          return false;
         if (!acceptable(area_normal(q[0], q[1], q[2]), reference, target_[v.idx()]))
           return false;
       }
@@ -659,6 +665,11 @@ private:
         continue;
       const auto c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h0));
       const auto d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h1));
+      // Where the boundary is remeshed, no triangle with all three corners on it (an ear across two
+      // boundary edges, flat on the substrate for a contact line).
+      if (movable_on_boundary() && mesh_.is_boundary(c) && mesh_.is_boundary(d) &&
+          (mesh_.is_boundary(a) || mesh_.is_boundary(b)))
+        continue;
       const int va = valence[a.idx()], vb = valence[b.idx()], vc = valence[c.idx()], vd = valence[d.idx()];
       // Keep every vertex in at least three triangles (two on the boundary).
       if (va - 1 < (mesh_.is_boundary(a) ? 2 : 3) || vb - 1 < (mesh_.is_boundary(b) ? 2 : 3))

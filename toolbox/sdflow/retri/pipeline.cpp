@@ -205,7 +205,7 @@ std::vector<double> adapted_targets(const Mesh& clean, const std::vector<FacePai
   for (const auto v : clean.vertices())
     if (near[v.idx()])
       target[v.idx()] = std::clamp(clean.valence(v) > 0 ? mean_edge_length_at(clean, v) : ell, min_length, ell);
-  if (options.keep_boundary)
+  if (rim_kept_in_stage_one(options))
     floor_targets_beside_kept_boundary(clean, target);
   return target;
 }
@@ -351,7 +351,7 @@ StageOne remesh_without_own_crossings(const Mesh& input, const std::vector<FaceP
       targets.assign(input.n_vertices(), ell);
     refine_targets(input, crossing_points(s.mesh, s.pairs), *thickness, ell,
                    kFinestRefinement * options.min_edge_fraction * ell, targets);
-    if (options.keep_boundary)
+    if (rim_kept_in_stage_one(options))
       floor_targets_beside_kept_boundary(input, targets);
     if (const double estimate = estimated_vertices(input, targets); estimate > refinement_bound(first_vertices)) {
       logger().debug("stage 1: the next round would remesh into about {:.0f} vertices, more than {:.0f} (the "
@@ -477,7 +477,7 @@ std::vector<FacePair> remeshed_stage(Mesh& mesh, const RetriangulationOptions& o
   RemeshOptions remesh;
   remesh.edge_length = r.edge_length;
   remesh.iterations = options.remesh_iterations;
-  if (options.keep_boundary)
+  if (rim_kept_in_stage_one(options))
     remesh.boundary = BoundaryMode::keep;
   collect_garbage(mesh);
   // Where sheets cross, their normals describe no smooth surface: project onto the flat triangles.

@@ -57,6 +57,11 @@ struct RetriangulationOptions {
   //! keep a band of faces along them and rebuild only the surface inside it (fixed_rim.h). Off,
   //! stage 1 remeshes them along the loops and the rebuild re-triangulates them.
   bool keep_boundary = false;
+  //! With keep_boundary: stage 1 remeshes the boundary loops too, splitting, collapsing and sliding
+  //! their vertices along the loops themselves (a loop in a plane stays in it exactly), and stages
+  //! 2–5 keep the loops stage 1 left. A contact line (flow/substrate_boundary.h) is resampled so;
+  //! a fixed rim is not.
+  bool resample_boundary = false;
   //! Stage 1 must not make a surface that does not cross itself cross (a thin part collapsed, two
   //! close sheets pulled through each other, a crease): stage 2 would cut it and the rebuild change
   //! the topology where the flow did not. Stage 1 is then done again with the targets there halved and
@@ -83,6 +88,13 @@ struct RetriangulationOptions {
   //! dropped (a sphere of radius ℓ has 1/3).
   double min_component_thickness = 0.01;
 };
+
+//! Whether stage 1 keeps the boundary vertices where they are (keep_boundary without
+//! resample_boundary): then the remeshing beside them aims no finer than their edges.
+inline bool rim_kept_in_stage_one(const RetriangulationOptions& options)
+{
+  return options.keep_boundary && !options.resample_boundary;
+}
 
 //! What each stage did, and how long it took (seconds of wall time).
 struct RetriangulationResult {
