@@ -58,9 +58,9 @@ for n in 640 2500 10000; do
     done
   done
 done
-python3 - "$work" "$rounds" "$docs" <<'EOF'
+table=$(python3 - "$work" "$rounds" <<'EOF'
 import csv, glob, os, statistics, sys
-work, rounds, docs = sys.argv[1], int(sys.argv[2]), sys.argv[3] == "1"
+work, rounds = sys.argv[1], int(sys.argv[2])
 energies = ("isotropic", "ellipsoidal", "sum")
 def step_cpu(run):
     rows = list(csv.DictReader(open(os.path.join(run, "timings.csv"))))[1:]
@@ -83,13 +83,10 @@ for n in (640, 2500, 10000):
         cells = [f"{1000 * iso:.2f} ms ({count['isotropic']})"] + [
             f"{1000 * best[e]:.2f} ms ({count[e]}): {best[e] / iso:.2f}" for e in energies[1:]]
         lines.append(f"| {n} | {mode} | " + " | ".join(cells) + " |")
-table = "\n".join(lines)
-print(table)
-if docs:
-    path = "docs/validation.md"
-    text = open(path).read()
-    begin, end = "<!-- tables: anisotropic-cost -->", "<!-- end of tables: anisotropic-cost -->"
-    head, rest = text.split(begin)
-    _, tail = rest.split(end)
-    open(path, "w").write(f"{head}{begin}\n{table}\n{end}{tail}")
+print("\n".join(lines))
 EOF
+)
+echo "$table"
+if ((docs)); then
+  scripts/lib/replace-doc-table.py docs/validation.md anisotropic-cost <<< "$table"
+fi

@@ -76,13 +76,5 @@ table=$(printf '%s\n%s\n' "| vertices (island, sphere) | mode | a step alone, CP
   "|---|---|---|---|---|"; cat "$work/rows.md")
 echo "$table"
 if ((docs)); then
-  python3 - docs/validation.md "$table" <<'EOF'
-import sys
-path, table = sys.argv[1], sys.argv[2]
-text = open(path).read()
-begin, end = "<!-- tables: substrate-cost -->", "<!-- end of tables: substrate-cost -->"
-head, rest = text.split(begin)
-_, tail = rest.split(end)
-open(path, "w").write(f"{head}{begin}\n{table}\n{end}{tail}")
-EOF
+  scripts/lib/replace-doc-table.py docs/validation.md substrate-cost <<< "$table"
 fi
