@@ -1,8 +1,9 @@
-//! The substrate boundary condition (substrate_boundary.h): a cap at Young's angle stays, an island
+//! The substrate boundary condition (substrate_boundary.h): a film off the plane, below it or turned
+//! inside out is refused, a pocket of vapour under a film is not; a cap at Young's angle stays, an island
 //! relaxes to the cap of its volume and Young's angle under refinement with its contact line on
 //! the plane bit for bit, its volume kept and W = A − cos θ_Y A_base never rising beyond a rise that
 //! falls under refinement; an anisotropic island reaches its Winterbottom shape; bad parameters
-//! and surfaces off the plane are refused with the key named.
+//! are refused with the key named.
 #include "sdflow/flow/substrate_boundary.h"
 
 #include "sdflow/errors.h"
@@ -138,6 +139,24 @@ TEST(SubstrateBoundary, refuses_a_surface_whose_rim_is_off_the_plane_or_that_lie
   FaceIndices f = face_indices(cap);
   f.col(1).swap(f.col(2));
   EXPECT_NE(message(make_mesh(x, f), 0).find("out of the film"), std::string::npos);
+  // A pocket: a small cap turned inward (negative material volume) under a large one is vapour the
+  // film closed over on the substrate, and is taken; the same cap beside the film is refused.
+  const auto with_pocket = [&](double shift) {
+    const Mesh film = analytic::spherical_cap(6, 2, 90);
+    VertexVectors x = vertex_positions(film);
+    FaceIndices faces = face_indices(film);
+    VertexVectors px = vertex_positions(cap) * 0.5;
+    px.col(0).array() += shift;
+    FaceIndices pf = face_indices(cap).array() + static_cast<int>(x.rows());
+    pf.col(1).swap(pf.col(2));
+    VertexVectors all(x.rows() + px.rows(), 3);
+    all << x, px;
+    FaceIndices all_faces(faces.rows() + pf.rows(), 3);
+    all_faces << faces, pf;
+    return make_mesh(all, all_faces);
+  };
+  EXPECT_EQ(message(with_pocket(0.3), 0), "");
+  EXPECT_NE(message(with_pocket(5), 0).find("out of the film"), std::string::npos);
   EXPECT_THROW(SurfaceDiffusion(cap, [] {
                  FlowOptions q = substrate_run(60, 1);
                  q.scheme.substrate.z = 0.01;

@@ -73,6 +73,42 @@ std::vector<ContactPoint> contact_points(const Mesh& mesh, const VertexVectors& 
   return points;
 }
 
+//! Whether the highest vertex of component k lies inside the material of the other components: a
+//! ray from it, upward (tilted off the axes, so that it meets no edge of an axis-aligned mesh), crosses
+//! their faces an odd number of times (Möller–Trumbore). It never meets the caps over the contact
+//! lines, which lie in the substrate's plane below it. A component of negative material volume
+//! there is a pocket of vapour that the film closed over on the substrate, not a film turned inside out.
+bool inside_other_components(const VertexVectors& x, const FaceIndices& faces, const std::vector<int>& component,
+                             int k)
+{
+  Eigen::Index top = -1;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    if (component[static_cast<std::size_t>(f)] == k)
+      for (int c = 0; c < 3; ++c)
+        if (top < 0 || x(faces(f, c), 2) > x(top, 2))
+          top = faces(f, c);
+  if (top < 0)
+    return false;
+  const Eigen::Vector3d origin = x.row(top), direction = Eigen::Vector3d(0.0013, 0.0021, 1).normalized();
+  int crossings = 0;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    if (component[static_cast<std::size_t>(f)] == k)
+      continue;
+    const Eigen::Vector3d a = x.row(faces(f, 0)), b = x.row(faces(f, 1)), c = x.row(faces(f, 2));
+    const Eigen::Vector3d e1 = b - a, e2 = c - a, p = direction.cross(e2);
+    const double det = e1.dot(p);
+    if (std::abs(det) < 1e-300)
+      continue;
+    const Eigen::Vector3d s = origin - a;
+    const double u = s.dot(p) / det;
+    const Eigen::Vector3d q = s.cross(e1);
+    const double v = direction.dot(q) / det;
+    const double t = e2.dot(q) / det;
+    crossings += u >= 0 && v >= 0 && u + v <= 1 && t > 0;
+  }
+  return crossings % 2 == 1;
+}
+
 } // namespace
 
 SubstrateBoundary::SubstrateBoundary(const SubstrateOptions& options) : options_(options)
@@ -115,10 +151,11 @@ void SubstrateBoundary::check_surface(const Mesh& mesh, const UserTerms& terms) 
   int count = 0;
   const std::vector<int> component = face_component_ids(mesh, &count);
   const std::vector<BoundaryLoop> rims = boundary_loop_vertices(mesh, component);
-  const std::vector<double> volumes = material_volumes(x, face_indices(mesh), component, count, rims);
+  const FaceIndices faces = face_indices(mesh);
+  const std::vector<double> volumes = material_volumes(x, faces, component, count, rims);
   for (std::size_t l = 0; l < rims.size(); ++l) {
     const double volume = volumes[static_cast<std::size_t>(rims[l].component)];
-    if (!(volume > 0))
+    if (!(volume > 0) && !(volume < 0 && inside_other_components(x, faces, component, rims[l].component)))
       throw InvalidParameter(fmt::format("on a substrate, the component of boundary loop {} bounds the material "
                                          "volume {} with the substrate's plane ({}), not a positive one: its "
                                          "normals must point out of the film",

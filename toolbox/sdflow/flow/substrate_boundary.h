@@ -49,7 +49,9 @@ public:
     return Eigen::Vector3d::Zero();
   }
   //! Every boundary loop lies on z = z₀ (to 1e-9 of the surface's size), no vertex below it, and
-  //! each open component bounds material above the plane (normals outward, positive material volume).
+  //! each open component bounds material above the plane (normals outward, positive material
+  //! volume), or, with a negative one, lies inside another's material: a pocket of vapour the film
+  //! closed over on the substrate (a hole closing under an overhanging rim, θ_Y > 90°).
   void check_surface(const Mesh& mesh, const UserTerms& terms) const override;
   //! The contact-line step above, then the component's interior offset along its normals by the
   //! volume the rim swept. Rim vertices change x and y only: their z stays bit for bit.
