@@ -42,14 +42,19 @@ std::string integer_problem(const std::string& text, bool non_negative)
   return problem.empty() ? "" : "'" + text + "' is " + problem + " (a whole decimal number is expected)";
 }
 
-std::string real_problem(const std::string& text)
+std::string real_problem(const std::string& text, bool infinity)
 {
   double value = 0;
   const std::string_view t = without_plus(text);
+  if (infinity && t == "inf")
+    return "";
   std::string problem = parse_whole(t, value);
   if (problem.empty() && !std::isfinite(value))
     problem = "not finite";
-  return problem.empty() ? "" : "'" + text + "' is " + problem + " (a finite decimal number is expected)";
+  return problem.empty() ? ""
+                         : "'" + text + "' is " + problem +
+                               (infinity ? " (a finite decimal number or inf is expected)"
+                                         : " (a finite decimal number is expected)");
 }
 
 void require_plain_numbers(CLI::App& app)
@@ -61,7 +66,8 @@ void require_plain_numbers(CLI::App& app)
     else if (type.rfind("UINT", 0) == 0)
       option->check(CLI::Validator([](std::string& s) { return integer_problem(s, true); }, "", ""));
     else if (type.rfind("FLOAT", 0) == 0)
-      option->check(CLI::Validator([](std::string& s) { return real_problem(s); }, "", ""));
+      option->check(CLI::Validator([infinity = type == kRealOrInfinity](std::string& s) { return real_problem(s, infinity); },
+                                   "", ""));
   }
   for (CLI::App* verb : app.get_subcommands([](CLI::App*) { return true; }))
     require_plain_numbers(*verb);

@@ -13,8 +13,12 @@ namespace sdflow::cli {
 //! unsigned long long), else why not.
 std::string integer_problem(const std::string& text, bool non_negative);
 
-//! "" when `text` is a whole finite decimal number (no hexadecimal, no blanks, no nan/inf).
-std::string real_problem(const std::string& text);
+//! "" when `text` is a whole finite decimal number (no hexadecimal, no blanks, no nan/inf), or, with
+//! `infinity`, "inf".
+std::string real_problem(const std::string& text, bool infinity = false);
+
+//! The type name of a floating-point option that also takes "inf" (a range that allows ∞).
+inline constexpr const char* kRealOrInfinity = "FLOAT|inf";
 
 //! Add the checks above to every integer and floating-point option of `app` and its verbs.
 void require_plain_numbers(CLI::App& app);

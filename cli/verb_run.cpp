@@ -10,6 +10,7 @@
 #include "common_options.h"
 #include "exit_status.h"
 #include "json_report.h"
+#include "numbers.h"
 #include "repair_hint.h"
 #include "verbs.h"
 
@@ -353,6 +354,8 @@ void add_schema_flags(CLI::App& verb, RunArguments& args)
       break;
     case ParameterType::real:
       flag.option = verb.add_option(names, flag.real, help)->check(range_check(e));
+      if (e.range.infinite_allowed)
+        flag.option->type_name(kRealOrInfinity);
       break;
     case ParameterType::boolean:
       flag.option = verb.add_flag(names + ",!--no-" + e.flag.substr(2), flag.boolean, help);

@@ -191,6 +191,14 @@ TEST(RunCommand, substrate_flags_reach_run_toml_and_bad_values_exit_2_naming_the
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string toml = test::read_file(dir / "s/run.toml");
   EXPECT_NE(toml.find("[substrate]\nz = 0\ncontact_angle = 60\nmobility = 5\n"), std::string::npos) << toml;
+  // inf holds the angle (the range allows ∞, and the flag takes the word); a flag whose range does
+  // not allow it still refuses it.
+  const auto held = analytic::run_sdflow(run + (dir / "inf").string() + " --contact-line-mobility inf");
+  ASSERT_EQ(held.exit_code, 0) << held.output;
+  EXPECT_NE(test::read_file(dir / "inf/run.toml").find("mobility = inf\n"), std::string::npos);
+  const auto infinite_tau = analytic::run_sdflow(run + (dir / "tau").string() + " --tau inf");
+  EXPECT_EQ(infinite_tau.exit_code, 2) << infinite_tau.output;
+  EXPECT_NE(infinite_tau.output.find("tau must be > 0, got inf"), std::string::npos) << infinite_tau.output;
   for (const auto& [flags, key] : std::vector<std::pair<std::string, std::string>>{
          {" --contact-angle 180", "contact_angle"}, {" --contact-angle 0", "contact_angle"},
          {" --contact-line-mobility 0", "mobility"}, {" --contact-line-mobility -2", "mobility"},
