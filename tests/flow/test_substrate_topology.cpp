@@ -85,13 +85,15 @@ struct Hooked {
   RetriangulationReport report;
   Mesh mesh;
   int inner_calls = 0;
+  bool inner_forced = false; //!< the last call of the inner hook was forced
 };
 Hooked through_hook(Mesh mesh)
 {
   Hooked h;
   const RetriangulationHook hook = substrate_topology_hook(
-      [&h](Mesh&, const RetriangulationContext&) {
+      [&h](Mesh&, const RetriangulationContext& context) {
         ++h.inner_calls;
+        h.inner_forced = context.force;
         return RetriangulationReport{};
       },
       0.0, topology_schedule());
@@ -124,7 +126,8 @@ TEST(SubstrateTopology, an_island_whose_middle_comes_down_to_the_plane_breaks_in
   const double volume = material_volume(island);
   ASSERT_EQ(count_topology(island), (TopologyCount{.components = 1, .genus = 0, .boundary_loops = 1}));
   const Hooked h = through_hook(island);
-  EXPECT_EQ(h.inner_calls, 0);
+  EXPECT_EQ(h.inner_calls, 1) << "once after the cut, to re-triangulate the surface it left";
+  EXPECT_TRUE(h.inner_forced);
   EXPECT_TRUE(h.report.touchdown);
   EXPECT_TRUE(h.report.split);
   EXPECT_FALSE(h.report.contact);
@@ -199,6 +202,7 @@ TEST(SubstrateTopology, a_film_above_the_threshold_is_left_alone)
     EXPECT_EQ(r.change, SubstrateChange::none) << r.detail;
     const Hooked h = through_hook(mesh);
     EXPECT_EQ(h.inner_calls, 1) << "the re-triangulation hook runs as without a substrate";
+    EXPECT_FALSE(h.inner_forced);
     EXPECT_FALSE(h.report.changed());
   }
 }

@@ -63,6 +63,23 @@ RetriangulationHook substrate_topology_hook(RetriangulationHook inner, double pl
                                 m.before.components, m.after.components, m.before.boundary_loops,
                                 m.after.boundary_loops, m.before.genus, m.after.genus, volume_note);
     mesh = std::move(change.mesh);
+    // The cut leaves fresh contact lines and a ragged patch beside them; a re-triangulation now
+    // (the rim resampled along itself, the rest remeshed) makes of them a surface the next step can
+    // take. A refused one leaves the cut surface as it is.
+    const RetriangulationReport tidy =
+        inner(mesh, {.step = context.step, .time = context.time, .tolerated_degraded = 0, .force = true});
+    if (tidy.changed()) {
+      report.remeshed = tidy.remeshed;
+      report.surgery = tidy.surgery;
+      report.cleaned = tidy.cleaned;
+      report.degraded_left = tidy.degraded_left;
+      report.pipeline_seconds = tidy.pipeline_seconds;
+      report.check_seconds += tidy.check_seconds;
+      report.volume_seconds += tidy.volume_seconds;
+      m.faces_after = static_cast<long>(mesh.n_faces());
+      m.after = count_topology(mesh);
+      report.detail += "; then " + tidy.detail;
+    }
     return report;
   };
 }

@@ -16,8 +16,10 @@ namespace sdflow {
 //! schedule looks at the surface: δ = min_edge_fraction · ℓ of `schedule.pipeline` (the finest edge
 //! the re-triangulation makes; the flow's own pinch-offs happen at widths below it), the cut's reach
 //! from ℓ, debris below min_component_faces. When one is made the report carries it (and `split` or
-//! `merged` when the component count changed) and `inner` is not called; otherwise `inner`'s report
-//! is returned as it is.
+//! `merged` when the component count changed), and `inner` is then called once, forced, on the cut
+//! surface: its re-triangulation resamples the new contact lines and remeshes the ragged patch
+//! beside them (without it a 8:1 ridge stopped with exit 3 just after breaking); otherwise
+//! `inner`'s report is returned as it is.
 RetriangulationHook substrate_topology_hook(RetriangulationHook inner, double plane_z,
                                             const RetriangulationSchedule& schedule);
 
