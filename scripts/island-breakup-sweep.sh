@@ -64,9 +64,9 @@ cell() { # DIR
     NR > 1 { last_c = $6; last_t = $2 }
     END {
       printf "%d", last_c
-      if (t) printf ", first break-up t = %.4g", t
-      if (status != 0) printf "; stopped at t = %.4g (exit %d)", last_t, status
-      else if (last_t < end * (1 - 1e-12)) printf "; ended at t = %.4g", last_t
+      if (t) printf ", first break-up at t = %.4g", t
+      if (status != 0) printf ", stopped at t = %.4g (exit %d)", last_t, status
+      else if (last_t < end * (1 - 1e-12)) printf ", ended at t = %.4g", last_t
     }' "$metrics"
 }
 vertices() { sed -n 2p "$1/run/metrics.csv" 2>/dev/null | cut -d, -f4 || echo "–"; }
@@ -87,12 +87,12 @@ done
   echo "#### Islands 1 × 0.5 × L (rounding radius 0.45) on z = 0, θ_Y = $angle°, η = $mobility: islands at t = $end_time"
   echo
   header="| L/W |" rule="|---|"
-  for e in "${edges[@]}"; do header+=" edge $e (vertices at the start) |"; rule+="---|"; done
+  for e in "${edges[@]}"; do header+=" edge $e: islands; vertices at the start |"; rule+="---|"; done
   echo "$header wall time, finest |"
   echo "$rule---|"
   for r in "${ratios[@]}"; do
     row="| $r |"
-    for e in "${edges[@]}"; do row+=" $(cell "${dirs[$r,$e]}") ($(vertices "${dirs[$r,$e]}")) |"; done
+    for e in "${edges[@]}"; do row+=" $(cell "${dirs[$r,$e]}"); $(vertices "${dirs[$r,$e]}") |"; done
     echo "$row $(cat "${dirs[$r,${edges[-1]}]}/seconds") s |"
   done
   echo
