@@ -79,7 +79,7 @@ def rim_edges(V, F, ell):
     """The shortest and longest contact-line edge, in units of ℓ."""
     a, b = exact.boundary_halfedges(F)
     lengths = np.linalg.norm(V[a] - V[b], axis=1) / ell
-    return f"{lengths.min():.2f}–{lengths.max():.2f}"
+    return f"{lengths.min():.3g}–{lengths.max():.3g}"
 
 
 def measure(run, relaxes):
@@ -125,6 +125,8 @@ def measure(run, relaxes):
         height, base = exact_shape_of(V1, F1, z0, float(last["volume"]), theta, g)
         cell += (f"; height {height[0]:.5f} against {height[1]:.5f} ({100 * (height[0] / height[1] - 1):+.2f}%), "
                  f"base radius {base[0]:.5f} against {base[1]:.5f} ({100 * (base[0] / base[1] - 1):+.2f}%)")
+        if g is not None:
+            cell += f", their ratio {height[0] / base[0]:.6f} against {height[1] / base[1]:.6f}"
     return cell
 
 
