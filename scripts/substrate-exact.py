@@ -157,6 +157,7 @@ def cell_rises(values):
 
 
 def main():
+    global BUDGET
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--edge-lengths", default="0.05,0.035")
     parser.add_argument("--work", default=os.path.join(HERE, "..", "build", "substrate-exact"))
@@ -165,7 +166,6 @@ def main():
     parser.add_argument("--doc", default=os.path.join(HERE, "..", "docs", "validation.md"))
     parser.add_argument("--print", action="store_true", help="print the table, leave the doc alone")
     a = parser.parse_args()
-    global BUDGET
     BUDGET = a.budget
     edges = [float(h) for h in a.edge_lengths.split(",")]
     lines = [f"#### Islands on z = 0 relaxing to their equilibria (η = 10, from the rounded 1 × 1 × 0.5 box; at most {BUDGET:g} CPU s a run)",
