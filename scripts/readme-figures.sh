@@ -5,7 +5,7 @@
 #   docs/images/NAME_before_event.png  the last snapshot before the first topology change (if any)
 #   docs/images/NAME_after_event.png   the first snapshot after it (if any)
 #   docs/images/NAME_middle.png        the snapshot nearest half the run's final time
-#   docs/images/NAME_end.png           the last snapshot
+#   docs/images/NAME_end.png           the last snapshot (sdflow render can draw)
 # and docs/images/NAME_area_volume.png, NAME_curvature_deviation.png.
 #   scripts/readme-figures.sh torus dumbbell sintering spheres_on_plane
 set -euo pipefail
@@ -28,7 +28,12 @@ for name in "$@"; do
     "$sdflow" render "$file" -o "docs/images/${name}_$2.png" --size 480,360 --title "$name, t = $(time_of "$1")"
   }
   draw "${steps[0]}" start
-  draw "${steps[-1]}" end
+  # A run that stopped may have written the degenerate triangle that stopped it into its last
+  # snapshot, which sdflow render refuses: the end is then the last snapshot it draws.
+  for ((k = ${#steps[@]} - 1; k >= 0; --k)); do
+    draw "${steps[k]}" end && break
+    echo "readme-figures: $name: snapshot ${steps[k]} not drawn, the end is an earlier one" >&2
+  done
   # The snapshot whose time is nearest half the final time.
   middle=$(for s in "${steps[@]}"; do echo "$s $(time_of "$s")"; done |
            awk -v half="$(awk -F, 'END { print $2 / 2 }' "$run/metrics.csv")" \
