@@ -34,8 +34,8 @@ _spec.loader.exec_module(exact)
 SAMPLES = [
     ("island_on_substrate", "a 2 × 1 × 0.5 box, θ_Y = 60°: relaxes to the spherical cap of its volume", True),
     ("winterbottom_island", "a rounded 1 × 1 × 0.5 box, γ = √(n₁² + n₂² + 4n₃²), σ = ½: relaxes to its Winterbottom shape", True),
-    ("island_breakup", "a ridge 8 × 1 × 0.5 (ends rounded), θ_Y = 90°, η = 1: should break into islands", False),
-    ("film_with_hole", "a 6 × 6 film 0.5 thick with a hole of radius 1, θ_Y = 120°, η = 1: should dewet from the hole", False),
+    ("island_breakup", "a ridge 8 × 1 × 0.5 (ends rounded), θ_Y = 90°, η = 10: thins in its middle and breaks into islands", False),
+    ("film_with_hole", "a 6 × 6 film 0.5 thick with a hole of radius 1, θ_Y = 120°, η = 1: dewets from its hole and its outer edge", False),
 ]
 
 
