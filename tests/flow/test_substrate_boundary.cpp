@@ -166,6 +166,38 @@ TEST(SubstrateBoundary, refuses_a_surface_whose_rim_is_off_the_plane_or_that_lie
                InvalidParameter);
 }
 
+TEST(SubstrateBoundary, a_contact_line_too_stiff_to_step_is_re_triangulated_or_stops_the_run)
+{
+  // A rim vertex slid along the contact line to 1e-9 of its neighbour makes a sliver whose contact-line
+  // bound 1/(η k_b) is below adaptive.min_tau: without re-triangulation the step stops with the reason
+  // instead of crawling at τ ≈ 1e-16; with it, the contact line is resampled and the run goes on.
+  Mesh cap = analytic::spherical_cap(6, 1, 90);
+  Mesh::VertexHandle moved, neighbour;
+  for (const auto h : cap.halfedges())
+    if (cap.is_boundary(h)) {
+      moved = cap.from_vertex_handle(h);
+      neighbour = cap.to_vertex_handle(h);
+      break;
+    }
+  auto p = cap.point(neighbour);
+  const auto q = cap.point(moved);
+  p += 1e-9 * (q - p).normalized();
+  cap.set_point(moved, p);
+  FlowOptions options = substrate_run(90, 1e6);
+  options.steps = 2;
+  try {
+    SurfaceDiffusion flow(cap, options);
+    flow.step();
+    ADD_FAILURE() << "a step was taken";
+  } catch (const SolverFailure& e) {
+    EXPECT_NE(std::string(e.what()).find("contact line's own τ bound"), std::string::npos) << e.what();
+  }
+  options.retriangulation.enabled = true;
+  SurfaceDiffusion flow(cap, options);
+  EXPECT_NO_THROW(flow.step());
+  EXPECT_GT(flow.time(), 0.0);
+}
+
 //! The largest vertex displacement of one step of τ from a cap at Young's angle, over its radius.
 double equilibrium_drift(int rings, double degrees, double tau)
 {

@@ -569,6 +569,12 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
       throw TrialsCancelled();
     // An adaptive τ stays within the boundary condition's bound (a contact line's, substrate_boundary.h)
     // and the surface's own time scale (TrialPlan::largest_tau).
+    // A contact line whose own bound is below min_tau has a cell too stiff to step (a sliver or a
+    // very short edge at the rim): that is the triangulation's fault, not a τ to crawl at.
+    if (controller.adaptive() && op_.tau_limit < adaptive.min_tau)
+      throw SolverFailure(fmt::format("the contact line's own τ bound {:.3g} is below adaptive.min_tau = {:g}: a "
+                                      "triangle at the contact line is too stiff (a sliver, or a very short edge)",
+                                      op_.tau_limit, adaptive.min_tau));
     const double time_bound = controller.adaptive() ? std::min(plan.time_left, op_.tau_limit) : plan.time_left;
     const double tau = plan.start ? std::min(plan.start_tau, plan.time_left)
                                   : std::min(controller.propose(next_step, plan.automatic, time_bound), plan.largest_tau);
