@@ -148,8 +148,7 @@ TEST(ParameterSchema, every_entry_has_a_flag_help_a_type_and_a_unique_name)
   // The .mlx names are an interface: users' filter scripts name every parameter.
   EXPECT_EQ(meshlab_names, (std::set<std::string>{"Steps", "AutomaticTau", "Tau", "Beta", "ConserveVolume",
                                                   "FixedBoundary", "Retriangulate", "EdgeLength", "Curvature", "Mass",
-                                                  "Extrapolate", "Energy", "EnergyG", "EnergyFormula", "EnergyWillmore",
-                                                  "SubstrateZ",
+                                                  "Extrapolate", "Energy", "EnergyG", "EnergyFormula", "SubstrateZ",
                                                   "ContactAngle", "ContactLineMobility"}));
 }
 

@@ -252,11 +252,8 @@ void add_energy_entries(std::vector<ParameterEntry>& s)
                            "ε, and lets energy.formula be non-convex; 0: none"));
     e.range = willmore_range;
     bind<double>(e, &RunParameters::scheme, &SchemeOptions::energy, &SurfaceEnergyOptions::willmore);
-    e.meshlab = {.name = "EnergyWillmore", .label = "Willmore ε",
-                 .help = "ε ≥ 0 of a Willmore term (ε²/2) ∫ κ² dA added to the energy, for closed surfaces: a "
-                         "strongly anisotropic γ, even a non-convex formula, then grows facets whose corners round "
-                         "off at the length ε; 0: none",
-                 .filters = {MeshlabFilter::anisotropic}};
+    // Not a MeshLab parameter: meshlabserver refuses a filter script that lacks one of the filter's
+    // parameters, so a new one would break every saved script of the anisotropic filter.
     e.paper = 0.0;
   }
 }
