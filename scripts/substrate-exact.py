@@ -36,6 +36,7 @@ import json
 import math
 import os
 import re
+import subprocess
 import sys
 import time
 
@@ -199,17 +200,8 @@ def main():
     if a.print:
         print(table)
         return
-    with open(a.doc) as f:
-        text = f.read()
-    begin, end = "<!-- tables: substrate-exact -->\n", "<!-- end of tables: substrate-exact -->"
-    if begin not in text or end not in text:
-        sys.exit(f"substrate-exact: {a.doc} lacks the markers {begin.strip()} and {end}")
-    head, rest = text.split(begin, 1)
-    _, tail = rest.split(end, 1)
-    tmp = a.doc + ".tmp"
-    with open(tmp, "w") as f:
-        f.write(head + begin + table + "\n" + end + tail)
-    os.replace(tmp, a.doc)
+    subprocess.run([sys.executable, os.path.join(HERE, "lib", "replace-doc-table.py"), a.doc, "substrate-exact"],
+                   input=table, text=True, check=True)
     print(f"substrate-exact: the table written to {a.doc}")
 
 
