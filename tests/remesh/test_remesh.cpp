@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -170,6 +171,35 @@ TEST(Remesh, disk_boundary_stays_on_its_circle)
   EXPECT_NEAR(rim, 2 * std::numbers::pi * radius / ell, 0.25 * 2 * std::numbers::pi * radius / ell);
   EXPECT_GE(band_share(result.mesh, ell), kEdgeBandShare);
   EXPECT_GT(worst_fold_cosine(result.mesh), 0.99); // flat: no triangle turned over
+}
+
+TEST(Remesh, a_tiny_boundary_edge_at_a_corner_is_collapsed_into_the_corner)
+{
+  // An equilateral sheet whose corner O has a boundary edge 10⁻¹⁰ long beside it, as the flow left
+  // at a kink of a contact line: both ends of that edge turn by more than the corner angle (170°
+  // and 50°). Remeshed with its boundary, the short edge goes and O stays where it was.
+  const Eigen::Vector3d o(0, 0, 0), a(1, 0, 0), c(0.5, std::sqrt(3.0) / 2, 0);
+  const double angle = 50 * std::numbers::pi / 180;
+  const Eigen::Vector3d p = 1e-10 * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0);
+  VertexVectors x(4, 3);
+  x << o.transpose(), a.transpose(), c.transpose(), p.transpose();
+  FaceIndices t(2, 3);
+  t << 0, 3, 2, 3, 1, 2;
+  const PointProjection plane = [](const Eigen::Vector3d& q) { return Eigen::Vector3d(q.x(), q.y(), 0); };
+  const double ell = 0.1;
+  const auto result = isotropic_remesh(make_mesh(x, t), {.edge_length = ell, .project = plane});
+  double shortest = std::numeric_limits<double>::infinity();
+  for (auto e : result.mesh.edges())
+    if (result.mesh.is_boundary(e))
+      shortest = std::min(shortest, static_cast<double>(result.mesh.calc_edge_length(e)));
+  EXPECT_GT(shortest, 0.5 * ell);
+  for (const Eigen::Vector3d& corner : {o, a, c}) {
+    int found = 0;
+    for (auto v : result.mesh.vertices())
+      found += to_eigen(result.mesh.point(v)) == corner;
+    EXPECT_EQ(found, 1) << "corner " << corner.transpose() << " moved";
+  }
+  EXPECT_GT(worst_fold_cosine(result.mesh), 0.99);
 }
 
 TEST(Remesh, keep_mode_leaves_the_boundary_untouched)

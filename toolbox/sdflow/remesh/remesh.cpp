@@ -120,7 +120,7 @@ public:
       const Eigen::Vector3d e_in = point(mesh_, v) - point(mesh_, mesh_.from_vertex_handle(in));
       const Eigen::Vector3d e_out = point(mesh_, mesh_.to_vertex_handle(out)) - point(mesh_, v);
       const double n = e_in.norm() * e_out.norm();
-      locked_[v.idx()] = n > 0 && e_in.dot(e_out) < corner_cos * n;
+      locked_[v.idx()] = n > 0 && e_in.dot(e_out) < corner_cos * n && !beside_boundary_corner(v);
     }
     if (options.crease_angle_deg > 0)
       for (const int e : crease_edges(mesh_, options.crease_angle_deg)) {
@@ -131,6 +131,19 @@ public:
     for (std::size_t i = 0; i < crease_valence_.size(); ++i)
       if (crease_valence_[i] > 0 && crease_valence_[i] != 2)
         locked_[i] = 1;
+  }
+
+  //! Whether a boundary vertex is one end of an edge shorter than the collapse bound whose other
+  //! end is already a corner: the two are one corner, which survives as that first vertex when the
+  //! short edge collapses into it. Without this both ends of such an edge turn sharply and stay, so
+  //! an edge the flow shrinks at a kink of a contact line is never collapsed (it reached 10⁻¹³).
+  bool beside_boundary_corner(Mesh::VertexHandle v) const
+  {
+    const auto out = mesh_.halfedge_handle(v);
+    for (const auto w : {mesh_.to_vertex_handle(out), mesh_.from_vertex_handle(mesh_.prev_halfedge_handle(out))})
+      if (locked_[w.idx()] && (point(mesh_, v) - point(mesh_, w)).norm() < kRemeshCollapseRatio * edge_target(v, w))
+        return true;
+    return false;
   }
 
   RemeshStatistics run()
