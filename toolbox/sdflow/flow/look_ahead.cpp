@@ -49,9 +49,13 @@ LookAhead::Outcome LookAhead::look_beside_trial(const Mesh& surface, TrialSolver
     held_ = Held{std::move(first), std::move(before)};
     return {.held = true, .alone_seconds = held_->first.alone_seconds};
   }
+  // The solvers still hold the factors of the mark unless the trial made one or failed in a solve.
+  const bool factors_as_marked =
+      (!first.failure || first.cancelled) && trials.counts().factorisations == before.counts.factorisations;
   trials.rewind(before);
-  // The flow's own hook changes the surface whenever it decides to, or fails.
-  if (out.failure || !out.report.changed())
+  // The flow's own hook changes the surface whenever it decides to, or fails. When it leaves the
+  // surface as it was, the flow goes on from the factors it had, as a flow not looking ahead does.
+  if ((out.failure || !out.report.changed()) && !factors_as_marked)
     trials.drop_factors();
   return out;
 }

@@ -32,6 +32,7 @@ struct FirstTrial {
   int rejections = 0;
   std::vector<double> volumes; //!< of the components before the trial, for their restoration
   std::exception_ptr failure;
+  bool cancelled = false; //!< the failure is the cancel, which comes before a solve, never inside one
   std::vector<FlowNote> notes;
   //! Taken ahead: its wall time while the look ran too, and after the look had ended.
   double beside_look_seconds = 0, alone_seconds = 0;

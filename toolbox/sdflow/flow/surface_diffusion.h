@@ -155,6 +155,9 @@ private:
     double automatic = 0;         //!< the rule's τ from the explicit speed (0: not needed)
     std::vector<bool> resolved;   //!< in a start phase, where the surface is resolved
     bool start = false;           //!< the next trial is a start step (backward Euler)
+    //! It is one of the run's first start steps: they damp what the mesh does not resolve, and the
+    //! displacement bound at resolved vertices is waived (time_step.h, start phase).
+    bool run_start = false;
     double start_tau = 0;         //!< its τ
     double time_left = 0;         //!< to the end time (+∞ without one)
     double largest_tau = 0;       //!< the surface's own time scale (+∞ for a constant τ or a table)
