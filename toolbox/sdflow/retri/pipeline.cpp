@@ -477,8 +477,12 @@ std::vector<FacePair> remeshed_stage(Mesh& mesh, const RetriangulationOptions& o
   RemeshOptions remesh;
   remesh.edge_length = r.edge_length;
   remesh.iterations = options.remesh_iterations;
+  // A resampled rim is a contact line: a curve in the plane with no corners of its own. A kink a
+  // cut left is blunted by the remeshing, not kept as a corner whose flat tip the flow turns over.
   if (rim_kept_in_stage_one(options))
     remesh.boundary = BoundaryMode::keep;
+  else if (options.resample_boundary)
+    remesh.boundary_corner_angle_deg = 180;
   collect_garbage(mesh);
   // Where sheets cross, their normals describe no smooth surface: project onto the flat triangles.
   // Stage 0 left the input as it was unless it joined components.

@@ -59,8 +59,9 @@ struct RetriangulationOptions {
   bool keep_boundary = false;
   //! With keep_boundary: stage 1 remeshes the boundary loops too, splitting, collapsing and sliding
   //! their vertices along the loops themselves (a loop in a plane stays in it exactly), and stages
-  //! 2–5 keep the loops stage 1 left. A contact line (flow/substrate_boundary.h) is resampled so;
-  //! a fixed rim is not.
+  //! 2–5 keep the loops stage 1 left; no vertex of theirs is kept as a corner (a contact line is a
+  //! curve in its plane: a kink a cut left is blunted). A contact line (flow/substrate_boundary.h)
+  //! is resampled so; a fixed rim is not.
   bool resample_boundary = false;
   //! Stage 1 must not make a surface that does not cross itself cross (a thin part collapsed, two
   //! close sheets pulled through each other, a crease): stage 2 would cut it and the rebuild change
