@@ -6,7 +6,8 @@
 # the islands at the end (components of the last row of metrics.csv), the time of the first break-up
 # (the first row whose component count rose) and, for a run that stopped early, where and why. It goes
 # between "<!-- tables: island-breakup -->" and "<!-- end of tables: island-breakup -->" in
-# docs/validation.md, with a line per edge length saying between which ratios the count changes.
+# docs/validation.md (for η ≠ 1 between the markers named island-breakup-eta-η), with a line per
+# edge length saying between which ratios the count changes.
 # Runs are kept under build/island-breakup/ and reused when finished (--force re-runs them).
 #   scripts/island-breakup-sweep.sh [--sdflow PATH] [--ratios "4 6 8 10 12"] [--edges "0.14 0.1 0.07"]
 #                                   [--angle 90] [--mobility 1] [--end-time 2] [--force] [--print]
@@ -115,7 +116,10 @@ done
 cat "$table"
 ((print)) && return 0
 doc=docs/validation.md
-begin="<!-- tables: island-breakup -->" end="<!-- end of tables: island-breakup -->"
+# One table per mobility: η = 1 between the markers "island-breakup", another η between "island-breakup-eta-η".
+name=island-breakup
+[[ $mobility == 1 ]] || name+="-eta-$mobility"
+begin="<!-- tables: $name -->" end="<!-- end of tables: $name -->"
 grep -qxF "$begin" "$doc" || { echo "island-breakup-sweep.sh: no $begin marker in $doc" >&2; exit 1; }
 awk -v tables="$table" -v begin="$begin" -v end="$end" '
   $0 == begin { print; while ((getline line < tables) > 0) print line; skip = 1; next }
