@@ -14,7 +14,7 @@ namespace {
 
 //! The face's tensor in 3D (tangent to the face's plane, normal `w`): the least-squares solution
 //! of II (e·u, e·v) = (Δn·u, Δn·v) over its three edges e and normal differences Δn, in the frame
-//! u along an edge, v = w × u (Rusinkiewicz 2004, eq. 4 and §3).
+//! u along an edge, v = w × u (Rusinkiewicz 2004).
 Eigen::Matrix3d face_tensor(const std::array<Eigen::Vector3d, 3>& p, const std::array<Eigen::Vector3d, 3>& n,
                             const Eigen::Vector3d& w)
 {
@@ -58,7 +58,7 @@ std::vector<Eigen::Matrix3d> shape_operators(const Mesh& mesh, const VertexVecto
     detail::add_mixed_voronoi_areas(t.point, {0, 1, 2}, dots, twice_area, corner_areas);
     const Eigen::Matrix3d tensor = face_tensor(t.point, n, w);
     for (int c = 0; c < 3; ++c) {
-      // The least rotation taking the face's plane onto the vertex's tangent plane (§4).
+      // The least rotation taking the face's plane onto the vertex's tangent plane.
       const Eigen::Matrix3d turn = Eigen::Quaterniond::FromTwoVectors(w, n[c]).toRotationMatrix();
       shape[t.index[c]] += corner_areas[c] * turn * tensor * turn.transpose();
       weight[t.index[c]] += corner_areas[c];

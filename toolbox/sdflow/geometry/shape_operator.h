@@ -2,7 +2,7 @@
 //! \file shape_operator.h
 //! \brief The shape operator S = dN at each vertex: Rusinkiewicz's per-face estimate averaged to the
 //! vertices (S. Rusinkiewicz, "Estimating curvatures and their derivatives on triangle meshes",
-//! 3DPVT 2004, §3–4).
+//! 3DPVT 2004).
 //!
 //! Each face fits, by least squares in its own plane, the symmetric 2×2 tensor that maps its three
 //! edges to the differences of the vertex normals along them. A vertex takes the weighted mean of

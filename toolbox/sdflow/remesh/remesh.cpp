@@ -1037,6 +1037,7 @@ SizingField curvature_sizing(const Mesh& mesh, const CurvatureSizingOptions& opt
 
 namespace {
 
+//! Throws InvalidParameter for RadiusSizingOptions out of range.
 void check_radius_sizing(const RadiusSizingOptions& options)
 {
   if (!(options.edges_per_radius > 0) || !(options.min_length > 0) || !(options.max_length >= options.min_length) ||
