@@ -1,11 +1,15 @@
 //! The elements the re-triangulation hook calls degraded, and those halfway there that a local
 //! remeshing takes along (degraded_elements.h).
 #include "sdflow/flow/degraded_elements.h"
+#include "sdflow/geometry/form_sum_anisotropy.h"
+#include "sdflow/retri/curvature_targets.h"
 #include "support/analytic_meshes.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <memory>
 
 namespace sdflow {
 namespace {
@@ -50,6 +54,21 @@ TEST(DegradedElements, a_short_edge_marks_its_two_faces_and_they_are_worn_too)
   EXPECT_GE(d.faces.size(), 2u);
   EXPECT_TRUE(std::includes(d.worn_faces.begin(), d.worn_faces.end(), d.faces.begin(), d.faces.end()));
   EXPECT_GT(d.worn_faces.size(), d.faces.size());
+}
+
+TEST(DegradedElements, with_an_anisotropy_edges_are_measured_against_the_weighted_targets)
+{
+  // The run's look and the pipeline size by the same curvature (curvature_targets.h): the weighted
+  // one when the schedule's pipeline carries the energy's γ.
+  const std::array<AnisotropyTerm, 1> term{AnisotropyTerm{.g = {1, 1, 4}}};
+  const Mesh wulff = analytic::ellipsoid(3, 1, 1, 2);
+  RetriangulationSchedule s;
+  s.pipeline.edge_length = 0.5;
+  const std::vector<double> geometric = degraded_elements(wulff, s).targets;
+  s.pipeline.anisotropy = std::make_shared<const FormSumAnisotropy>(term);
+  const std::vector<double> weighted = degraded_elements(wulff, s).targets;
+  EXPECT_EQ(weighted, curvature_targets(wulff, s.pipeline, s.pipeline.edge_length));
+  EXPECT_NE(weighted, geometric);
 }
 
 } // namespace

@@ -164,5 +164,18 @@ TEST(SchemeParts, a_boundary_condition_lets_the_volume_restoration_move_its_rim)
     }
 }
 
+TEST(SchemeParts, an_anisotropic_energy_hands_its_gamma_to_the_retriangulation)
+{
+  // The re-triangulation sizes by the weighted curvature of this γ (retri/curvature_targets.h);
+  // the area has none, so isotropic runs keep the geometric sizing.
+  EXPECT_FALSE(scheme_parts(kCotangent).anisotropy);
+  EXPECT_FALSE(scheme_parts(SchemeOptions{.energy = {.willmore = 0.1}}).anisotropy);
+  SchemeOptions options = kCotangent;
+  options.energy = {.kind = SurfaceEnergyKind::ellipsoidal, .g = {1, 1, 4}};
+  const SchemeParts parts = scheme_parts(options);
+  ASSERT_TRUE(parts.anisotropy);
+  EXPECT_DOUBLE_EQ(parts.anisotropy->value(Eigen::Vector3d::UnitZ()), 2);
+}
+
 } // namespace
 } // namespace sdflow

@@ -2,6 +2,7 @@
 //! fold-overs and self-intersections, the default projection, adaptive sizing, bad options.
 #include "sdflow/errors.h"
 #include "sdflow/geometry/measures.h"
+#include "sdflow/geometry/principal_curvature.h"
 #include "sdflow/geometry/quality.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/io/validate.h"
@@ -340,6 +341,19 @@ TEST(Remesh, a_split_whose_projection_lands_on_a_vertex_makes_no_zero_area_trian
     zero_area += has_zero_area(corner[0], corner[1], corner[2], 1e-12);
   }
   EXPECT_EQ(zero_area, 0);
+}
+
+TEST(Remesh, radius_targets_apply_their_rule_to_a_given_curvature)
+{
+  // The overload that takes κ (the weighted curvature of an anisotropic run) is the same rule:
+  // with the geometric κ it is the plain call; with a uniform κ every target is 1/(nκ), clamped.
+  const Mesh mesh = analytic::ellipsoid(3, 2.5, 1, 0.6);
+  const RadiusSizingOptions o{.edges_per_radius = 4, .min_length = 0.05, .max_length = 0.2};
+  EXPECT_EQ(radius_targets(mesh, largest_principal_curvature(mesh), o), radius_targets(mesh, o));
+  const Eigen::VectorXd unit = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(mesh.n_vertices()));
+  EXPECT_EQ(radius_targets(mesh, unit, o), std::vector<double>(mesh.n_vertices(), 0.2));
+  EXPECT_EQ(radius_targets(mesh, 2 * unit, o), std::vector<double>(mesh.n_vertices(), 1 / 8.0));
+  EXPECT_THROW(radius_targets(mesh, Eigen::VectorXd::Ones(3), o), InvalidParameter);
 }
 
 TEST(Remesh, refuses_bad_options)

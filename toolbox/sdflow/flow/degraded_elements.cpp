@@ -2,7 +2,7 @@
 
 #include "sdflow/geometry/quality.h"
 #include "sdflow/remesh/kept_boundary_sizing.h"
-#include "sdflow/remesh/remesh.h"
+#include "sdflow/retri/curvature_targets.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -23,10 +23,8 @@ DegradedElements degraded_elements(const Mesh& mesh, const RetriangulationSchedu
   std::vector<double> smallest_angle(mesh.n_faces(), 0.0);
   tbb::parallel_invoke(
     [&] {
-      d.targets = pipeline.edges_per_radius > 0
-                      ? radius_targets(mesh, {.edges_per_radius = pipeline.edges_per_radius,
-                                              .min_length = pipeline.min_edge_fraction * ell, .max_length = ell})
-                      : std::vector<double>(mesh.n_vertices(), ell);
+      d.targets = pipeline.edges_per_radius > 0 ? curvature_targets(mesh, pipeline, ell)
+                                                : std::vector<double>(mesh.n_vertices(), ell);
       // A kept rim's edges are not remeshed: beside them the remesher aims no finer (and the
       // edges at the rim are measured against that).
       if (pipeline.edges_per_radius > 0 && rim_kept_in_stage_one(pipeline))

@@ -1,8 +1,8 @@
 #pragma once
 //! \file degraded_elements.h
 //! \brief The elements a run's re-triangulation hook (retriangulation.h) calls degraded: edges
-//! outside [ℓ/r, r·ℓ] of their local target ℓ (the pipeline's curvature-adapted sizing, remesh.h
-//! radius_targets, or the uniform ℓ), and triangles with an angle below a minimum.
+//! outside [ℓ/r, r·ℓ] of their local target ℓ (the pipeline's curvature-adapted sizing,
+//! retri/curvature_targets.h, or the uniform ℓ), and triangles with an angle below a minimum.
 
 #include "sdflow/flow/retriangulation.h"
 #include "sdflow/mesh.h"

@@ -16,13 +16,16 @@ namespace sdflow {
 SchemeParts scheme_parts(const SchemeOptions& options)
 {
   std::shared_ptr<const SurfaceEnergy> energy;
-  if (options.energy.kind == SurfaceEnergyKind::isotropic)
+  std::shared_ptr<const Anisotropy> anisotropy;
+  if (options.energy.kind == SurfaceEnergyKind::isotropic) {
     energy = std::make_shared<const IsotropicEnergy>(options.curvature);
-  else
-    energy = std::make_shared<const AnisotropicEnergy>(make_anisotropy(options.energy));
+  } else {
+    anisotropy = make_anisotropy(options.energy);
+    energy = std::make_shared<const AnisotropicEnergy>(anisotropy);
+  }
   if (options.energy.willmore != 0)
     energy = std::make_shared<const WillmoreRegularisedEnergy>(std::move(energy), options.energy.willmore);
-  return {std::move(energy), flow_boundary(options.boundary, options.substrate)};
+  return {std::move(energy), flow_boundary(options.boundary, options.substrate), std::move(anisotropy)};
 }
 
 FlowOperators flow_operators(const Mesh& mesh, const SchemeOptions& options, const CotangentCache* cache)

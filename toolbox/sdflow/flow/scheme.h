@@ -65,6 +65,9 @@ inline constexpr SchemeRanges scheme_ranges{};
 struct SchemeParts {
   std::shared_ptr<const SurfaceEnergy> energy;
   std::shared_ptr<const FlowBoundary> boundary;
+  //! The energy's γ when it is anisotropic (the re-triangulation sizes by its weighted curvature,
+  //! retri/curvature_targets.h); empty for the area.
+  std::shared_ptr<const Anisotropy> anisotropy;
 };
 
 //! The parts `options` select: the isotropic energy with its `curvature`, or the anisotropic one of

@@ -366,6 +366,7 @@ void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook, long to
     schedule.pipeline.edge_length = start_length_;
   schedule.pipeline.keep_boundary = parts_.boundary->keeps_rim();
   schedule.pipeline.resample_boundary = parts_.boundary->resamples_rim();
+  schedule.pipeline.anisotropy = parts_.anisotropy;
   RetriangulationSchedule refined_schedule = schedule;
   refined_schedule.pipeline = refined(schedule.pipeline, p_.refinement);
   hook_ = FlowHook(parts_.boundary->rim_topology_hook(make_retriangulation_hook(refined_schedule), refined_schedule),

@@ -1,5 +1,7 @@
 #include "sdflow/geometry/anisotropy.h"
 
+#include "sdflow/geometry/tangent_frame.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -7,14 +9,6 @@
 
 namespace sdflow {
 namespace {
-
-//! Two unit vectors completing the unit `n` to an orthonormal frame.
-std::pair<Eigen::Vector3d, Eigen::Vector3d> tangent_frame(const Eigen::Vector3d& n)
-{
-  const Eigen::Vector3d seed = std::abs(n.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  const Eigen::Vector3d t1 = n.cross(seed).normalized();
-  return {t1, n.cross(t1)};
-}
 
 //! The two eigenvalues of D²γ(n) restricted to the tangent plane of n, largest first.
 std::pair<double, double> tangent_eigenvalues(const Anisotropy& gamma, const Eigen::Vector3d& n)
@@ -78,6 +72,15 @@ double Anisotropy::max_tangent_stiffness() const
     best = std::max(best, value);
   }
   return best;
+}
+
+double Anisotropy::mean_value() const
+{
+  constexpr int kSamples = 2000;
+  double sum = 0;
+  for (const Eigen::Vector3d& n : fibonacci_directions(kSamples))
+    sum += value(n);
+  return sum / kSamples;
 }
 
 } // namespace sdflow

@@ -32,6 +32,11 @@ public:
   //! energy scales the scheme's implicit term by. Found by sampling 2000 directions (a Fibonacci
   //! lattice) and refining the 8 best by a compass search on the sphere down to steps of 10⁻⁹ rad.
   double max_tangent_stiffness() const;
+
+  //! γ̄, the mean of γ over unit directions (1 for the area): the mean half-width of the Wulff
+  //! shape {x : x·n ≤ γ(n)}, whose support function γ is. The average over 2000 directions of a
+  //! Fibonacci lattice.
+  double mean_value() const;
 };
 
 //! `count` nearly uniform unit directions: the Fibonacci lattice (Swinbank and Purser 2006).

@@ -3,6 +3,8 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/geometry/curvature.cpp
   sdflow/geometry/cotangent_curvature.cpp
   sdflow/geometry/principal_curvature.cpp
+  sdflow/geometry/shape_operator.cpp
+  sdflow/geometry/weighted_curvature.cpp
   sdflow/geometry/laplacian.cpp
   sdflow/geometry/cotangent_cache.cpp
   sdflow/geometry/measures.cpp

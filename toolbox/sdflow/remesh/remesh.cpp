@@ -1048,14 +1048,32 @@ SizingField curvature_sizing(const Mesh& mesh, const CurvatureSizingOptions& opt
   return nearest_vertex_sizing(clean, std::move(lengths));
 }
 
-std::vector<double> radius_targets(const Mesh& mesh, const RadiusSizingOptions& options)
+namespace {
+
+//! Throws InvalidParameter for RadiusSizingOptions out of range.
+void check_radius_sizing(const RadiusSizingOptions& options)
 {
   if (!(options.edges_per_radius > 0) || !(options.min_length > 0) || !(options.max_length >= options.min_length) ||
       !std::isfinite(options.max_length))
     throw InvalidParameter(fmt::format("radius_targets: need edges_per_radius > 0 and 0 < min_length ≤ max_length, "
                                        "got {}, min = {}, max = {}",
                                        options.edges_per_radius, options.min_length, options.max_length));
-  const Eigen::VectorXd kappa = largest_principal_curvature(mesh);
+}
+
+} // namespace
+
+std::vector<double> radius_targets(const Mesh& mesh, const RadiusSizingOptions& options)
+{
+  check_radius_sizing(options);
+  return radius_targets(mesh, largest_principal_curvature(mesh), options);
+}
+
+std::vector<double> radius_targets(const Mesh& mesh, const Eigen::VectorXd& kappa, const RadiusSizingOptions& options)
+{
+  check_radius_sizing(options);
+  if (kappa.size() != static_cast<Eigen::Index>(mesh.n_vertices()))
+    throw InvalidParameter(
+        fmt::format("radius_targets: {} curvatures for {} vertices", kappa.size(), mesh.n_vertices()));
   const Eigen::VectorXd mean_lengths = vertex_mean_edge_lengths(mesh);
   std::vector<double> lengths;
   lengths.reserve(static_cast<std::size_t>(kappa.size()));

@@ -146,4 +146,9 @@ struct RadiusSizingOptions {
 //! Throws InvalidParameter for out-of-range options.
 std::vector<double> radius_targets(const Mesh& mesh, const RadiusSizingOptions& options);
 
+//! The same rule with a given κ at each vertex (#V, ≥ 0) in place of the geometric one: e.g. the
+//! weighted curvature of an anisotropic energy (geometry/weighted_curvature.h). Throws
+//! InvalidParameter for out-of-range options or a wrong count.
+std::vector<double> radius_targets(const Mesh& mesh, const Eigen::VectorXd& kappa, const RadiusSizingOptions& options);
+
 } // namespace sdflow

@@ -9,6 +9,7 @@
 #include "sdflow/reconstruct/reconstruct_apart.h"
 #include "sdflow/remesh/kept_boundary_sizing.h"
 #include "sdflow/retri/components.h"
+#include "sdflow/retri/curvature_targets.h"
 #include "sdflow/retri/fixed_rim.h"
 #include "sdflow/retri/open_orientation.h"
 #include "sdflow/retri/remove_intersections.h"
@@ -173,22 +174,18 @@ Mesh validated(const Mesh& mesh)
 //! Rings around intersecting faces where stage 1 keeps the mesh's own scale.
 constexpr int kLocalScaleRings = 4;
 
-//! Stage 1's curvature-adapted sizing (radius_targets), except within kLocalScaleRings of the faces
+//! Stage 1's curvature-adapted sizing (curvature_targets), except within kLocalScaleRings of the faces
 //! that intersect others, where the target is the local mean edge length: sheets that crossed are
 //! not a curvature to resolve (refining where they cross leaves the rebuild slivers of enclosed
 //! space), and coarsening a neck that pinched through would tear it before the surgery. With the
 //! boundary kept, no finer beside it than its edges (kept_boundary_sizing.h).
-//! `known_targets`, when given, are the radius targets of `clean`.
+//! `known_targets`, when given, are the curvature targets of `clean`.
 std::vector<double> adapted_targets(const Mesh& clean, const std::vector<FacePair>& crossings,
                                     const RetriangulationOptions& options, double ell,
                                     const std::vector<double>* known_targets)
 {
   const double min_length = options.min_edge_fraction * ell;
-  std::vector<double> target =
-      known_targets ? *known_targets
-                    : radius_targets(clean, {.edges_per_radius = options.edges_per_radius,
-                                             .min_length = min_length,
-                                             .max_length = ell});
+  std::vector<double> target = known_targets ? *known_targets : curvature_targets(clean, options, ell);
   std::vector<bool> near(clean.n_vertices(), false);
   for (const FacePair& pair : crossings)
     for (const int f : {pair.first, pair.second})

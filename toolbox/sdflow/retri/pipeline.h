@@ -17,6 +17,7 @@
 //! Stages 3–5 run only when stage 2 found something to remove (or when asked to always run):
 //! on a surface without singularities they would only re-triangulate the same points.
 
+#include "sdflow/geometry/anisotropy.h"
 #include "sdflow/mesh.h"
 #include "sdflow/parameter_range.h"
 #include "sdflow/reconstruct/advancing_front.h"
@@ -25,6 +26,7 @@
 #include "sdflow/remesh/remesh.h"
 #include "sdflow/spatial/intersect.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -41,6 +43,10 @@ struct RetriangulationOptions {
   double edges_per_radius = 4;
   //! The floor of the adapted edge length, as a fraction of ℓ (in (0, 1]).
   double min_edge_fraction = 0.25;
+  //! The γ of an anisotropic surface energy, set by a run that has one: stage 1 then adapts ℓ to
+  //! the weighted curvature of γ instead of the geometric one (curvature_targets.h). Empty: the
+  //! geometric curvature (radius_targets).
+  std::shared_ptr<const Anisotropy> anisotropy;
   //! Stage 1 projects new vertices onto the smooth surface the triangles sample, not onto the flat
   //! triangles (remesh.h, RemeshOptions::curved_projection), so a remeshing does not thin a neck;
   //! onto the flat ones when the surface intersects itself (no smooth surface to lift onto there).
@@ -167,9 +173,8 @@ RetriangulationResult retriangulate(const Mesh& mesh, const RetriangulationOptio
 
 //! The same, for a caller that has found the self-intersections of `mesh` already (`crossings`,
 //! as self_intersections(mesh) gives them; `mesh` without deleted faces) and, when `targets` is
-//! not empty, stage 1's curvature targets too (radius_targets(mesh, …) with edges_per_radius,
-//! min_edge_fraction × ℓ and ℓ, as degraded_elements finds them): stage 1 does not compute them
-//! again.
+//! not empty, stage 1's curvature targets too (curvature_targets(mesh, options, ℓ), as
+//! degraded_elements finds them): stage 1 does not compute them again.
 //! The result is the one retriangulate(mesh, options) gives.
 RetriangulationResult retriangulate(const Mesh& mesh, const RetriangulationOptions& options,
                                     const std::vector<FacePair>& crossings, const std::vector<double>& targets = {});
