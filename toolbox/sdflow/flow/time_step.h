@@ -28,11 +28,13 @@
 //! a sharp edge, a crease, a sliver), that vertex, not the scales the run resolves, would set τ. The
 //! step is then a backward-Euler step (β = kStartBeta = 1, scheme.h) of τ_s = start_damping · (ℓ/π)⁴
 //! for the run's edge length ℓ (which damps the wavelength 2ℓ, the shortest a mesh of edge ℓ
-//! carries, by 1 + start_damping), shrunk by kStartShrink when a triangle turns over, up to
-//! kStartRetries times and not below the automatic τ; the volume of each closed component is
-//! restored after it. Among the run's first steps no displacement bound applies (the phase lasts at
-//! most start_steps · τ_s, about 0.3 ℓ⁴: docs/method.md says what that gives up); the start step on a
-//! new triangulation mid-run keeps the bound at the resolved vertices and shrinks τ as it asks.
+//! carries, by 1 + start_damping); the volume of each closed component is restored after it. Among
+//! the run's first steps a start step is accepted unless a triangle turns over or a position is not
+//! finite: no displacement bound applies (the phase lasts at most start_steps · τ_s, about 0.3 ℓ⁴:
+//! docs/method.md says what that gives up). The start step on a new triangulation mid-run must also
+//! keep the displacement bound at the resolved vertices. A rejected start trial is retried, up to
+//! kStartRetries times and not below the automatic τ, at a τ shrunk as that bound asks, or by
+//! kStartShrink when the resolved vertices kept it.
 //! The rule above takes over at the first step whose surface is resolved everywhere, or after
 //! start_steps steps (is_start_step), from the last start step's τ. With start_steps > 0, the first
 //! step on each new triangulation (after a re-triangulation) is a start step too when its surface
