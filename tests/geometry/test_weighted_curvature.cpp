@@ -17,7 +17,7 @@ namespace sdflow {
 namespace {
 
 //! Exact identities (γ = |p|, a sphere): round-off.
-constexpr double kExact = 1e-10;
+constexpr double kRoundOff = 1e-10;
 
 //! One term √(pᵀ G p), G = R diag(g) Rᵀ.
 FormSumAnisotropy one_term(const Eigen::Vector3d& g, const Eigen::Vector3d& rotation_deg = Eigen::Vector3d::Zero())
@@ -55,13 +55,13 @@ TEST(WeightedCurvature, the_area_gives_the_shape_operator)
   // γ = |p| (g = 1): A = I − NNᵀ and γ̄ = 1, so W is S in the tangent frame.
   const Mesh mesh = analytic::ellipsoid(3, 1, 1.2, 2);
   const FormSumAnisotropy area = one_term(Eigen::Vector3d::Ones());
-  EXPECT_NEAR(area.mean_value(), 1, kExact);
+  EXPECT_NEAR(area.mean_value(), 1, kRoundOff);
   const VertexVectors normals = vertex_normals(mesh);
   const std::vector<Eigen::Matrix3d> shape = shape_operators(mesh, normals);
   const std::vector<Eigen::Matrix2d> w = weighted_shape_operators(mesh, area);
   for (const auto v : mesh.vertices()) {
     const Eigen::Matrix2d s = tangent_block(shape[v.idx()], normals.row(v.idx()).transpose());
-    EXPECT_LT((w[v.idx()] - s).norm(), kExact * (1 + s.norm()));
+    EXPECT_LT((w[v.idx()] - s).norm(), kRoundOff * (1 + s.norm()));
   }
 }
 
@@ -81,7 +81,7 @@ TEST(WeightedCurvature, sphere_gives_the_tangent_stiffness_over_the_radius)
     const VertexVectors normals = vertex_normals(sphere);
     for (const auto v : sphere.vertices()) {
       const double expected = gamma.tangent_stiffness(normals.row(v.idx()).transpose()) / (radius * mean);
-      EXPECT_NEAR(kappa[v.idx()], expected, kExact * expected);
+      EXPECT_NEAR(kappa[v.idx()], expected, kRoundOff * expected);
     }
     EXPECT_NEAR(kappa.maxCoeff() / kappa.minCoeff(), 8, 0.1) << "4 on the equator against 1/2 at the poles";
   }

@@ -8,6 +8,7 @@
 #include "sdflow/remesh/local_remesh.h"
 #include "sdflow/spatial/intersect.h"
 #include "support/analytic_meshes.h"
+#include "support/test_meshes.h"
 
 #include <gtest/gtest.h>
 
@@ -22,21 +23,6 @@ namespace {
 
 constexpr double kMinAngleDeg = 15; //!< the hook's default: sharper triangles are degraded
 constexpr double kEdgeRatio = 2;    //!< the hook's default: edges outside [ℓ/2, 2ℓ] are degraded
-
-//! A triangle by the bits of its corners, starting at the smallest, in its own orientation.
-using TriangleKey = std::array<std::array<double, 3>, 3>;
-
-TriangleKey triangle_key(const Mesh& mesh, Mesh::FaceHandle f)
-{
-  TriangleKey key{};
-  int k = 0;
-  for (const auto v : mesh.fv_range(f)) {
-    const auto& p = mesh.point(v);
-    key[k++] = {p[0], p[1], p[2]};
-  }
-  std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
-  return key;
-}
 
 double mean_edge(const Mesh& mesh)
 {
@@ -91,12 +77,12 @@ TEST(LocalRemesh, keeps_the_outside_bit_for_bit_and_fixes_the_degraded_elements_
   const long outside = std::count(patch.begin(), patch.end(), 0);
   EXPECT_EQ(r.patch_faces, static_cast<long>(mesh.n_faces()) - outside);
   EXPECT_LT(r.patch_faces, static_cast<long>(mesh.n_faces()) / 10) << "the patch is a small region";
-  std::set<TriangleKey> result;
+  std::set<test::TriangleKey> result;
   for (const auto f : r.mesh.faces())
-    result.insert(triangle_key(r.mesh, f));
+    result.insert(test::triangle_key(r.mesh, f));
   for (const auto f : mesh.faces()) {
     if (!patch[f.idx()]) {
-      EXPECT_TRUE(result.count(triangle_key(mesh, f))) << "face " << f.idx() << " outside the patch changed";
+      EXPECT_TRUE(result.count(test::triangle_key(mesh, f))) << "face " << f.idx() << " outside the patch changed";
     }
   }
   EXPECT_EQ(static_cast<long>(r.mesh.n_faces()), outside + r.new_faces);

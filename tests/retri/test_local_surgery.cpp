@@ -38,24 +38,6 @@ std::vector<std::pair<bool, int>> outcome(const Mesh& mesh)
   return parts;
 }
 
-using Triangle = std::array<double, 9>;
-
-//! A face by its corners' coordinates, starting at the smallest corner (orientation kept).
-Triangle triangle_key(const Mesh& mesh, Mesh::FaceHandle f)
-{
-  const auto x = triangle_corners(mesh, f).point;
-  std::array<std::array<double, 3>, 3> c{};
-  for (int k = 0; k < 3; ++k)
-    c[static_cast<std::size_t>(k)] = {x[static_cast<std::size_t>(k)].x(), x[static_cast<std::size_t>(k)].y(),
-                                      x[static_cast<std::size_t>(k)].z()};
-  const auto first = static_cast<std::size_t>(std::min_element(c.begin(), c.end()) - c.begin());
-  Triangle key{};
-  for (std::size_t k = 0; k < 3; ++k)
-    for (std::size_t d = 0; d < 3; ++d)
-      key[3 * k + d] = c[(first + k) % 3][d];
-  return key;
-}
-
 //! Input faces with every corner farther than `distance` from every corner of a crossing face,
 //! and how many of them the result holds unchanged (same coordinates, same orientation).
 struct FarFaces {
@@ -69,9 +51,9 @@ FarFaces far_faces_kept(const Mesh& input, const std::vector<FacePair>& crossing
     for (const int f : {pair.first, pair.second})
       for (const auto v : input.fv_range(input.face_handle(f)))
         seeds.push_back(to_eigen(input.point(v)));
-  std::set<Triangle> after;
+  std::set<test::TriangleKey> after;
   for (const auto f : result.faces())
-    after.insert(triangle_key(result, f));
+    after.insert(test::triangle_key(result, f));
   FarFaces counts;
   for (const auto f : input.faces()) {
     bool far = true;
@@ -81,7 +63,7 @@ FarFaces far_faces_kept(const Mesh& input, const std::vector<FacePair>& crossing
     if (!far)
       continue;
     ++counts.far;
-    counts.kept += after.count(triangle_key(input, f)) > 0;
+    counts.kept += after.count(test::triangle_key(input, f)) > 0;
   }
   return counts;
 }

@@ -7,6 +7,7 @@
 #include "sdflow/remesh/face_patch.h"
 #include "support/analytic_meshes.h"
 
+#include <algorithm>
 #include <array>
 #include <functional>
 #include <random>
@@ -37,6 +38,22 @@ inline Mesh grid(int nx, int ny, const std::function<Eigen::Vector3d(double, dou
       }
     }
   return make_mesh(x, t);
+}
+
+//! A triangle by its corners' coordinates, from its smallest corner on, in its own orientation:
+//! two faces have the same key when they are the same triangle, bit for bit.
+using TriangleKey = std::array<std::array<double, 3>, 3>;
+
+inline TriangleKey triangle_key(const Mesh& mesh, Mesh::FaceHandle f)
+{
+  TriangleKey key{};
+  std::size_t k = 0;
+  for (const auto v : mesh.fv_range(f)) {
+    const auto& p = mesh.point(v);
+    key[k++] = {p[0], p[1], p[2]};
+  }
+  std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
+  return key;
 }
 
 //! The disjoint union of meshes (vertex and face indices of each follow those of the previous).
