@@ -3,7 +3,6 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/crossing_width.h"
 #include "sdflow/flow/degraded_elements.h"
-#include "sdflow/flow/fold_untangling.h"
 #include "sdflow/flow/topology_guard.h"
 #include "sdflow/flow/volume.h"
 #include "sdflow/geometry/material_volume.h"
@@ -278,54 +277,6 @@ std::optional<Mesh> remesh_degraded_region(const Mesh& mesh, Verdict& verdict, c
   return std::move(r.mesh);
 }
 
-//! A crossing that is a fold (fold_untangling.h) undone by smoothing the vertices around it, the
-//! connectivity kept, its volume given back; nullopt, with why in `fallback`, when the crossing
-//! pairs are not all adjacent, the part there is thinner than the finest edge (a neck the flow drew
-//! through: the surgery's), or the smoothing does not undo them moving no vertex farther than half
-//! the part's thickness.
-std::optional<Mesh> untangle_crossing_fold(const Mesh& mesh, const Verdict& verdict, const RetriangulationSchedule& s,
-                                           const std::vector<FacePair>& crossings, RetriangulationReport& report,
-                                           std::string& fallback)
-{
-  if (!crossings_are_adjacent(mesh, crossings))
-    return std::nullopt;
-  const RetriangulationOptions& o = s.pipeline;
-  const double ell = o.edge_length;
-  const double finest_edge = o.edges_per_radius > 0 ? o.min_edge_fraction * ell : ell;
-  Stopwatch stopwatch;
-  const double width = crossing_width(mesh, crossings, ell);
-  if (!(width >= finest_edge)) {
-    fallback += fmt::format("the {} crossing face pairs lie side by side where the surface is {:.3g} ℓ thin, thinner "
-                            "than the finest edge, so they are not taken for a fold; ",
-                            crossings.size(), width / ell);
-    report.pipeline_seconds.intersections += stopwatch.seconds();
-    return std::nullopt;
-  }
-  // Moving no vertex farther than half the part's thickness keeps each sheet on its side of the part.
-  FoldUntangling untangling = untangle_fold(mesh, crossings, width / 2);
-  report.pipeline_seconds.remesh += stopwatch.restart();
-  if (!untangling.positions) {
-    fallback += fmt::format("a fold of {} adjacent face pairs where the surface is {:.3g} ℓ thick was not undone ({}); ",
-                            crossings.size(), width / ell, untangling.failure);
-    return std::nullopt;
-  }
-  Mesh untangled = mesh;
-  set_vertex_positions(untangled, *untangling.positions);
-  const std::string volume_note = s.restore_volume ? restore_volume(mesh, untangled, report.measures) : std::string{};
-  report.volume_seconds += stopwatch.restart();
-  report.remeshed = report.local = true;
-  report.degraded_left = degraded_elements(untangled, s).total();
-  report.measures.crossing_pairs = static_cast<long>(crossings.size());
-  report.measures.before = report.measures.after = count_topology(mesh);
-  report.measures.faces_before = report.measures.faces_after = static_cast<long>(mesh.n_faces());
-  report.detail = fmt::format("{}: a fold ({} adjacent face pairs, where the surface is {:.3g} ℓ thick) undone by "
-                              "smoothing {} rings of vertices around it in {} sweeps (moved at most {:.3g} ℓ), the "
-                              "triangles and the topology kept{}; {} degraded elements left",
-                              verdict.reason, crossings.size(), width / ell, untangling.rings, untangling.iterations,
-                              untangling.largest_move / ell, volume_note, report.degraded_left);
-  return untangled;
-}
-
 std::string describe_change(const TopologyCount& before, const TopologyCount& after)
 {
   std::string s = fmt::format("components {} → {}, genus {} → {}", before.components, after.components, before.genus,
@@ -394,22 +345,13 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
         return report;
       }
     }
-    // A crossing that is a fold is undone by smoothing around it (the watch's pairs are this
-    // surface's); the paper's pipeline (refinement_rounds = 0) takes every crossing as it comes.
-    if (verdict.intersecting && schedule.pipeline.refinement_rounds > 0) {
-      if (std::optional<Mesh> untangled =
-              untangle_crossing_fold(mesh, verdict, schedule, watch->pairs(), report, fallback)) {
-        mesh = std::move(*untangled);
-        return report;
-      }
-    }
-    // At any other crossing, the surgery around it first.
+    // At a crossing, the surgery around it first (the watch's pairs are this surface's).
     std::optional<RetriangulationResult> surgery;
     if (schedule.local_surgery && verdict.intersecting) {
       LocalSurgery attempt = local_surgery(mesh, watch->pairs(), schedule.pipeline);
       surgery = std::move(attempt.result);
       if (!surgery)
-        fallback += fmt::format("the local surgery declined or failed ({}), so the whole pipeline ran; ", attempt.failure);
+        fallback = fmt::format("the local surgery declined or failed ({}), so the whole pipeline ran; ", attempt.failure);
     }
     // The watch's pairs are this surface's unless a local remeshing gave it another one to count;
     // so are the look's curvature targets, found when it does not intersect.

@@ -6,7 +6,6 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/degraded_elements.cpp
   sdflow/flow/fixed_boundary.cpp
   sdflow/flow/flow_hook.cpp
-  sdflow/flow/fold_untangling.cpp
   sdflow/flow/flow_options.cpp
   sdflow/flow/intersection_guard.cpp
   sdflow/flow/isotropic_energy.cpp
