@@ -11,11 +11,9 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <csignal>
 #include <fstream>
 #include <sys/wait.h>
-#include <thread>
 #include <unistd.h>
 
 namespace sdflow {
@@ -23,14 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-long count_lines(const fs::path& file)
-{
-  std::ifstream in(file);
-  long n = 0;
-  for (std::string line; std::getline(in, line);)
-    ++n;
-  return n;
-}
+using analytic::count_lines;
 
 TEST(RunCommand, runs_a_scenario_with_flag_overrides_and_plots_it)
 {
@@ -228,9 +219,10 @@ TEST(RunCommand, killed_run_leaves_complete_files_and_resumes_bit_for_bit)
     _exit(127);
   }
   // Kill it once a third of the rows are out, at whatever it is doing then.
-  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (count_lines(dir / "killed/metrics.csv") < 15 && std::chrono::steady_clock::now() < give_up)
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  int finished_code = -1;
+  ASSERT_TRUE(analytic::wait_while_running(child, [&] { return count_lines(dir / "killed/metrics.csv") >= 15; },
+                                           finished_code))
+      << "the run ended (exit " << finished_code << ") before a third of its rows were out";
   kill(child, SIGKILL);
   int status = 0;
   waitpid(child, &status, 0);

@@ -11,14 +11,12 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <csignal>
 #include <fcntl.h>
 #include <fstream>
 #include <sys/file.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
-#include <thread>
 #include <unistd.h>
 
 namespace sdflow {
@@ -26,39 +24,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-long count_lines(const fs::path& file)
-{
-  std::ifstream in(file);
-  long n = 0;
-  for (std::string line; std::getline(in, line);)
-    ++n;
-  return n;
-}
-
-//! `sdflow ARGUMENTS` started in the background, its output going to `log`; `file_limit` > 0
-//! caps the size of every file it writes (RLIMIT_FSIZE), as a full disk would.
-pid_t start_sdflow(const std::string& arguments, const fs::path& log, rlim_t file_limit = 0)
-{
-  const pid_t child = fork();
-  if (child == 0) {
-    if (file_limit > 0) {
-      signal(SIGXFSZ, SIG_IGN); // write() then fails with EFBIG, as it fails with ENOSPC on a full disk
-      const rlimit limit{file_limit, file_limit};
-      setrlimit(RLIMIT_FSIZE, &limit);
-    }
-    const std::string command = std::string(SDFLOW_CLI_PATH) + " " + arguments + " > " + log.string() + " 2>&1";
-    execl("/bin/sh", "sh", "-c", ("exec " + command).c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  return child;
-}
-
-int wait_exit_code(pid_t child)
-{
-  int status = 0;
-  waitpid(child, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
+using analytic::count_lines;
+using analytic::start_sdflow;
+using analytic::wait_exit_code;
 
 class RunDirectory : public ::testing::Test {
 protected:
@@ -181,9 +149,10 @@ TEST_F(RunDirectory, a_second_run_is_refused_while_the_first_lives_and_a_stale_l
 
   // A killed run's lock does not block its resumption.
   const pid_t killed = start_sdflow("run --out " + (dir / "killed").string() + common, dir / "k.log");
-  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (!fs::exists(dir / "killed/checkpoint.bin") && std::chrono::steady_clock::now() < give_up)
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  int finished_code = -1;
+  ASSERT_TRUE(analytic::wait_while_running(killed, [&] { return fs::exists(dir / "killed/checkpoint.bin"); },
+                                           finished_code))
+      << "the run ended (exit " << finished_code << ") before its first checkpoint: " << test::read_file(dir / "k.log");
   kill(killed, SIGKILL);
   wait_exit_code(killed);
   const auto resumed = analytic::run_sdflow("run --resume " + (dir / "killed").string() + " --quiet");
@@ -202,9 +171,10 @@ TEST_F(RunDirectory, sigint_and_sigterm_write_a_checkpoint_and_exit_130_and_143)
     SCOPED_TRACE(signal);
     const fs::path run = dir / fmt::format("signal{}", signal);
     const pid_t child = start_sdflow("run --out " + run.string() + args, dir / "signal.log");
-    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-    while (count_lines(run / "metrics.csv") < 4 && std::chrono::steady_clock::now() < give_up)
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    int finished_code = -1;
+    ASSERT_TRUE(analytic::wait_while_running(child, [&] { return count_lines(run / "metrics.csv") >= 4; },
+                                             finished_code))
+        << "the run ended (exit " << finished_code << ") before its third step: " << test::read_file(dir / "signal.log");
     kill(child, signal);
     const int code = wait_exit_code(child);
     const std::string log = test::read_file(dir / "signal.log");
