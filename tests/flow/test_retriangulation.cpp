@@ -393,9 +393,10 @@ TEST(RetriangulationHook, a_forced_call_runs_the_pipeline_whatever_the_schedule)
   EXPECT_NE(report.detail.find("no step could be taken"), std::string::npos) << report.detail;
 }
 
-//! A capsule of radius 1, L/D = 9, along x (edges of 0.3), its middle pinched through the axis
-//! (radius down by 1.3 (1 - (x/1.2)²) for |x| < 1.2), as a neck is between two steps.
-Mesh pinched_capsule()
+//! A capsule of radius 1, L/D = 9, along x (edges of 0.3), its middle pinched by `depth` (radius
+//! down by depth (1 - (x/1.2)²) for |x| < 1.2): through the axis for a depth above 1, as a neck is
+//! between two steps, or to a thin neck of radius 1 − depth.
+Mesh pinched_capsule(double depth = 1.3)
 {
   const std::string expression = "sqrt(max(abs(x)-8,0)^2+y^2+z^2)-1";
   const ExpressionParameters shape{expression,
@@ -406,7 +407,7 @@ Mesh pinched_capsule()
     const double rho = std::hypot(p.y(), p.z()), u = p.x() / 1.2;
     if (std::abs(u) >= 1 || rho == 0)
       continue;
-    const double scale = (rho - 1.3 * (1 - u * u)) / rho;
+    const double scale = (rho - depth * (1 - u * u)) / rho;
     mesh.point(v) = to_point(Eigen::Vector3d(p.x(), p.y() * scale, p.z() * scale));
   }
   return mesh;
@@ -432,6 +433,28 @@ TEST(RetriangulationHook, a_crossing_is_cut_out_locally_with_the_outcome_of_the_
   EXPECT_EQ(component_topology(global).size(), 2u);
   EXPECT_NEAR(enclosed_volume(local), enclosed_volume(global), 1e-3 * enclosed_volume(global))
       << "both get the input's volume back";
+}
+
+//! A pinch-off is logged with the neck as the step found it: the flow gives the hook the positions
+//! the step started from, and on the crossed surface the walls have already passed through each other.
+TEST(RetriangulationHook, a_pinch_is_measured_on_the_surface_the_step_started_from)
+{
+  RetriangulationSchedule schedule;
+  schedule.pipeline.edge_length = 0.3;
+  const VertexVectors start = vertex_positions(pinched_capsule(0.95)); // a neck of radius 0.05, not crossed
+  Mesh stepped = pinched_capsule();
+  const RetriangulationReport measured = make_retriangulation_hook(schedule)(stepped, {.step = 1, .step_start = &start});
+  ASSERT_TRUE(measured.split) << measured.detail;
+  // The neck's width across (twice its radius of 0.05 where it is thinnest), within a vertex's spacing.
+  EXPECT_GT(measured.measures.crossing_size, 0.05) << measured.detail;
+  EXPECT_LT(measured.measures.crossing_size, 0.25) << measured.detail;
+  EXPECT_NE(measured.detail.find("at the start of the step that crossed"), std::string::npos) << measured.detail;
+
+  // Without the start, the crossed surface itself is measured, and says so.
+  Mesh alone = pinched_capsule();
+  const RetriangulationReport unmeasured = make_retriangulation_hook(schedule)(alone, {.step = 1});
+  EXPECT_NE(unmeasured.detail.find("before the re-triangulation"), std::string::npos) << unmeasured.detail;
+  EXPECT_EQ(face_indices(stepped), face_indices(alone)) << "the start changes what is logged, not what is done";
 }
 
 TEST(RetriangulationHook, touching_components_fall_back_to_the_whole_pipeline_and_say_so)

@@ -29,7 +29,7 @@ double crossing_width(const Mesh& mesh, const std::vector<FacePair>& crossings, 
   const std::vector<int> nearest = nearest_points(sites, points);
   const double within = reach * edge_length;
   // Rays longer than the sizes that matter here are cut short (reported infinite).
-  const LocalThickness thickness = local_thickness(mesh, {.max_distance = 2 * within});
+  const LocalThickness thickness = local_thickness(mesh, {.max_distance = 2 * within, .median_over_neighbours = false});
   double width = std::numeric_limits<double>::infinity();
   for (const auto v : mesh.vertices())
     if ((points.row(v.idx()) - sites.row(nearest[static_cast<std::size_t>(v.idx())])).norm() <= within)

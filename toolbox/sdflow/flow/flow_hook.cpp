@@ -19,10 +19,11 @@ FlowHook::FlowHook(const Mesh& mesh, long tolerated_degraded)
 }
 
 RetriangulationReport FlowHook::look(Mesh& mesh, long step, double time, bool force, StepTimes& times,
-                                     std::function<void()> changing)
+                                     std::function<void()> changing, const VertexVectors* step_start)
 {
   try {
-    RetriangulationReport report = hook_(mesh, {step, time, tolerated_degraded_, force, std::move(changing)});
+    RetriangulationReport report =
+        hook_(mesh, {step, time, tolerated_degraded_, force, std::move(changing), step_start});
     if (report.degraded_left >= 0)
       tolerated_degraded_ = report.degraded_left;
     times.retriangulation_check += report.check_seconds;

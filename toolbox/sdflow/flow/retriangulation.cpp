@@ -414,10 +414,24 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
       // (Without crossings only the paper's pipeline, refinement_rounds = 0, gets here.)
       const double width =
           crossings.empty() ? std::numeric_limits<double>::infinity() : crossing_width(mesh, crossings, ell);
+      // Where the surface crossed, the neck or gap it closed is measured as the step found it: on the
+      // crossed surface the walls have passed through each other, and a fold reads as thick as the part.
+      std::optional<double> width_at_start;
+      if (context.step_start && !crossings.empty()) {
+        Mesh start = mesh;
+        set_vertex_positions(start, *context.step_start);
+        width_at_start = crossing_width(start, crossings, ell);
+      }
       measured.crossing_pairs = static_cast<long>(crossings.size());
-      measured.crossing_size = width;
-      const std::string measured_width = fmt::format(
-          "the narrowest neck or gap within 2 ℓ of them {:.3g} = {:.3g} ℓ before the re-triangulation", width, width / ell);
+      measured.crossing_size = width_at_start ? *width_at_start : width;
+      const std::string measured_width =
+          width_at_start
+              ? fmt::format("the narrowest neck or gap within 2 ℓ of them {:.3g} = {:.3g} ℓ at the start of the step "
+                            "that crossed ({:.3g} ℓ after it)",
+                            *width_at_start, *width_at_start / ell, width / ell)
+              : fmt::format("the narrowest neck or gap within 2 ℓ of them {:.3g} = {:.3g} ℓ before the "
+                            "re-triangulation",
+                            width, width / ell);
       std::optional<LocalSurgery> fold;
       if (schedule.pipeline.refinement_rounds > 0 && !crossings.empty())
         fold = local_surgery(mesh, crossings, schedule.pipeline,

@@ -79,6 +79,9 @@ struct RetriangulationContext {
   //! If set, called once the hook has decided to change the surface, before it starts to (the flow
   //! then stops the next step's trial it took ahead, surface_diffusion.h).
   std::function<void()> changing;
+  //! The positions at the start of the step that moved the surface here (same vertices), when the
+  //! flow gives them: where a crossing's neck or gap is measured as it was before the flow closed it.
+  const VertexVectors* step_start = nullptr;
 };
 
 //! What a re-triangulation measured: what called for it and what came of it (the numbers of its
@@ -87,8 +90,9 @@ struct RetriangulationMeasures {
   //! Face pairs in which the surface crossed itself before it: the flow's sheets meeting (0 when
   //! degraded elements or a step that could not be taken called for it).
   long crossing_pairs = 0;
-  //! The narrowest neck or gap within 2 ℓ of those crossings before it (flow/crossing_width.h),
-  //! measured when the topology changed there: the size at which the flow brought the change. For a
+  //! The narrowest neck or gap within 2 ℓ of those crossings (flow/crossing_width.h), measured when
+  //! the topology changed there, on the surface at the start of the step that crossed when the
+  //! context gives it (else on the crossed surface): the size at which the flow brought the change. For a
   //! substrate's change (flow/substrate_topology.h) the film's height above the plane or the gap
   //! between the contact lines that triggered it. NaN otherwise.
   double crossing_size = std::numeric_limits<double>::quiet_NaN();

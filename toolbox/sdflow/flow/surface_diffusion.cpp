@@ -226,9 +226,7 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
 //! step), unless the guard finds it crossing itself (then it throws and the surface stays).
 void SurfaceDiffusion::take(Accepted& a, long next_step, const TimeStepState& controller_before)
 {
-  VertexVectors accepted; // the last accepted surface, kept while the guard looks at the new one
-  if (hook_.guards())
-    accepted = vertex_positions(surface_.mesh);
+  step_start_ = vertex_positions(surface_.mesh); // also what the guard restores if the new surface crosses
   set_vertex_positions(surface_.mesh, a.trial.positions);
   if (p_.conserve_volume || a.record.start)
     set_vertex_positions(
@@ -241,7 +239,7 @@ void SurfaceDiffusion::take(Accepted& a, long next_step, const TimeStepState& co
     try {
       hook_.check(surface_.mesh, next_step, time_ + a.tau);
     } catch (const SolverFailure&) {
-      set_vertex_positions(surface_.mesh, accepted);
+      set_vertex_positions(surface_.mesh, step_start_);
       throw;
     }
     a.record.times.retriangulation_check += check.seconds();
@@ -376,7 +374,9 @@ void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook, long to
 RetriangulationReport SurfaceDiffusion::call_retriangulation(Mesh& mesh, bool force, StepTimes& times,
                                                              std::function<void()> changing)
 {
-  return hook_.look(mesh, step_, time_, force, times, std::move(changing));
+  // A forced look re-triangulates the surface a step could not leave: no step led to it.
+  const bool stepped = !force && step_start_.rows() == static_cast<Eigen::Index>(mesh.n_vertices());
+  return hook_.look(mesh, step_, time_, force, times, std::move(changing), stepped ? &step_start_ : nullptr);
 }
 
 //! Take the re-triangulated mesh: new connectivity and operators, fresh factorisations with the
@@ -398,6 +398,7 @@ void SurfaceDiffusion::adopt_retriangulation(const RetriangulationReport& report
 {
   const int components = surface_.topology.count, genus = surface_.topology.genus;
   debris_volume_ += report.measures.debris_volume;
+  step_start_.resize(0, 3); // of other triangles
   // The canonical mesh, the operators' cache of its connectivity and, for the carried orderings,
   // the old vertex nearest each new one are made side by side from the same positions and corners.
   const bool carried = trials_.carries_ordering();

@@ -182,6 +182,9 @@ private:
   double start_length_ = 0;       // ℓ of the start phase's τ_s (time_step.h)
   double debris_volume_ = 0;      // FlowMetrics::debris_volume
   bool topology_changed_ = false; // with stop_at_topology_change: finished after this step
+  //! The positions the last step started from while the surface keeps its triangles since
+  //! (RetriangulationContext::step_start); empty after a re-triangulation.
+  VertexVectors step_start_;
   Velocities w_;
   std::vector<FlowNote> notes_;   // made since the last take_notes()
   LookAhead ahead_;               // the next step's first trial, when one was taken beside the look
