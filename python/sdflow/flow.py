@@ -21,7 +21,8 @@ class Event:
     "fallback". "touchdown" (a film reached its substrate and was cut there) and "contact" (two contact
     lines met) carry in `crossing_size` the film's height or the contact lines' gap that triggered them. A re-triangulation's events carry
     what it measured: the face pairs that crossed before it (`crossing_pairs`), the narrowest neck or
-    gap within 2ℓ of them where the topology changed (`crossing_size`, else None), the components, genus and
+    gap within 2ℓ of them, at the start of the step that crossed, where the topology changed (`crossing_size`,
+    else None), the components, genus and
     boundary loops before and after, the faces before, after and rebuilt, the relative volume
     change the restoration made and the volume dropped as debris. Other events leave them None.
     A "refused" event names why in `refusal`: "topology-without-crossing" (a topology change where
