@@ -120,7 +120,7 @@ def detail(step):
         if line.startswith(f"step {step} ") and ("components" in line or "genus" in line or "surgery" in line
                                                  or "intersecting" in line):
             text = line.split(":", 1)[1].strip() if ":" in line else line
-            # The size that set the change off, measured before the re-triangulation.
+            # The size that set the change off, measured at the start of the step that crossed.
             size = re.search(r"narrowest neck or gap within 2 ℓ of them \S+ = (\S+) ℓ", line)
             return (f"trigger {size.group(1)} ℓ; " if size else "") + text[:150]
     return ""
@@ -221,10 +221,9 @@ lines = [
     "code (124: stopped by the wall budget); steps and the time reached against T; wall seconds; ℓ, the run's "
     "re-triangulation edge length; volume drift (volume + debris dropped, end against start); early: a topology "
     "change before t = (ℓ/4)⁴, the flow's displacement over a quarter of an edge; the topology events, each with "
-    "its trigger (the narrowest neck or gap within 2 ℓ of the crossing that set it off, measured before the "
-    "re-triangulation, in ℓ: on a surface that already crosses itself this does not tell a fold from a pinch, and "
-    "the validation's dumbbells, whose pinch-off times are within 1–2% of the exact flow's, log 1.2–1.9 ℓ) and its "
-    "events.log line; for runs that did not reach T, the last line they printed.",
+    "its trigger (the narrowest neck or gap within 2 ℓ of the crossing that set it off, in ℓ, measured on the "
+    "surface at the start of the step that crossed; it does not by itself tell a fold from a pinch, "
+    "docs/retriangulation.md) and its events.log line; for runs that did not reach T, the last line they printed.",
     "",
     "| file | source | vertices | repaired | exit | outcome | steps | t reached | T | wall s | ℓ | volume drift | early | topology events | last message |",
     "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",

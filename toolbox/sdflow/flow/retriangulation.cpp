@@ -415,7 +415,7 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
       const double width =
           crossings.empty() ? std::numeric_limits<double>::infinity() : crossing_width(mesh, crossings, ell);
       // Where the surface crossed, the neck or gap it closed is measured as the step found it: on the
-      // crossed surface the walls have passed through each other, and a fold reads as thick as the part.
+      // crossed surface the walls have already passed through each other.
       std::optional<double> width_at_start;
       if (context.step_start && !crossings.empty()) {
         Mesh start = mesh;
