@@ -1,7 +1,7 @@
 //! `sdflow repair IN -o OUT [--merge-tolerance F] [--remove-self-intersections] [--json]`: a
 //! damaged mesh made valid (io/repair.h), each repair reported by the code of the finding it fixes;
-//! with --remove-self-intersections, a surface that still crosses itself is re-triangulated
-//! (retri/pipeline.h). JSON keys are documented in README.md.
+//! with --remove-self-intersections, a surface that still crosses itself is untangled and, where
+//! that is not enough, re-triangulated (retri/surface_repair.h). JSON keys are documented in README.md.
 
 #include "common_options.h"
 #include "verbs.h"
@@ -54,6 +54,7 @@ void report_json(const RepairArguments& args, const RepairReport& r)
                    {"faces", static_cast<int64_t>(mesh.n_faces())},
                    {"repairs", std::move(repairs)},
                    {"findings", std::move(findings)},
+                   {"untangled_vertices", static_cast<int64_t>(untangled_vertices(r.surface))},
                    {"retriangulation_passes", static_cast<int64_t>(r.surface.resolved ? r.surface.resolved->summaries.size() : 0)},
                    {"self_intersecting_pairs", static_cast<int64_t>(r.surface.intersecting_pairs)}};
   std::cout << toml::json_formatter{root} << '\n';
@@ -70,6 +71,12 @@ void report_text(const RepairArguments& args, const RepairReport& r)
     std::cout << fmt::format("  [{}] {}\n", repair.code, repair.message);
   for (const Finding& f : r.surface.repaired.findings)
     std::cout << fmt::format("  {}: [{}] {}\n", severity_name(f.severity), f.code, f.message);
+  if (r.surface.resolved && r.surface.resolved->untangled) {
+    const UntangleSummary& u = *r.surface.resolved->untangled;
+    std::cout << fmt::format("  [self-intersection] {} crossing pair(s) undone by moving {} vertices (at most {:.2g} "
+                             "mean edge lengths) in {} rounds\n",
+                             u.pairs, u.moved_vertices, u.max_displacement, u.rounds);
+  }
   if (r.surface.resolved)
     for (std::size_t pass = 0; pass < r.surface.resolved->summaries.size(); ++pass)
       std::cout << fmt::format("  [self-intersection] re-triangulation {}: {}\n", pass + 1, r.surface.resolved->summaries[pass]);

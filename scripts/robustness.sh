@@ -84,7 +84,7 @@ print(s["vertices"], s["boundary_loops"])' "$work/stats.json")
   if [[ $crossings -gt 0 ]] &&
      "$sdflow" -q repair --ascii --remove-self-intersections "$prepared" -o "$work/uncrossed.off" > /dev/null 2>&1; then
     mv "$work/uncrossed.off" "$prepared"
-    repaired="crossings cut out ($crossings pairs)"
+    repaired="crossings undone ($crossings pairs)"
     vertices=$(awk 'NR == 2 { print $1; exit }' "$prepared")
   fi
   # T = (0.02 D)^4 from the bounding box of the OFF file's vertices.
@@ -217,7 +217,7 @@ lines = [
     "**" + summary + "**",
     "",
     "Columns: vertices of the (repaired) surface; repaired: `stats` refused the file and `repair` fixed it, or "
-    "the file crossed itself and `repair --remove-self-intersections` cut the crossings out; exit "
+    "the file crossed itself and `repair --remove-self-intersections` undid the crossings; exit "
     "code (124: stopped by the wall budget); steps and the time reached against T; wall seconds; ℓ, the run's "
     "re-triangulation edge length; volume drift (volume + debris dropped, end against start); early: a topology "
     "change before t = (ℓ/4)⁴, the flow's displacement over a quarter of an edge; the topology events, each with "

@@ -54,6 +54,7 @@ py::tuple repair_to_python(const PolygonSoup& soup, const std::string& source, b
   info["faces"] = mesh.n_faces();
   info["repairs"] = repairs;
   info["findings"] = findings;
+  info["untangled_vertices"] = untangled_vertices(surface);
   info["retriangulation_passes"] = surface.resolved ? surface.resolved->summaries.size() : 0;
   info["self_intersecting_pairs"] = surface.intersecting_pairs;
   py::tuple vf = mesh_to_numpy(mesh);

@@ -146,9 +146,11 @@ def test_self_intersections_are_counted_and_removed_on_request():
     crossing = (np.vstack([V, V + [1.0, 0, 0]]), np.vstack([F, F + len(V)]))
     kept = sdflow.repair(*crossing)
     assert kept.info["self_intersecting_pairs"] == len(sdflow.intersections(*kept)) > 0
-    assert kept.info["retriangulation_passes"] == 0
+    assert kept.info["retriangulation_passes"] == 0 and kept.info["untangled_vertices"] == 0
     resolved = sdflow.repair(*crossing, remove_self_intersections=True)
+    # Two bodies that overlap are joined by the union, not pulled apart by moving vertices.
     assert resolved.info["self_intersecting_pairs"] == 0 and resolved.info["retriangulation_passes"] >= 1
+    assert resolved.info["untangled_vertices"] == 0
     assert len(sdflow.intersections(*resolved)) == 0
     assert resolved.info["faces"] == len(resolved.F) and resolved.info["vertices"] == len(resolved.V)
 

@@ -8,4 +8,5 @@ target_sources(sdflow_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/test_remove_intersections.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_surface_repair.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_surface_union.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_untangle.cpp
   ${CMAKE_CURRENT_LIST_DIR}/test_zip_loops.cpp)

@@ -26,7 +26,6 @@ TEST(ResolveIntersections, a_sphere_pushed_through_itself_comes_out_clean_and_cl
   const ResolveResult r = resolve_self_intersections(pushed);
   EXPECT_GT(r.pairs_before, 0u);
   EXPECT_EQ(r.pairs_after, 0u) << ::testing::PrintToString(r.summaries);
-  EXPECT_GE(r.summaries.size(), 1u);
   EXPECT_LE(r.summaries.size(), 5u);
   EXPECT_EQ(self_intersections(r.mesh).size(), r.pairs_after);
   for (const ComponentTopology& c : component_topology(r.mesh))

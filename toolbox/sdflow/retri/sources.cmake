@@ -10,5 +10,6 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/retri/surface_repair.cpp
   sdflow/retri/surface_union.cpp
   sdflow/retri/surgery_patch.cpp
+  sdflow/retri/untangle.cpp
   sdflow/retri/zip_loops.cpp
   sdflow/retri/pipeline.cpp)

@@ -7,4 +7,5 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/spatial/closest_point_grid.cpp
   sdflow/spatial/spatial_order.cpp
   sdflow/spatial/nearest_points.cpp
-  sdflow/spatial/local_thickness.cpp)
+  sdflow/spatial/local_thickness.cpp
+  sdflow/spatial/winding_number.cpp)
