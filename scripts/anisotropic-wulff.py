@@ -7,7 +7,9 @@ shape is the ellipsoid of semi-axes ∝ √g of the sphere's volume. For each g 
 table gives the semi-axes of the ellipsoid fitted to the last surface against the Wulff shape's
 (largest relative error), the volume drift over the run, the steps in which ∫ γ dA (metrics.csv's
 `energy`) increased by more than 10⁻¹² relative and the largest such increase, and the same two
-figures and the drift for the run without the volume restoration.
+figures and the drift for the run without the volume restoration, and the steps it rose and the
+semi-axes error with the restoration and the volume-gradient mass (`--mass volume_gradient`, the
+anisotropic samples' setting).
 The cost of a step is bench/anisotropic_step_cost.sh's.
 
     scripts/anisotropic-wulff.py [--sdflow build/release/cli/sdflow] [--out runs/wulff]
@@ -86,30 +88,36 @@ def energy_increases(metrics):
     return len(rises), max(rises, default=0.0)
 
 
-def wulff_run(sdflow, out, mesh, g, end_time, conserve):
+def wulff_run(sdflow, out, mesh, g, end_time, conserve, mass="voronoi"):
     name = os.path.join(out, f"wulff_{'-'.join(map(str, g))}_{os.path.basename(mesh)[:-4]}"
-                             f"{'' if conserve else '_free'}")
+                             f"{'' if conserve else '_free'}{'' if mass == 'voronoi' else '_' + mass}")
     if not os.path.exists(os.path.join(name, "metrics.csv")):
         run(sdflow, "run", "--input", mesh, "--out", name, "--end-time", end_time, "--no-retriangulate",
             "--conserve-volume" if conserve else "--no-conserve-volume", "--energy", "ellipsoidal",
-            "--energy-g", ",".join(map(str, g)), "--snapshot-every", 0, "--quiet")
+            "--energy-g", ",".join(map(str, g)), "--mass", mass, "--snapshot-every", 0, "--quiet")
     return name, rows_of(os.path.join(name, "metrics.csv"))
+
+
+def axes_error(name, g, volume):
+    """The largest relative error of the semi-axes fitted to the run's last surface against the Wulff shape's."""
+    last = sorted(f for f in os.listdir(os.path.join(name, "snapshots")) if f.endswith(".ply"))[-1]
+    axes = fitted_semi_axes(read_ply_vertices(os.path.join(name, "snapshots", last)))
+    root_g = [math.sqrt(v) for v in g]
+    scale = (volume / (4 * math.pi / 3 * math.prod(root_g))) ** (1 / 3)
+    return max(abs(a / (scale * w) - 1) for a, w in zip(axes, root_g))
 
 
 def wulff_row(sdflow, out, mesh, g, end_time):
     name, metrics = wulff_run(sdflow, out, mesh, g, end_time, True)
     _, free = wulff_run(sdflow, out, mesh, g, end_time, False)
-    last = sorted(f for f in os.listdir(os.path.join(name, "snapshots")) if f.endswith(".ply"))[-1]
-    axes = fitted_semi_axes(read_ply_vertices(os.path.join(name, "snapshots", last)))
+    gradient_name, gradient = wulff_run(sdflow, out, mesh, g, end_time, True, "volume_gradient")
     volume = float(metrics[0]["volume"])
-    root_g = [math.sqrt(v) for v in g]
-    scale = (volume / (4 * math.pi / 3 * math.prod(root_g))) ** (1 / 3)
-    wulff = [scale * v for v in root_g]
     drift = lambda rows: abs(float(rows[-1]["volume"]) / float(rows[0]["volume"]) - 1)
     return {"g": g, "vertices": int(metrics[0]["vertices"]), "steps": int(metrics[-1]["step"]),
-            "axes_error": max(abs(a / w - 1) for a, w in zip(axes, wulff)), "drift": drift(metrics),
+            "axes_error": axes_error(name, g, volume), "drift": drift(metrics),
             "increases": energy_increases(metrics), "free_increases": energy_increases(free),
-            "free_drift": drift(free),
+            "free_drift": drift(free), "gradient_increases": energy_increases(gradient),
+            "gradient_axes_error": axes_error(gradient_name, g, volume), "gradient_drift": drift(gradient),
             "energy_drop": 1 - float(metrics[-1]["energy"]) / float(metrics[0]["energy"])}
 
 
@@ -125,12 +133,14 @@ def main():
     rows = [wulff_row(a.sdflow, a.out, sphere(a.sdflow, a.out, n), g, a.end_time)
             for g in ((1, 1, 4), (1, 2, 3)) for n in resolutions]
     print("| g | vertices | steps | semi-axes error | volume drift | ∫γ dA: decrease over the run | steps it rose "
-          "(largest rise) | without restoration: steps it rose; volume drift |")
-    print("|---|---|---|---|---|---|---|---|")
+          "(largest rise) | without restoration: steps it rose; volume drift | volume-gradient mass: steps it rose; "
+          "semi-axes error; volume drift |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         print(f"| ({', '.join(map(str, r['g']))}) | {r['vertices']} | {r['steps']} | {100 * r['axes_error']:.3f}% | "
               f"{r['drift']:.1e} | {100 * r['energy_drop']:.2f}% | {r['increases'][0]} ({r['increases'][1]:.1e}) | "
-              f"{r['free_increases'][0]}; {r['free_drift']:.1e} |")
+              f"{r['free_increases'][0]}; {r['free_drift']:.1e} | {r['gradient_increases'][0]}; "
+              f"{100 * r['gradient_axes_error']:.3f}%; {r['gradient_drift']:.1e} |")
 
 
 if __name__ == "__main__":
