@@ -3,7 +3,7 @@
 //! \brief A surface that crosses itself made into one that does not: what `sdflow repair
 //! --remove-self-intersections` does after the repairs of io/repair.h. First its vertices are moved
 //! (untangle.h), which keeps the connectivity and the topology and undoes folds and thin parts whose
-//! walls passed through each other (CGAL's camel, elk, bull and cow). Where that leaves crossings,
+//! walls passed through each other (CGAL's camel, elk, man, bull and cow). Where that leaves crossings,
 //! or bodies overlap, the surface is re-triangulated until no face pair intersects: each pass cuts
 //! out and rebuilds a patch around the crossings (local_surgery.h), keeping every other face, or
 //! when no patch can be rebuilt, or two components overlap, runs the whole pipeline (pipeline.h),
