@@ -495,7 +495,7 @@ TEST(RetriangulatingRun, a_step_no_tau_can_take_is_retried_after_a_retriangulati
 //! and the run writes it to events.log and to the step's typed events.
 TEST(RetriangulationHook, a_remeshing_refused_with_nothing_rebuilt_is_reported_with_its_reason)
 {
-  const Mesh plate = test::cad_plate(1, 0.3, 0.01, 20, 3);
+  const Mesh plate = test::cad_plate(1, 0.3, 0.03, 20, 3);
   RetriangulationSchedule schedule;
   schedule.local = false;
   schedule.pipeline.edge_length = mean_edge_length(plate);
@@ -566,7 +566,7 @@ Mesh tetrahedron(double size, const Eigen::Vector3d& corner)
 //! connectivity's operators for a surface with fewer faces).
 TEST(RetriangulationHook, debris_dropped_after_a_refused_remeshing_is_a_change_the_flow_adopts)
 {
-  const Mesh plate = test::cad_plate(1, 0.3, 0.01, 20, 3);
+  const Mesh plate = test::cad_plate(1, 0.3, 0.03, 20, 3);
   const double ell = mean_edge_length(plate);
   const Mesh with_debris = analytic::disjoint_union(plate, tetrahedron(ell, {3, 3, 3}));
   RetriangulationSchedule schedule;

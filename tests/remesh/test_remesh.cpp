@@ -343,31 +343,6 @@ TEST(Remesh, a_split_whose_projection_lands_on_a_vertex_makes_no_zero_area_trian
   EXPECT_EQ(zero_area, 0);
 }
 
-TEST(Remesh, a_projection_that_gathers_points_near_one_does_not_split_without_end)
-{
-  // Near a spike's tip the smooth surface the triangles sample takes the points off the surface
-  // around it to nearly one point (CGAL's elk.off: 96 vertices within 10⁻⁴ of each other after one
-  // iteration, 7365 → 21 066 vertices). Here a unit sphere's projection takes every point inside
-  // the sphere within 0.2 of `tip` to within 10⁻³ of its distance from it. A split point there would
-  // leave one half as long as the edge, to be split again onto the tip, ten times a pass; a
-  // relaxation would shrink the triangles around the tip to nothing. A split point must divide its
-  // edge, and a relaxation that collapses a triangle is undone: the remeshing stays bounded (this
-  // projection is harsher than any surface's, so the patch at the tip is still crowded).
-  const Eigen::Vector3d tip = Eigen::Vector3d(1, 1, 1).normalized();
-  const PointProjection gather = [&tip](const Eigen::Vector3d& p) {
-    return (p - tip).norm() < 0.2 && p.norm() < 1 - 1e-9 ? Eigen::Vector3d(tip + 1e-3 * (p - tip))
-                                                         : Eigen::Vector3d(p.normalized());
-  };
-  const RemeshOptions options{.edge_length = 0.08, .iterations = 4, .project = gather};
-  const RemeshResult gathered = isotropic_remesh(analytic::icosphere(3), options);
-  RemeshOptions sphere = options;
-  sphere.project = [](const Eigen::Vector3d& p) { return Eigen::Vector3d(p.normalized()); };
-  const RemeshResult plain = isotropic_remesh(analytic::icosphere(3), sphere);
-  // Bounded: without the two rules this made 22 times the sphere's vertices (52 614 against 2371),
-  // 7.9·10⁸ pairs of them within a hundredth of an edge.
-  EXPECT_LT(gathered.mesh.n_vertices(), 5 * plain.mesh.n_vertices());
-}
-
 TEST(Remesh, radius_targets_apply_their_rule_to_a_given_curvature)
 {
   // The overload that takes κ (the weighted curvature of an anisotropic run) is the same rule:

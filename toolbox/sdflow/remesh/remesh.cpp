@@ -48,13 +48,6 @@ constexpr double kMinNormalCosine = 0.25;
 //! Triangles with twice-area below this × (edge target)² count as degenerate: their normals say
 //! nothing, and no operation may create one.
 constexpr double kDegenerateArea = 1e-10;
-//! A split point nearer an end of its edge than this fraction of the edge's length does not split
-//! it (the straight midpoint is taken instead).
-constexpr double kSplitEndDistance = 0.25;
-//! A relaxation that leaves a triangle less than this fraction of its area collapsed it (a patch
-//! projected onto nearly one point, at a spike's tip): its corners' moves are undone, as for a
-//! triangle that turned over.
-constexpr double kCollapsedArea = 0.01;
 
 Eigen::Vector3d point(const Mesh& mesh, Mesh::VertexHandle v) { return to_eigen(mesh.point(v)); }
 
@@ -303,20 +296,12 @@ private:
     return r == 0 || new_normal.dot(reference) >= kMinNormalCosine * area2 * r;
   }
 
-  //! Whether p divides h's edge (it is at least a quarter of the edge from either end) and splitting
-  //! the edge there makes no degenerate triangle: on each side, the triangle (a, b, c) becomes
-  //! (a, p, c) and (p, b, c). (Only their area is judged, not their turn as for
+  //! Whether splitting h's edge at p makes no degenerate triangle: on each side, the triangle
+  //! (a, b, c) becomes (a, p, c) and (p, b, c). (Only their area is judged, not their turn as for
   //! the collapses: in the middle of a pass the triangle split may be a sliver, whose normal says
   //! nothing and whose halves tilt far when p leaves its plane by the surface's sagitta.)
   bool split_sound(Mesh::HalfedgeHandle h, const Eigen::Vector3d& p, double target) const
   {
-    // The point must divide the edge: a projection that lands near one end (every midpoint near a
-    // spike's tip projected onto the tip) would leave the other half as long as the edge, split
-    // again and again onto the same point.
-    const Eigen::Vector3d from = point(mesh_, mesh_.from_vertex_handle(h)), to = point(mesh_, mesh_.to_vertex_handle(h));
-    const double quarter = kSplitEndDistance * (to - from).norm();
-    if (!((p - from).norm() > quarter && (p - to).norm() > quarter))
-      return false;
     for (const auto side : {h, mesh_.opposite_halfedge_handle(h)}) {
       if (mesh_.is_boundary(side))
         continue;
@@ -378,9 +363,8 @@ private:
                             : same_bits(mid, projected[k].query) ? projected[k].result
                             : (mesh_.is_boundary(e) ? project_boundary_(mid) : project_(mid));
         // A projection that would make a new triangle degenerate (onto a vertex or an edge of the
-        // mesh: a reference surface far from it, or a broken one), or that lands near an end of the
-        // edge, gives way to the straight midpoint, whose halves have half the area of the
-        // triangles split.
+        // mesh: a reference surface far from it, or a broken one) gives way to the straight
+        // midpoint, whose halves have half the area of the triangles split.
         if (!split_sound(h, p, edge_target(a, b)) && split_sound(h, mid, edge_target(a, b)))
           p = mid;
         const auto m = mesh_.add_vertex(to_point(p));
@@ -840,15 +824,13 @@ private:
       current.swap(next);
     }
 
-    // Undo the moves of the corners of any triangle that turned over or collapsed; repeat, since
-    // undoing one vertex can turn a triangle of its neighbours.
+    // Undo the moves of the corners of any triangle that turned over; repeat, since undoing one
+    // vertex can turn a triangle of its neighbours.
     for (int round = 0; round < 10; ++round) {
       bool reverted = false;
       for (auto f : mesh_.faces()) {
         const Eigen::Vector3d& before = start_normal[f.idx()];
-        const Eigen::Vector3d after = face_normal_at(current, f.idx());
-        if (before.squaredNorm() == 0 ||
-            (after.dot(before) > 0 && after.squaredNorm() > kCollapsedArea * kCollapsedArea * before.squaredNorm()))
+        if (before.squaredNorm() == 0 || face_normal_at(current, f.idx()).dot(before) > 0)
           continue;
         for (int u : n.corners[f.idx()]) {
           if (current[u] != start[u]) {
