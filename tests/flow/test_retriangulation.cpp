@@ -495,7 +495,7 @@ TEST(RetriangulatingRun, a_step_no_tau_can_take_is_retried_after_a_retriangulati
 //! and the run writes it to events.log and to the step's typed events.
 TEST(RetriangulationHook, a_remeshing_refused_with_nothing_rebuilt_is_reported_with_its_reason)
 {
-  const Mesh plate = test::cad_plate(1, 0.3, 0.03, 20, 3);
+  const Mesh plate = test::cad_plate(1, 0.3, 0.01, 20, 3); // a sixth of ℓ thick
   RetriangulationSchedule schedule;
   schedule.local = false;
   schedule.pipeline.edge_length = mean_edge_length(plate);

@@ -143,7 +143,7 @@ TEST(TopologyGuard, refuses_to_judge_without_crossings)
 
 
 //! A run's hook on the dumbbell as the flow crossed it at its pinch (ℓ = 0.5), with a thin torus
-//! (tube 0.12 = ℓ/4) far from it: the whole pipeline pinches the dumbbell off, and its remeshing,
+//! (tube 0.08 = ℓ/6) far from it: the whole pipeline pinches the dumbbell off, and its remeshing,
 //! which is the paper's where the surface crosses itself, crushes the torus, which the rebuild
 //! closes into a body of genus 0. The pinch alone is accepted; with the torus lost far from the
 //! crossing the re-triangulation is refused and the surface kept.
@@ -168,7 +168,7 @@ TEST(TopologyGuard, the_hook_refuses_a_handle_lost_far_from_a_pinch_and_accepts_
             std::string::npos)
       << alone.detail;
 
-  const Mesh before = analytic::disjoint_union(crossed, shifted(analytic::torus(24, 8, 2, 0.12), {0, 12, 0}));
+  const Mesh before = analytic::disjoint_union(crossed, shifted(analytic::torus(24, 8, 2, 0.08), {0, 12, 0}));
   Mesh mesh = before;
   const RetriangulationReport report = make_retriangulation_hook(schedule)(mesh, {.step = 1});
   EXPECT_TRUE(report.refused);

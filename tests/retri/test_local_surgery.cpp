@@ -259,14 +259,15 @@ TEST(LocalSurgery, the_whole_pipeline_splits_the_dumbbell_crossed_at_its_pinch)
   expect_same_outcome_as_global(crossed, {.edge_length = 0.5}, {{true, 0}, {true, 0}});
 }
 
-TEST(LocalSurgery, a_capsule_drawn_through_its_axis_by_half_an_edge_splits_in_two)
+TEST(LocalSurgery, a_capsule_drawn_through_its_axis_by_an_edge_splits_in_two)
 {
-  // The middle drawn in over |x| < 2.4 until the walls pass the axis by half an edge (over
-  // |x| < 0.9): rebuilt together, the whole pipeline bridged the ends the removal leaves (one body
-  // where there are two, before it checked for bridges).
+  // The middle drawn in over |x| < 2.4 until the walls pass the axis by an edge: rebuilt
+  // together, the whole pipeline bridged the ends the removal leaves (one body where there are
+  // two, before it checked for bridges). (By half an edge, as before the remesher projected onto
+  // the sheet facing each vertex, its first remeshing no longer leaves such a bridge.)
   const Mesh start = capsule(9);
   const double h = mean_edge_length(start);
-  const Mesh crossed = test::mapped(start, [h](const Eigen::Vector3d& p) { return pinched(p, 0, 2.4, 1 + h / 2); });
+  const Mesh crossed = test::mapped(start, [h](const Eigen::Vector3d& p) { return pinched(p, 0, 2.4, 1 + h); });
   EXPECT_TRUE(retriangulate(crossed, {}).rebuilt_apart);
   expect_same_outcome_as_global(crossed, {}, {{true, 0}, {true, 0}});
 }

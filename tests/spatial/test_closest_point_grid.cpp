@@ -1,5 +1,6 @@
 //! The closest-point grid against the BVH: queries near and far from the surface, between two
-//! sheets closer than a cell, on a mesh of very uneven triangles, from several threads.
+//! sheets closer than a cell, on a mesh of very uneven triangles, from several threads; the
+//! closest point on the sheet facing a given way.
 #include "sdflow/errors.h"
 #include "sdflow/spatial/bvh.h"
 #include "sdflow/spatial/closest_point_grid.h"
@@ -78,6 +79,29 @@ TEST(ClosestPointGrid, tells_apart_sheets_closer_than_a_cell)
   for (int i = 0; i < 2000; ++i)
     queries.emplace_back(along(rng), along(rng), across(rng));
   expect_same_as_bvh(sheets, queries);
+}
+
+//! A plate a sixth of its edges thick (CAD's thin parts, a blade's rim): a point inside it goes
+//! to the sheet that faces the way asked, though the other is nearer; asked for no direction, or
+//! for one that no triangle within a cell faces, to the nearest point as closest_point does.
+TEST(ClosestPointGrid, takes_a_point_to_the_sheet_facing_the_way_asked)
+{
+  const double thickness = 0.01;
+  const Mesh plate = test::cad_plate(1, 0.3, thickness, 20, 3);
+  const ClosestPointGrid grid(plate);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> along(0.1, 0.9), across(0.05, 0.25), height(-0.45 * thickness, 0.45 * thickness);
+  for (int i = 0; i < 500; ++i) {
+    SCOPED_TRACE(i);
+    const Eigen::Vector3d q(along(rng), across(rng), height(rng));
+    EXPECT_NEAR(grid.closest_facing_point(q, Eigen::Vector3d::UnitZ()).point.z(), 0.5 * thickness, 1e-15);
+    EXPECT_NEAR(grid.closest_facing_point(q, -Eigen::Vector3d::UnitZ()).point.z(), -0.5 * thickness, 1e-15);
+    const ClosestPoint nearest = grid.closest_point(q);
+    EXPECT_NEAR(nearest.point.z(), q.z() > 0 ? 0.5 * thickness : -0.5 * thickness, 1e-15);
+    EXPECT_EQ(grid.closest_facing_point(q, Eigen::Vector3d::Zero()).squared_distance, nearest.squared_distance);
+    // The rims facing ±x lie farther than a cell (about a mean edge) from these queries.
+    EXPECT_EQ(grid.closest_facing_point(q, 0.5 * Eigen::Vector3d::UnitX()).squared_distance, nearest.squared_distance);
+  }
 }
 
 TEST(ClosestPointGrid, equals_the_bvh_on_very_uneven_triangles)

@@ -60,7 +60,7 @@ LocalRemeshResult remesh_locally(const Mesh& mesh, const std::vector<int>& faces
     VertexVectors normals(static_cast<Eigen::Index>(patch.vertices.size()), 3);
     for (std::size_t i = 0; i < patch.vertices.size(); ++i)
       normals.row(static_cast<Eigen::Index>(i)) = all_normals.row(patch.vertices[i]);
-    remesh.project = curved_surface_projection(patch.mesh, std::move(normals));
+    remesh.project_facing = curved_surface_projection(patch.mesh, std::move(normals));
     // Kept boundary vertices are never moved, so never projected.
     remesh.project_boundary = [](const Eigen::Vector3d& p) { return p; };
   }

@@ -98,7 +98,7 @@ template <class Body> void for_each_index(int n, bool parallel, const Body& body
 class Remesher {
 public:
   //! `thread_safe`: the projections may be called from several threads at once.
-  Remesher(Mesh& mesh, const RemeshOptions& options, double ell, PointProjection project,
+  Remesher(Mesh& mesh, const RemeshOptions& options, double ell, FacingProjection project,
            PointProjection project_boundary, bool thread_safe)
       : mesh_(mesh), options_(options), ell_(ell), project_(std::move(project)),
         project_boundary_(std::move(project_boundary)), parallel_projection_(thread_safe),
@@ -272,9 +272,21 @@ private:
 
   bool movable_on_boundary() const { return options_.boundary == BoundaryMode::remesh; }
 
-  Eigen::Vector3d project(Mesh::VertexHandle v, const Eigen::Vector3d& p) const
+  //! Where p, near v, goes on the reference: onto the boundary curves for a boundary vertex, else
+  //! onto the sheet facing `facing` (v's side of the surface).
+  Eigen::Vector3d project(Mesh::VertexHandle v, const Eigen::Vector3d& p, const Eigen::Vector3d& facing) const
   {
-    return mesh_.is_boundary(v) ? project_boundary_(p) : project_(p);
+    return mesh_.is_boundary(v) ? project_boundary_(p) : project_(p, facing);
+  }
+
+  //! The sum of the area normals of the triangles beside h's edge.
+  Eigen::Vector3d edge_normal(Mesh::HalfedgeHandle h) const
+  {
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    for (const auto side : {h, mesh_.opposite_halfedge_handle(h)})
+      if (!mesh_.is_boundary(side))
+        n += face_area_normal(mesh_, mesh_.face_handle(side));
+    return n;
   }
 
   //! The area-weighted normal of v's star (unnormalised; zero for an all-degenerate star).
@@ -342,7 +354,7 @@ private:
         const auto e = queue[k].second;
         const auto h = mesh_.halfedge_handle(e, 0);
         const Eigen::Vector3d mid = edge_midpoint(h);
-        projected[k] = {mid, mesh_.is_boundary(e) ? project_boundary_(mid) : project_(mid)};
+        projected[k] = {mid, mesh_.is_boundary(e) ? project_boundary_(mid) : project_(mid, edge_normal(h))};
       });
       for (std::size_t k = 0; k < queue.size(); ++k) {
         const auto e = queue[k].second;
@@ -361,7 +373,7 @@ private:
         const bool crease = is_crease(a, b);
         Eigen::Vector3d p = crease                             ? mid
                             : same_bits(mid, projected[k].query) ? projected[k].result
-                            : (mesh_.is_boundary(e) ? project_boundary_(mid) : project_(mid));
+                            : (mesh_.is_boundary(e) ? project_boundary_(mid) : project_(mid, edge_normal(h)));
         // A projection that would make a new triangle degenerate (onto a vertex or an edge of the
         // mesh: a reference surface far from it, or a broken one) gives way to the straight
         // midpoint, whose halves have half the area of the triangles split.
@@ -395,7 +407,7 @@ private:
     const int slot = mesh_.is_boundary(v1) ? -1 : collapse_slot_[mesh_.edge_handle(h).idx()];
     if (slot >= 0 && same_bits(mid, collapse_cache_[slot].query))
       return collapse_cache_[slot].result;
-    return project(v1, mid);
+    return project(v1, mid, edge_normal(h));
   }
 
   //! With several threads, the collapses' projections of interior midpoints are computed ahead,
@@ -421,7 +433,7 @@ private:
     for_each_index(static_cast<int>(short_edges.size()), true, [&](int k) {
       const auto h = mesh_.halfedge_handle(Mesh::EdgeHandle(short_edges[k]), 0);
       const Eigen::Vector3d mid = edge_midpoint(h);
-      collapse_cache_[k] = {mid, project_(mid)};
+      collapse_cache_[k] = {mid, project_(mid, edge_normal(h))};
     });
   }
 
@@ -620,7 +632,7 @@ private:
     pull -= normal * normal.dot(pull);
     const double before = star_quality(v);
     for (const double step : {0.5, 0.25}) {
-      mesh_.set_point(v, to_point(project_(x + step * pull)));
+      mesh_.set_point(v, to_point(project_(x + step * pull, normal)));
       bool kept = star_quality(v) > before;
       for (auto f : mesh_.vf_range(v))
         kept = kept && acceptable(face_area_normal(mesh_, f), reference, target_[v.idx()]);
@@ -786,7 +798,7 @@ private:
       normal /= nn;
       q = centroid + normal * normal.dot(x[v] - centroid);
     }
-    return project_(q);
+    return project_(q, normal);
   }
 
   //! Tangential relaxation sweeps, each followed by projection (Jacobi sweeps: every vertex moves
@@ -852,7 +864,7 @@ private:
   Mesh& mesh_;
   const RemeshOptions& options_;
   double ell_;
-  PointProjection project_;
+  FacingProjection project_; //!< interior vertices: onto the sheet facing their normal
   PointProjection project_boundary_;
   bool parallel_projection_;
   std::vector<double> target_; //!< ℓ at every vertex, by index (deleted vertices too)
@@ -886,7 +898,7 @@ using SizingTree = nanoflann::KDTreeSingleIndexAdaptor<
 //! the barycentric weights b_i of q in its triangle and the eq. (8) normals n_i at its corners.
 //! On a quadric that is exact to leading order (the interpolant's error is −½ Σ b_i II(x_i − q)),
 //! so new vertices no longer sit inside convex parts by the sagitta κh²/8 of the old triangles.
-PointProjection curved_projection(const Mesh& mesh, VertexVectors normals, std::shared_ptr<const ClosestPointGrid> grid)
+FacingProjection curved_projection(const Mesh& mesh, VertexVectors normals, std::shared_ptr<const ClosestPointGrid> grid)
 {
   constexpr double kSmoothPatchCosine = 0.866; // corner normals within 30° of the triangle's
   struct Surface {
@@ -900,8 +912,8 @@ PointProjection curved_projection(const Mesh& mesh, VertexVectors normals, std::
     const auto h = f.halfedge();
     surface->triangles.row(f.idx()) << h.from().idx(), h.to().idx(), h.next().to().idx();
   }
-  return [grid = std::move(grid), surface](const Eigen::Vector3d& p) {
-    const ClosestPoint c = grid->closest_point(p);
+  return [grid = std::move(grid), surface](const Eigen::Vector3d& p, const Eigen::Vector3d& facing) {
+    const ClosestPoint c = grid->closest_facing_point(p, facing);
     std::array<Eigen::Vector3d, 3> x, n;
     for (int i = 0; i < 3; ++i) {
       x[i] = surface->points.row(surface->triangles(c.face, i));
@@ -949,7 +961,8 @@ RemeshResult isotropic_remesh(const Mesh& input, const RemeshOptions& options)
   // its boundary polylines (closest points around the nearest boundary vertices). Both may be
   // called from several threads; a caller's projections are called from one at a time. The grid,
   // the normals and the boundary's stars read the same mesh: they are built side by side.
-  const bool own_projections = !options.project && !options.project_boundary;
+  const bool given_projection = options.project || options.project_facing;
+  const bool own_projections = !given_projection && !options.project_boundary;
   const Mesh& surface = result.mesh;
   const bool has_boundary = std::any_of(surface.halfedges_begin(), surface.halfedges_end(),
                                         [&](auto h) { return surface.is_boundary(h); });
@@ -958,23 +971,27 @@ RemeshResult isotropic_remesh(const Mesh& input, const RemeshOptions& options)
   std::shared_ptr<const StarProjection> boundary_reference;
   tbb::parallel_invoke(
     [&] {
-      if (!options.project)
+      if (!given_projection)
         grid = std::make_shared<const ClosestPointGrid>(surface);
     },
     [&] {
-      if (!options.project && options.curved_projection)
+      if (!given_projection && options.curved_projection)
         normals = vertex_normals(surface);
     },
     [&] {
       if (!options.project_boundary && has_boundary) // a closed surface never asks for one
         boundary_reference = std::make_shared<const StarProjection>(surface);
     });
-  PointProjection project = options.project;
+  FacingProjection project = options.project_facing;
+  if (!project && options.project)
+    project = [given = options.project](const Eigen::Vector3d& p, const Eigen::Vector3d&) { return given(p); };
   if (!project) {
     if (options.curved_projection)
       project = curved_projection(surface, std::move(normals), std::move(grid));
     else
-      project = [grid](const Eigen::Vector3d& p) { return grid->closest_point(p).point; };
+      project = [grid](const Eigen::Vector3d& p, const Eigen::Vector3d& facing) {
+        return grid->closest_facing_point(p, facing).point;
+      };
   }
   PointProjection project_boundary = options.project_boundary;
   if (boundary_reference)
@@ -987,7 +1004,7 @@ RemeshResult isotropic_remesh(const Mesh& input, const RemeshOptions& options)
   return result;
 }
 
-PointProjection curved_surface_projection(const Mesh& surface, VertexVectors normals)
+FacingProjection curved_surface_projection(const Mesh& surface, VertexVectors normals)
 {
   if (surface.n_faces() == 0)
     throw InvalidMesh("curved_surface_projection: the surface has no triangles");

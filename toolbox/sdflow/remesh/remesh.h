@@ -30,6 +30,10 @@ inline constexpr double kRemeshCollapseRatio = 4.0 / 5.0;
 
 //! Maps a point near the surface to its closest point on it (or on a boundary curve).
 using PointProjection = std::function<Eigen::Vector3d(const Eigen::Vector3d&)>;
+//! Maps a point near the surface to its closest point on the part of the surface that faces the
+//! given direction (a normal of the remeshed surface there; zero: any part), so that where two
+//! sheets lie closer than an edge (a thin blade, a tail) a vertex stays on its own sheet.
+using FacingProjection = std::function<Eigen::Vector3d(const Eigen::Vector3d&, const Eigen::Vector3d&)>;
 
 //! Target edge length at a point, for adaptive remeshing.
 using SizingField = std::function<double(const Eigen::Vector3d&)>;
@@ -51,6 +55,10 @@ struct RemeshOptions {
   //! time; with both projections left empty the relaxation sweeps run on TBB threads (with the
   //! same results).
   PointProjection project;
+  //! Closest point on the surface facing the remeshed surface's normal, used for interior vertices
+  //! in place of `project` when set (the default projections are such: the input mesh's triangles
+  //! that face the vertex, closest_point_grid.h). Empty with a given `project`: that one.
+  FacingProjection project_facing;
   //! With the default projection: lift the closest point on the input's flat triangles onto the
   //! smooth surface they sample (a Phong tessellation from the eq. 8 normals), so that remeshing
   //! does not shrink convex parts by the triangles' sagitta. Off: the flat triangles themselves.
@@ -110,7 +118,7 @@ RemeshResult isotropic_remesh(const Mesh& mesh, const RemeshOptions& options = {
 //! patch's boundary vertices get the normals of their whole star). Safe to call from several
 //! threads. Throws InvalidMesh for a surface without triangles, InvalidParameter for a wrong
 //! normal count.
-PointProjection curved_surface_projection(const Mesh& surface, VertexVectors normals);
+FacingProjection curved_surface_projection(const Mesh& surface, VertexVectors normals);
 
 //! Curvature-adapted sizing (Dunyach et al. 2013): ℓ(v) = √(6ε/κ − 3ε²) where κ is the largest
 //! absolute principal curvature at v (from the discrete mean curvature, eq. 9, and the angle

@@ -167,7 +167,7 @@ bool ClosestPointGrid::build(const Aabb& bounds, double cell)
 }
 
 void ClosestPointGrid::search_cell(std::int64_t i, std::int64_t j, std::int64_t k, const Eigen::Vector3d& query,
-                                   ClosestPoint& best) const
+                                   ClosestPoint& best, const Eigen::Vector3d* facing) const
 {
   if (i < 0 || j < 0 || k < 0 || i >= size_[0] || j >= size_[1] || k >= size_[2])
     return; // outside the grid: no triangle there
@@ -178,6 +178,8 @@ void ClosestPointGrid::search_cell(std::int64_t i, std::int64_t j, std::int64_t 
     if (squared_box_distance(record.box, query) > best.squared_distance)
       continue;
     const auto& [a, b, c] = record.corners;
+    if (facing && !((b - a).cross(c - a).dot(*facing) > 0))
+      continue;
     const Eigen::Vector3d w = nearest_barycentric(query, a, b, c);
     const Eigen::Vector3d x = w[0] * a + w[1] * b + w[2] * c;
     const double d = (x - query).squaredNorm();
@@ -192,20 +194,20 @@ const Bvh& ClosestPointGrid::tree() const
   return *tree_;
 }
 
-ClosestPoint ClosestPointGrid::closest_point(const Eigen::Vector3d& query) const
+ClosestPoint ClosestPointGrid::search_near(const Eigen::Vector3d& query, const Eigen::Vector3d* facing) const
 {
   std::int64_t c[3];
   double below[3], above[3]; // from the query to its cell's walls
+  ClosestPoint best;
   for (int k = 0; k < 3; ++k) {
     c[k] = coordinate(query[k], k);
     if (c[k] < 0)
-      return tree().closest_point(query);
+      return best;
     const double wall = origin_[k] + static_cast<double>(c[k]) * cell_;
     below[k] = std::max(query[k] - wall, 0.0);
     above[k] = std::max(wall + cell_ - query[k], 0.0);
   }
-  ClosestPoint best;
-  search_cell(c[0], c[1], c[2], query, best);
+  search_cell(c[0], c[1], c[2], query, best, facing);
   // A nearer triangle meets the ball of radius `reach`, hence one of the cells that ball meets:
   // usually only the query's own; while the ball is narrower than a cell, the others are among
   // the 26 neighbours. `reach` only shrinks, so a neighbour passed over stays out of reach.
@@ -221,13 +223,27 @@ ClosestPoint ClosestPointGrid::closest_point(const Eigen::Vector3d& query) const
         for (int k = 0; k < 3; ++k)
           gap += d[k] < 0 ? below[k] * below[k] : (d[k] > 0 ? above[k] * above[k] : 0.0);
         if ((di != 0 || dj != 0 || dk != 0) && gap < r * r) {
-          search_cell(c[0] + di, c[1] + dj, c[2] + dk, query, best);
+          search_cell(c[0] + di, c[1] + dj, c[2] + dk, query, best, facing);
           r = reach();
         }
       }
   if (best.face >= 0 && std::sqrt(best.squared_distance) + slack_ < cell_)
     return best;
-  return tree().closest_point(query);
+  return ClosestPoint{};
+}
+
+ClosestPoint ClosestPointGrid::closest_point(const Eigen::Vector3d& query) const
+{
+  const ClosestPoint near = search_near(query, nullptr);
+  return near.face >= 0 ? near : tree().closest_point(query);
+}
+
+ClosestPoint ClosestPointGrid::closest_facing_point(const Eigen::Vector3d& query, const Eigen::Vector3d& facing) const
+{
+  if (!(facing.squaredNorm() > 0))
+    return closest_point(query);
+  const ClosestPoint near = search_near(query, &facing);
+  return near.face >= 0 ? near : closest_point(query);
 }
 
 } // namespace sdflow

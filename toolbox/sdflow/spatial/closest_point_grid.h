@@ -36,6 +36,12 @@ public:
   //! ties between triangles at exactly the same distance). Safe to call from several threads.
   ClosestPoint closest_point(const Eigen::Vector3d& query) const;
 
+  //! The closest point among the triangles that face the way `facing` points (n_t · facing > 0)
+  //! within a cell of the query, else closest_point(query): where two sheets lie closer together
+  //! than a cell (a thin blade, a tail, a fold), a point moved off one sheet is taken back to
+  //! that sheet, not to the back of the other. `facing` zero: closest_point(query).
+  ClosestPoint closest_facing_point(const Eigen::Vector3d& query, const Eigen::Vector3d& facing) const;
+
   //! Width of the cells.
   double cell_size() const { return cell_; }
 
@@ -57,7 +63,10 @@ private:
   bool build(const Aabb& bounds, double cell);
   //! Improve `best` with the triangles of the cell (i, j, k).
   void search_cell(std::int64_t i, std::int64_t j, std::int64_t k, const Eigen::Vector3d& query,
-                   ClosestPoint& best) const;
+                   ClosestPoint& best, const Eigen::Vector3d* facing = nullptr) const;
+  //! The nearest point within the query's cell and its neighbours (face −1 if none, or if the
+  //! query lies outside the grid), of the triangles facing `facing` when it is given.
+  ClosestPoint search_near(const Eigen::Vector3d& query, const Eigen::Vector3d* facing) const;
   const Bvh& tree() const;
 
   VertexVectors points_;
