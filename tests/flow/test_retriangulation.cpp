@@ -236,6 +236,42 @@ TEST(RetriangulationHook, tolerates_what_the_last_retriangulation_left_until_mor
   EXPECT_LT(acted.degraded_left, degraded);
 }
 
+TEST(RetriangulationHook, takes_a_few_percent_more_degraded_elements_than_left_for_the_remeshings_variation)
+{
+  // Twenty vertices pulled most of the way to a neighbour: far more degraded elements than 20, so
+  // that 5% of them is more than one.
+  Mesh mesh = analytic::icosphere(4);
+  double ell = 0;
+  for (const auto e : mesh.edges())
+    ell += mesh.calc_edge_length(e) / static_cast<double>(mesh.n_edges());
+  for (int i = 0; i < 20; ++i) {
+    const Mesh::VertexHandle v(i * 120);
+    const auto w = *mesh.vv_iter(v);
+    mesh.set_point(v, mesh.point(v) + 0.9 * (mesh.point(w) - mesh.point(v)));
+  }
+  const long degraded = degraded_elements(mesh, ell);
+  ASSERT_GE(degraded, 60);
+
+  RetriangulationSchedule schedule;
+  schedule.pipeline.edge_length = ell;
+  const RetriangulationHook hook = make_retriangulation_hook(schedule);
+  // 3% more than the last re-triangulation left: the remeshings' own variation, left alone.
+  Mesh within = mesh;
+  const auto left_alone = hook(within, {.step = 1, .tolerated_degraded = static_cast<long>(std::ceil(degraded / 1.03))});
+  EXPECT_FALSE(left_alone.changed());
+  // Without the margin (the rule before it), any increase calls the remeshing.
+  RetriangulationSchedule strict = schedule;
+  strict.degraded_variation = 0;
+  Mesh strictly = mesh;
+  EXPECT_TRUE(make_retriangulation_hook(strict)(strictly, {.step = 1, .tolerated_degraded = static_cast<long>(std::ceil(degraded / 1.03))})
+                  .remeshed);
+  // 10% more: the flow wore the mesh.
+  Mesh beyond = mesh;
+  const auto acted = hook(beyond, {.step = 1, .tolerated_degraded = static_cast<long>(std::floor(degraded / 1.1))});
+  EXPECT_TRUE(acted.remeshed);
+  EXPECT_LT(acted.degraded_left, degraded);
+}
+
 TEST(RetriangulationHook, gives_back_the_volume_a_remeshing_takes)
 {
   // Remeshing a torus to twice its edge length cuts chords across its curvature; the hook restores

@@ -102,9 +102,11 @@ Mesh first_crossing(const Mesh& start, double end_time)
   p.retriangulation.pipeline.edge_length = mean_edge_length(start);
   p.retriangulation.local_surgery = false; // the whole pipeline between steps, whatever the default
   // The paper's stage 1, which may make the crossing of a pinch itself (the fixture's second case),
-  // and no start steps: the fixtures are the surfaces these runs reached before either existed.
+  // no start steps and no margin on degraded elements: the fixtures are the surfaces these runs
+  // reached before any of them existed.
   p.retriangulation.pipeline.refinement_rounds = 0;
   p.time_step.adaptive.start_steps = 0;
+  p.retriangulation.degraded_variation = 0;
   const RetriangulationHook retriangulate = make_retriangulation_hook(p.retriangulation);
   Mesh crossed, at_surgery;
   const RetriangulationHook capture = [&](Mesh& mesh, const RetriangulationContext& context) {
@@ -178,9 +180,11 @@ Mesh last_before_genus_change(const Mesh& start, double end_time)
   p.end_time = end_time;
   p.retriangulation.pipeline.edge_length = mean_edge_length(start);
   p.retriangulation.local_surgery = false;
-  // As in the fixture above: the surfaces these runs reached with the paper's stage 1, no start steps.
+  // As in the fixture above: the surfaces these runs reached with the paper's stage 1, no start steps
+  // and no margin on degraded elements.
   p.retriangulation.pipeline.refinement_rounds = 0;
   p.time_step.adaptive.start_steps = 0;
+  p.retriangulation.degraded_variation = 0;
   const RetriangulationHook retriangulate = make_retriangulation_hook(p.retriangulation);
   Mesh before;
   bool changed = false;

@@ -97,8 +97,8 @@ SurfaceCount count_surface(const Mesh& mesh, const RetriangulationSchedule& s, I
 
 //! The pipeline runs when the surface intersects itself (or on `always`). Degraded elements call
 //! for a re-triangulation when they exceed both the schedule's allowance and what the last one left
-//! behind, so elements the remesher cannot improve (beside a thin neck, say) do not call it after
-//! every step.
+//! behind (by more than the schedule's degraded_variation), so elements the remesher cannot improve (beside a
+//! thin neck, at a CAD part's sharp edges) do not call it after every step.
 Verdict look_at_surface(const Mesh& mesh, const RetriangulationSchedule& s, long tolerated, IntersectionWatch& watch)
 {
   Verdict v;
@@ -117,7 +117,7 @@ Verdict look_at_surface(const Mesh& mesh, const RetriangulationSchedule& s, long
   v.degraded = counted.degraded_or_throw();
   const DegradedElements& d = v.degraded;
   const double allowed = std::max(s.degraded_fraction * static_cast<double>(mesh.n_faces()),
-                                  static_cast<double>(tolerated));
+                                  (1 + s.degraded_variation) * static_cast<double>(tolerated));
   if (static_cast<double>(d.total()) > allowed) {
     v.reason = fmt::format("{} edges outside [ℓ/{}, {}ℓ] of their target ℓ and {} triangles with an angle below {}°",
                            d.edges, s.edge_ratio, s.edge_ratio, d.triangles, s.min_angle_deg);
