@@ -2,6 +2,7 @@
 //! \file log.h
 //! \brief The library's logger. sdflow never prints: it logs to the "sdflow" spdlog logger, whose
 //! sinks belong to the application (the CLI prints to stderr, the MeshLab plugin to its log).
+//! OpenMesh's error stream goes to it too, at debug level.
 
 #include <memory>
 #include <spdlog/logger.h>

@@ -97,8 +97,8 @@ SurfaceCount count_surface(const Mesh& mesh, const RetriangulationSchedule& s, I
 
 //! The pipeline runs when the surface intersects itself (or on `always`). Degraded elements call
 //! for a re-triangulation when they exceed both the schedule's allowance and what the last one left
-//! behind (by more than the schedule's degraded_variation), so elements the remesher cannot improve (beside a
-//! thin neck, at a CAD part's sharp edges) do not call it after every step.
+//! behind (by more than the schedule's degraded_variation), so elements the remesher cannot improve
+//! (beside a thin neck, at a CAD part's sharp edges) do not call it after every step.
 Verdict look_at_surface(const Mesh& mesh, const RetriangulationSchedule& s, long tolerated, IntersectionWatch& watch)
 {
   Verdict v;

@@ -1,0 +1,3 @@
+target_sources(sdflow_tests PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/test_log.cpp
+)
