@@ -242,6 +242,26 @@ TEST(LocalSurgery, a_long_capsule_pinched_at_two_places_breaks_in_three)
   expect_same_outcome_as_global(crossed, {}, {{true, 0}, {true, 0}, {true, 0}});
 }
 
+TEST(LocalSurgery, declines_a_patch_that_holds_a_whole_component)
+{
+  // A small body folded through itself (one vertex pushed out through the far side), beside a
+  // large one: the patch around its crossings, 3 ℓ across, holds all of it and has no cut loop.
+  // Matching the rebuild's rim to the cut then read past an empty list (CGAL's elk.off, where a
+  // run's surgery met a small body so, crashed).
+  Mesh small = analytic::icosphere(2, 0.3);
+  const auto v = *small.vertices().begin();
+  small.set_point(v, -1.5 * small.point(v));
+  const Mesh mesh = analytic::disjoint_union(analytic::icosphere(4, 1, {8, 0, 0}), small);
+  const std::vector<FacePair> crossings = self_intersections(mesh);
+  ASSERT_FALSE(crossings.empty());
+  LocalSurgery surgery;
+  ASSERT_NO_THROW(surgery = local_surgery(mesh, crossings, {.edge_length = 0.5}));
+  if (surgery.result)
+    EXPECT_EQ(checks::self_intersecting_pairs(surgery.result->mesh), 0);
+  else
+    EXPECT_FALSE(surgery.failure.empty());
+}
+
 TEST(LocalSurgery, the_dumbbell_at_its_pinch_in_a_run_splits_in_two)
 {
   // The paper's dumbbell at half size (1000 vertices).

@@ -165,6 +165,8 @@ struct LoopPair {
 std::vector<LoopPair> match_rims_to_cuts(const VertexVectors& positions, const std::vector<std::vector<int>>& cuts,
                                          const std::vector<std::vector<int>>& rims)
 {
+  if (cuts.empty()) // a patch that holds whole components: nothing to zip a rebuild to
+    throw AttemptFailed("the patch holds a whole component, with no cut to join the rebuild to");
   std::vector<LoopPair> pairs(cuts.size());
   std::vector<double> spacing(cuts.size(), 0);
   for (std::size_t c = 0; c < cuts.size(); ++c) {
