@@ -61,7 +61,7 @@ private:
   //! Lay out cells of width `cell` over `bounds` and list the triangles in them; false (and
   //! nothing built) when that would take too many cells or listings.
   bool build(const Aabb& bounds, double cell);
-  //! Improve `best` with the triangles of the cell (i, j, k).
+  //! Improve `best` with the triangles of the cell (i, j, k), those facing `facing` when given.
   void search_cell(std::int64_t i, std::int64_t j, std::int64_t k, const Eigen::Vector3d& query,
                    ClosestPoint& best, const Eigen::Vector3d* facing = nullptr) const;
   //! The nearest point within the query's cell and its neighbours (face −1 if none, or if the
