@@ -562,6 +562,49 @@ TEST(RetriangulationHook, a_remeshing_refused_with_nothing_rebuilt_is_reported_w
     noted = noted || note.text.find("re-triangulation refused (remeshing-crossed)") != std::string::npos;
   EXPECT_TRUE(noted) << "events.log gets the refusal";
 }
+//! A step that no τ makes acceptable on a thin CAD plate (whose whole-surface remeshing is refused,
+//! above) fails at a sliver: the forced call remeshes around the vertices where it failed and keeps
+//! the rest of the surface, where before it ran the whole pipeline, was refused and the run stopped
+//! (CGAL's turbine.off, elk.off and refined_elephant.off ended so, with exit 3).
+TEST(RetriangulationHook, a_step_that_failed_at_a_sliver_is_remeshed_around_it_alone)
+{
+  Mesh plate = test::cad_plate(1, 0.3, 0.01, 20, 3);
+  // Top vertex (10, 1) drawn to within 0.005 of (10, 2): two slivers and a needle beside them.
+  const int drawn = 10 * 4 + 1, neighbour = 10 * 4 + 2;
+  Eigen::Vector3d p = to_eigen(plate.point(plate.vertex_handle(drawn)));
+  p.y() = 0.195;
+  plate.point(plate.vertex_handle(drawn)) = to_point(p);
+  RetriangulationSchedule schedule;
+  schedule.pipeline.edge_length = mean_edge_length(plate);
+  const RetriangulationHook hook = make_retriangulation_hook(schedule);
+
+  Mesh whole = plate;
+  EXPECT_TRUE(hook(whole, {.step = 1, .force = true}).refused) << "the whole pipeline is refused here";
+
+  Mesh mesh = plate;
+  const RetriangulationReport report = hook(mesh, {.step = 1, .force = true, .failed_vertices = {drawn, neighbour}});
+  ASSERT_TRUE(report.remeshed) << report.detail;
+  EXPECT_TRUE(report.local);
+  EXPECT_FALSE(report.refused);
+  EXPECT_NE(report.detail.find("around the 2 vertices where it failed"), std::string::npos) << report.detail;
+  EXPECT_EQ(count_topology(mesh), count_topology(plate));
+  EXPECT_LT(report.measures.faces_rebuilt, static_cast<long>(plate.n_faces()) / 2) << "a patch, not the surface";
+  EXPECT_TRUE(self_intersections(mesh).empty());
+  EXPECT_NEAR(material_volume(mesh), material_volume(plate), 1e-9 * material_volume(plate));
+  // The short edge is gone: every edge within 0.1 of it is at least a fifth of ℓ.
+  const double shortest = [&] {
+    double s = std::numeric_limits<double>::infinity();
+    for (const auto e : mesh.edges()) {
+      const Eigen::Vector3d a = to_eigen(mesh.point(mesh.from_vertex_handle(mesh.halfedge_handle(e, 0)))),
+                            b = to_eigen(mesh.point(mesh.to_vertex_handle(mesh.halfedge_handle(e, 0))));
+      if ((0.5 * (a + b) - p).norm() < 0.1)
+        s = std::min(s, (a - b).norm());
+    }
+    return s;
+  }();
+  EXPECT_GT(shortest, 0.2 * schedule.pipeline.edge_length);
+}
+
 //! A re-triangulation that would leave nothing (here every component below the clean-up's face
 //! count) is refused and the surface kept: the flow keeps each body's volume, so no body of it
 //! vanishes in one step (a fuzzed coarse body whose rebuild the clean-up dropped whole made the

@@ -137,6 +137,49 @@ TEST(TimeStepController, endless_rejections_stop_with_solver_failure)
       SolverFailure);
 }
 
+// Where a trial failed is what a forced re-triangulation remeshes (RetriangulationContext::
+// failed_vertices): the corners of the turned-over triangles, and in adaptive mode the vertices
+// beyond the displacement bound; the controller's final failure carries them.
+TEST(TimeStepController, a_failed_trial_names_the_vertices_where_it_failed)
+{
+  const AdaptiveOptions bounds; // max_displacement 0.1 of h
+  VertexVectors now(5, 3);
+  now << 0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 3, 3, 0;
+  FaceIndices triangles(2, 3);
+  triangles << 0, 1, 2, 1, 3, 2;
+  VertexVectors next = now;
+  next(3, 0) = -1; // the second triangle turns over
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(5);
+  w[4] = 0.5; // τ|w| = 0.5 h at vertex 4
+  const Eigen::VectorXd h = Eigen::VectorXd::Ones(5);
+  const VertexVectors no_error(0, 3);
+  const auto check = [&](bool adaptive) {
+    return check_trial({.tau = 1, .now = now, .next = next, .w = w, .error = no_error, .triangles = triangles,
+                        .edge_lengths = h},
+                       bounds, adaptive);
+  };
+  EXPECT_EQ(check(true).failed_vertices, (std::vector<int>{1, 2, 3, 4}));
+  EXPECT_EQ(check(false).failed_vertices, (std::vector<int>{1, 2, 3}));
+  next = now;
+  EXPECT_EQ(check(true).failed_vertices, (std::vector<int>{4}));
+  w[4] = 0;
+  EXPECT_TRUE(check(true).failed_vertices.empty());
+
+  TimeStepOptions options;
+  options.adaptive.initial_tau = 1.0;
+  TimeStepController controller(options);
+  StepCheck turned;
+  turned.inverted_triangles = 1;
+  turned.failed_vertices = {7, 8, 9};
+  try {
+    for (int i = 0; i < 1000; ++i)
+      controller.judge(1, controller.propose(1, 0.0, 10.0), turned);
+    FAIL() << "expected UnacceptableStep";
+  } catch (const UnacceptableStep& e) {
+    EXPECT_EQ(e.vertices, turned.failed_vertices);
+  }
+}
+
 TEST(TimeStepController, constant_tau_stops_at_the_first_unstable_step)
 {
   TimeStepOptions options{.mode = TimeStepMode::constant, .tau = 0.5};

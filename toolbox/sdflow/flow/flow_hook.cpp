@@ -19,11 +19,12 @@ FlowHook::FlowHook(const Mesh& mesh, long tolerated_degraded)
 }
 
 RetriangulationReport FlowHook::look(Mesh& mesh, long step, double time, bool force, StepTimes& times,
-                                     std::function<void()> changing, const VertexVectors* step_start)
+                                     std::function<void()> changing, const VertexVectors* step_start,
+                                     const std::vector<int>& failed_vertices)
 {
   try {
     RetriangulationReport report =
-        hook_(mesh, {step, time, tolerated_degraded_, force, std::move(changing), step_start});
+        hook_(mesh, {step, time, tolerated_degraded_, force, std::move(changing), step_start, failed_vertices});
     if (report.degraded_left >= 0)
       tolerated_degraded_ = report.degraded_left;
     times.retriangulation_check += report.check_seconds;

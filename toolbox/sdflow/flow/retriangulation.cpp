@@ -286,6 +286,98 @@ std::string describe_change(const TopologyCount& before, const TopologyCount& af
   return s;
 }
 
+//! The faces that have a vertex of `vertices` as a corner, ascending (vertices out of range skipped).
+std::vector<int> faces_around(const Mesh& mesh, const std::vector<int>& vertices)
+{
+  std::vector<int> faces;
+  for (int v : vertices) {
+    if (v < 0 || v >= static_cast<int>(mesh.n_vertices()))
+      continue;
+    for (const Mesh::FaceHandle f : mesh.vf_range(mesh.vertex_handle(static_cast<unsigned>(v))))
+      faces.push_back(f.idx());
+  }
+  std::ranges::sort(faces);
+  const auto repeated = std::ranges::unique(faces);
+  faces.erase(repeated.begin(), repeated.end());
+  return faces;
+}
+
+//! The largest share of the surface's faces a remeshing around a failed step takes. It is the last
+//! resort before the whole pipeline, which on the surfaces where steps fail so (thin CAD parts) is
+//! often refused: a patch of up to half the surface still keeps the other half bit for bit.
+constexpr double kFailedStepPatchShare = 0.5;
+
+//! A step that no τ makes acceptable fails at a few elements: a sliver or a needle whose triangle
+//! turns over, or whose vertex moves beyond the displacement bound, whatever the step. Remesh the
+//! region around the vertices where it failed (their stars and one ring more, at most
+//! kFailedStepPatchShare of the surface) and give it back its volume. One ring, not the
+//! kLocalRemeshRings of worn regions: on a thin CAD plate three rings reach round its sharp rim,
+//! whose remeshing crosses the other side (the test's plate: 10 pairs), where one ring does not. The result is taken when it keeps the topology and
+//! crosses itself in no more face pairs than the surface did; else the caller runs the whole
+//! pipeline, as before (`fallback` says why). On a CAD part the whole pipeline is often refused
+//! (it would cut thin walls the flow has not closed), which left the step with no surface to go on.
+std::optional<Mesh> remesh_where_step_failed(const Mesh& mesh, const std::vector<int>& failed,
+                                             const RetriangulationSchedule& s, IntersectionWatch& watch,
+                                             RetriangulationReport& report, std::string& fallback)
+{
+  Stopwatch stopwatch;
+  const std::vector<int> faces = faces_around(mesh, failed);
+  if (faces.empty())
+    return std::nullopt;
+  const std::size_t pairs_before = watch.count(mesh);
+  LocalRemeshResult r;
+  try {
+    const RetriangulationOptions& o = s.pipeline;
+    r = remesh_locally(mesh, faces, degraded_elements(mesh, s).targets,
+                       {.edge_length = o.edge_length, .iterations = o.remesh_iterations, .rings = 1,
+                        .curved_projection = o.curved_projection,
+                        .crease_angle_deg = o.crease_angle_deg,
+                        .max_patch_share = kFailedStepPatchShare});
+  } catch (const InvalidMesh& e) {
+    fallback = fmt::format("the remeshing around the {} vertices where the step failed failed ({}), so the whole "
+                           "pipeline ran; ", failed.size(), e.what());
+    return std::nullopt;
+  }
+  report.pipeline_seconds.remesh = stopwatch.restart();
+  if (r.declined) {
+    fallback = fmt::format("the region around the {} vertices where the step failed holds {} of the {} faces, more "
+                           "than a local remeshing takes, so the whole pipeline ran; ",
+                           failed.size(), r.patch_faces, mesh.n_faces());
+    return std::nullopt;
+  }
+  const TopologyCount before = count_topology(mesh), after = count_topology(r.mesh);
+  if (!(before == after)) {
+    fallback = fmt::format("the remeshing around the {} vertices where the step failed would change the topology "
+                           "({}), so the whole pipeline ran; ", failed.size(), describe_change(before, after));
+    return std::nullopt;
+  }
+  const std::string volume_note =
+      s.restore_volume ? restore_volume(mesh, r.mesh, report.measures, r.vertex_map) : std::string{};
+  report.volume_seconds = stopwatch.restart();
+  SurfaceCount counted = count_surface(r.mesh, s, watch);
+  report.pipeline_seconds.intersections = stopwatch.seconds();
+  if (counted.pairs > pairs_before) {
+    fallback = fmt::format("the remeshing around the {} vertices where the step failed left {} intersecting face "
+                           "pairs (the surface had {}), so the whole pipeline ran; ",
+                           failed.size(), counted.pairs, pairs_before);
+    return std::nullopt;
+  }
+  report.remeshed = report.local = true;
+  report.degraded_left = counted.degraded_failure ? degraded_elements(mesh, s).total() : counted.degraded.total();
+  report.measures.before = before;
+  report.measures.after = after;
+  report.measures.faces_before = static_cast<long>(mesh.n_faces());
+  report.measures.faces_after = static_cast<long>(r.mesh.n_faces());
+  report.measures.faces_rebuilt = r.patch_faces;
+  report.detail = fmt::format("no step could be taken: local remeshing around the {} vertices where it failed, {} "
+                              "faces in {} patches into {} ({} splits, {} collapses, {} flips){}; {} degraded "
+                              "elements left",
+                              failed.size(), r.patch_faces, r.patches, r.new_faces, r.statistics.splits,
+                              r.statistics.collapses, r.statistics.flips, volume_note, report.degraded_left);
+  return std::move(r.mesh);
+}
+
+
 //! Whether the change from `before` to `after` is only stage 6's clean-up: whole components below
 //! the minimum size dropped as debris (a choice the user makes with min_component_faces, whose
 //! volume the run accounts for), no other component split, fused, or gained or lost a handle or a
@@ -339,6 +431,13 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     if (context.changing)
       context.changing();
     std::string fallback;
+    if (context.force && schedule.local && schedule.pipeline.remesh_iterations > 0 && !context.failed_vertices.empty()) {
+      if (std::optional<Mesh> remeshed =
+              remesh_where_step_failed(mesh, context.failed_vertices, schedule, *watch, report, fallback)) {
+        mesh = std::move(*remeshed);
+        return report;
+      }
+    }
     if (verdict.local) {
       if (std::optional<Mesh> remeshed = remesh_degraded_region(mesh, verdict, schedule, *watch, report, fallback)) {
         mesh = std::move(*remeshed);

@@ -90,6 +90,10 @@ struct RetriangulationContext {
   //! The positions at the start of the step that moved the surface here (same vertices), when the
   //! flow gives them: where a crossing's neck or gap is measured as it was before the flow closed it.
   const VertexVectors* step_start = nullptr;
+  //! With `force`: the vertices where the step that could not be taken failed (a triangle turned
+  //! over, a vertex moved beyond the displacement bound, at every τ). The hook remeshes around them
+  //! alone first, and runs the whole pipeline only when that does not give a surface to go on from.
+  std::vector<int> failed_vertices;
 };
 
 //! What a re-triangulation measured: what called for it and what came of it (the numbers of its

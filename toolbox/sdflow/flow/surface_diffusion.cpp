@@ -150,8 +150,9 @@ StepRecord SurfaceDiffusion::step()
 }
 
 //! Trials of the step after `first` until one is accepted. A step that no τ makes acceptable (a
-//! triangle beside a closing neck that turns over whatever the step) is retried once after a
-//! re-triangulation of the surface it starts from; a table's step that still fails is then
+//! triangle beside a closing neck that turns over whatever the step) is retried after a
+//! re-triangulation of the surface it starts from (around where it failed, then, failing again,
+//! the whole surface); a table's step that still fails is then
 //! covered by adaptive steps (time_step.h). `events` gets the re-triangulation's and the fallback's.
 SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, std::vector<StepEvent>& events)
 {
@@ -170,14 +171,19 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
     s.turning_since_tau = 0;
     trials_.restart_controller(s);
   };
-  // Re-triangulate the surface the step starts from, once a step; true when that changed it.
-  bool forced = false;
-  const auto retriangulated = [&](std::string_view why) {
-    if (!hook_.retriangulates() || std::exchange(forced, true))
+  // Re-triangulate the surface the step starts from; true when that changed it. The first call
+  // gives the hook `failed`, the vertices where the last trial failed, to remesh around alone; if
+  // it did, and the step fails again, a second call re-triangulates the whole surface.
+  bool failed_given = false, whole_tried = false;
+  const auto retriangulated = [&](std::string_view why, const std::vector<int>& failed) {
+    if (!hook_.retriangulates() || whole_tried)
       return false;
     note(next_step, time_, fmt::format("{}: re-triangulating, then trying again", why));
     const VertexVectors before = vertex_positions(surface_.mesh);
-    const RetriangulationReport report = call_retriangulation(surface_.mesh, true, a.record.times);
+    const RetriangulationReport report = call_retriangulation(surface_.mesh, true, a.record.times, {},
+                                                              std::exchange(failed_given, true) ? std::vector<int>{}
+                                                                                                : failed);
+    whole_tried = !report.local;
     note_refusal(report, events);
     if (!report.changed())
       return false;
@@ -199,10 +205,12 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
     } catch (const TrianglesTurning& e) {
       // Re-triangulated (once a step), the step starts again; refused, τ shrinks on as the rule asks.
       controller.forget_turning();
-      retriangulated(e.what());
+      retriangulated(e.what(), e.vertices);
       continue;
     } catch (const SolverFailure& e) {
-      if (retriangulated(fmt::format("no acceptable step ({})", e.what())))
+      const auto* unacceptable = dynamic_cast<const UnacceptableStep*>(&e);
+      if (retriangulated(fmt::format("no acceptable step ({})", e.what()),
+                         unacceptable ? unacceptable->vertices : std::vector<int>{}))
         continue;
       if (!table || a.fell_back || controller_before.fallback_left > 0)
         throw;
@@ -372,11 +380,13 @@ void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook, long to
 }
 
 RetriangulationReport SurfaceDiffusion::call_retriangulation(Mesh& mesh, bool force, StepTimes& times,
-                                                             std::function<void()> changing)
+                                                             std::function<void()> changing,
+                                                             const std::vector<int>& failed_vertices)
 {
   // A forced look re-triangulates the surface a step could not leave: no step led to it.
   const bool stepped = !force && step_start_.rows() == static_cast<Eigen::Index>(mesh.n_vertices());
-  return hook_.look(mesh, step_, time_, force, times, std::move(changing), stepped ? &step_start_ : nullptr);
+  return hook_.look(mesh, step_, time_, force, times, std::move(changing), stepped ? &step_start_ : nullptr,
+                    failed_vertices);
 }
 
 //! Take the re-triangulated mesh: new connectivity and operators, fresh factorisations with the
@@ -639,7 +649,8 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
                                          "τ = {:g} at which they began",
                                          controller.state().next_tau,
                                          controller.state().next_tau / controller.state().turning_since_tau,
-                                         controller.state().turning_since_tau));
+                                         controller.state().turning_since_tau),
+                             check.failed_vertices);
   }
 }
 

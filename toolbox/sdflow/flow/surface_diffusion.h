@@ -140,9 +140,11 @@ private:
   //! hook_: the caller's `hook`, or the one of the options' schedule with its ℓ fixed now; without
   //! either, the guard that stops the flow at a self-intersection (intersection_guard.h).
   void prepare_retriangulation(RetriangulationHook hook, long tolerated_degraded);
-  //! The hook's look at `mesh`, the flow's surface or a copy of it, after the last step (FlowHook::look).
+  //! The hook's look at `mesh`, the flow's surface or a copy of it, after the last step (FlowHook::look;
+  //! `failed_vertices`: where a step that forces it failed, RetriangulationContext::failed_vertices).
   RetriangulationReport call_retriangulation(Mesh& mesh, bool force, StepTimes& times,
-                                             std::function<void()> changing = {});
+                                             std::function<void()> changing = {},
+                                             const std::vector<int>& failed_vertices = {});
   //! A refused re-triangulation (RetriangulationReport::refused) becomes an event and a warning.
   void note_refusal(const RetriangulationReport& report, std::vector<StepEvent>& events);
   void adopt_retriangulation(const RetriangulationReport& report, const VertexVectors& before,

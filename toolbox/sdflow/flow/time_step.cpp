@@ -227,10 +227,11 @@ bool TimeStepController::judge(long step, double tau, const StepCheck& check)
   }
   if (!check.non_finite && check.inverted_triangles == 0)
     throw TimeStepTooLarge(too_large(step, tau, check, retries));
-  throw SolverFailure(fmt::format("step {} with τ = {:g} is unstable: {}{}. Use a smaller τ, β ≥ 1/2, {}or "
-                                  "adaptive time steps", step, tau, check.describe(),
-                                  retries > 0 ? fmt::format(" after {} halvings of the table's τ", retries) : "",
-                                  options_.mode == TimeStepMode::schedule ? "schedule retries, " : ""));
+  throw UnacceptableStep(fmt::format("step {} with τ = {:g} is unstable: {}{}. Use a smaller τ, β ≥ 1/2, {}or "
+                                     "adaptive time steps", step, tau, check.describe(),
+                                     retries > 0 ? fmt::format(" after {} halvings of the table's τ", retries) : "",
+                                     options_.mode == TimeStepMode::schedule ? "schedule retries, " : ""),
+                         check.failed_vertices);
 }
 
 //! Why a constant or tabled τ that broke the volume bound is too large, and by how much.
@@ -275,8 +276,9 @@ bool TimeStepController::judge_adaptive(long step, double tau, const StepCheck& 
     factor = std::min(factor, error_factor);
   state_.next_tau = tau * factor;
   if (state_.rejections > a.max_rejections || state_.next_tau < a.min_tau)
-    throw SolverFailure(fmt::format("step {}: unstable, no acceptable τ after {} rejections (last τ = {:g}: {})",
-                                    step, state_.rejections, tau, check.describe()));
+    throw UnacceptableStep(fmt::format("step {}: unstable, no acceptable τ after {} rejections (last τ = {:g}: {})",
+                                       step, state_.rejections, tau, check.describe()),
+                           check.failed_vertices);
   return false;
 }
 
@@ -324,15 +326,25 @@ StepCheck check_trial(const TrialMotion& trial, const AdaptiveOptions& bounds, b
                             d = x.row(trial.triangles(f, 2));
       return Eigen::Vector3d((b - a).cross(d - a));
     };
-    if (normal(trial.now).dot(normal(trial.next)) <= 0)
+    if (normal(trial.now).dot(normal(trial.next)) <= 0) {
       ++c.inverted_triangles;
+      for (int k = 0; k < 3; ++k)
+        c.failed_vertices.push_back(trial.triangles(f, k));
+    }
   }
   c.volume_change = trial.volume_change;
   c.volume_exceeded = c.volume_change > bounds.max_volume_change;
   if (adaptive) {
     c.displacement_exceeded = c.displacement_ratio > bounds.max_displacement;
     c.error_exceeded = bounds.tolerance > 0 && c.error_estimate > bounds.tolerance;
+    if (c.displacement_exceeded)
+      for (Eigen::Index v = 0; v < trial.w.size(); ++v)
+        if (trial.tau * std::abs(trial.w[v]) > bounds.max_displacement * trial.edge_lengths[v])
+          c.failed_vertices.push_back(static_cast<int>(v));
   }
+  std::ranges::sort(c.failed_vertices);
+  const auto repeated = std::ranges::unique(c.failed_vertices);
+  c.failed_vertices.erase(repeated.begin(), repeated.end());
   return c;
 }
 

@@ -62,6 +62,7 @@
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sdflow {
@@ -156,11 +157,23 @@ public:
   using SolverFailure::SolverFailure;
 };
 
+//! No τ makes the step acceptable: the last trial failed at `vertices` (the corners of the triangles
+//! it turned over, the vertices it moved beyond the displacement bound), where a re-triangulation
+//! of the surface the step starts from can begin.
+class UnacceptableStep : public SolverFailure {
+public:
+  UnacceptableStep(const std::string& what, std::vector<int> vertices)
+      : SolverFailure(what), vertices(std::move(vertices))
+  {
+  }
+  std::vector<int> vertices;
+};
+
 //! Adaptive steps: triangles kept turning over while τ fell by kTurningCollapse (the rule at the
 //! top), which calls for a re-triangulation rather than a smaller τ.
-class TrianglesTurning : public SolverFailure {
+class TrianglesTurning : public UnacceptableStep {
 public:
-  using SolverFailure::SolverFailure;
+  using UnacceptableStep::UnacceptableStep;
 };
 
 //! Why a trial step was not accepted.
@@ -176,6 +189,9 @@ struct StepCheck {
   //! Steps of a constant or tabled τ that broke the volume bound: the τ the adaptive rule would
   //! start with on this surface (automatic_tau), to say how much smaller τ should be (0: unknown).
   double adaptive_tau = 0;
+  //! Where the trial failed: the corners of the triangles it turned over and, in adaptive mode,
+  //! the vertices it moved beyond the displacement bound (ascending, each once).
+  std::vector<int> failed_vertices;
   bool failed() const
   {
     return non_finite || inverted_triangles > 0 || displacement_exceeded || volume_exceeded || error_exceeded;
