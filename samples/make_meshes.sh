@@ -12,7 +12,7 @@ fi
 [[ $# -eq 1 ]] || { usage >&2; exit 2; }
 sdflow=$(realpath "$1")
 cd "$(dirname "$0")/meshes"
-count=11 index=0
+count=12 index=0
 make_mesh() { # file, then the arguments of sdflow shape
   local file=$1; shift
   index=$((index + 1))
@@ -32,5 +32,6 @@ make_mesh compact_27.ply packing --nx 3 --ny 3 --nz 3 --spacing 1.8 --edge-lengt
 make_mesh cuboid_island.ply cuboid-island --a 2 --b 1 --c 0.5 --radius 0.2 --edge-length 0.06
 make_mesh island_breakup.ply cuboid-island --a 8 --b 1 --c 0.5 --radius 0.45 --edge-length 0.1
 make_mesh film_with_hole.ply film-with-hole --side 6 --thickness 0.5 --hole 1 --radius 0.2 --edge-length 0.1
+make_mesh film_rim_breakup.ply film-with-hole --side 6 --thickness 0.5 --hole 2.5 --radius 0.2 --edge-length 0.1
 make_mesh round_island.ply cuboid-island --a 1 --b 1 --c 0.5 --radius 0.45 --edge-length 0.035
 make_mesh compact_100.ply packing --count 100 --seed 1 --spacing 1.8 --min-distance 2.4 --edge-length 0.15

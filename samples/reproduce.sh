@@ -28,7 +28,8 @@ names=("$@")
 [[ ${#names[@]} -gt 0 ]] || names=(sphere_accuracy ellipsoid_relax ellipsoid_quarter_beta ellipsoid_explicit torus
                                    dumbbell sintering spheres_on_plane compact_27 compact_100
                                    wulff_ellipsoid cubic_faceting anisotropic_dumbbell
-                                   island_on_substrate island_breakup film_with_hole winterbottom_island)
+                                   island_on_substrate island_breakup film_with_hole film_rim_breakup
+                                   winterbottom_island)
 index=0
 for name in "${names[@]}"; do
   index=$((index + 1))

@@ -36,6 +36,7 @@ SAMPLES = [
     ("winterbottom_island", "a rounded 1 × 1 × 0.5 box, γ = √(n₁² + n₂² + 4n₃²), σ = ½: relaxes to its Winterbottom shape", True),
     ("island_breakup", "a ridge 8 × 1 × 0.5 (ends rounded), θ_Y = 90°, η = 10: thins in its middle and breaks into islands", False),
     ("film_with_hole", "a 6 × 6 film 0.5 thick with a hole of radius 1, θ_Y = 120°, η = 1: dewets from its hole and its outer edge", False),
+    ("film_rim_breakup", "a 6 × 6 film 0.5 thick with a hole of radius 2.5, θ_Y = 120°, η = 1: the ring of film left retracts and breaks where it is narrowest", False),
 ]
 
 
