@@ -271,6 +271,7 @@ void run(const RunArguments& a)
       for (const auto& f : built.findings)
         logger().warn("{}: {}", p.input.string(), f.message);
       check_run_input(built.mesh, p, p.input.string(), FrontEnd::command_line, limits);
+      options.parameters = CheckedRunParameters(p); // with the ℓ the input checks may have chosen
       result = run_simulation(built.mesh, options);
     }
   } catch (...) {

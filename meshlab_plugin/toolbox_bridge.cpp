@@ -269,7 +269,7 @@ ShadedSurface surface_diffusion(const Surface& input, const std::string& name, c
 {
   const LoggerScope scope(reporter);
   // The same flow as `sdflow run` with the same options, in memory.
-  const RunParameters p = run_parameters(filter, settings);
+  RunParameters p = run_parameters(filter, settings);
   Mesh initial = checked_mesh(input, name);
   check_run_input(initial, p, name, FrontEnd::meshlab, run_input_limits(FrontEnd::meshlab, false));
   SurfaceDiffusion flow(initial, p);

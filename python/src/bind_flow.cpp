@@ -114,7 +114,8 @@ public:
     ToolboxLock lock;
     const CheckedFlowOptions checked(parameters); // once, before the input checks that read it
     check_run_input(built.mesh, parameters, surface_source, FrontEnd::python, limits_);
-    flow_ = std::make_unique<SurfaceDiffusion>(built.mesh, checked);
+    // With the ℓ the input checks may have chosen (a thin part resolved).
+    flow_ = std::make_unique<SurfaceDiffusion>(built.mesh, CheckedFlowOptions(parameters));
   }
 
   py::tuple step()
@@ -321,7 +322,7 @@ void bind_flow(py::module_& m)
       "run_simulation",
       [](const py::object& V, const py::object& F, const CheckedRunParameters& checked, const py::object& progress,
          bool force) {
-        const RunParameters& p = *checked;
+        RunParameters p = *checked;
         const SizeLimits limits = run_input_limits(FrontEnd::python, force);
         BuiltMesh built;
         if (V.is_none()) {
@@ -341,7 +342,7 @@ void bind_flow(py::module_& m)
         const std::filesystem::path dir = p.output_dir;
         SimulationResult result;
         {
-          const SimulationOptions options = callbacks.options(checked);
+          const SimulationOptions options = callbacks.options(CheckedRunParameters(p)); // ℓ as the checks chose
           ToolboxLock lock;
           result = run_simulation(built.mesh, options);
         }

@@ -38,7 +38,7 @@ constexpr double kFlowVolumeDrift = 1.5e-2;
 
 //! `input` through the checks of `sdflow run` with the defaults (re-triangulation on, ℓ not
 //! given), as the run starts from it.
-Mesh prepared(const Mesh& input, const RunParameters& p)
+Mesh prepared(const Mesh& input, RunParameters p)
 {
   Mesh mesh = input;
   check_run_input(mesh, p, "solid.off", FrontEnd::command_line, run_input_limits(FrontEnd::command_line, false));
@@ -175,7 +175,7 @@ TEST(CoarseInput, a_resumed_run_keeps_the_chosen_edge_length)
 // first; a small body beside a large one gets the re-triangulation's message with the ℓ that does.
 TEST(CoarseInput, an_edge_length_given_too_coarse_is_still_refused)
 {
-  const auto refusal = [](Mesh& mesh, const RunParameters& p) -> std::string {
+  const auto refusal = [](Mesh& mesh, RunParameters p) -> std::string {
     try {
       check_run_input(mesh, p, "solid.off", FrontEnd::command_line, run_input_limits(FrontEnd::command_line, false));
     } catch (const Error& e) {

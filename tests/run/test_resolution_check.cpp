@@ -10,6 +10,7 @@
 #include "sdflow/run/run_input.h"
 #include "sdflow/run/simulation.h"
 #include "support/analytic_meshes.h"
+#include "support/test_meshes.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -104,35 +105,81 @@ TEST(ResolutionCheck, finds_a_spike_between_the_vertices_of_its_long_edges)
   EXPECT_LE(0.25 * thin->resolving_edge_length, thin->size);
 }
 
-TEST(ResolutionCheck, a_run_refuses_before_step_1_unless_its_coarser_edge_length_was_asked_for)
+// Issue 32: a thin part is resolved, not refused, when the run can afford it. With the automatic
+// ℓ the run takes the ℓ that resolves the part (set in the parameters, so the flow and run.toml
+// use it); a part so thin that resolving it would outgrow what a run takes by itself is refused
+// before step 1, in each front end's words, with that ℓ; an ℓ the user gave is kept, with a warning.
+TEST(ResolutionCheck, a_run_takes_the_edge_length_that_resolves_a_thin_part_within_its_size_bound)
 {
-  Mesh body = body_with_thin_tail();
+  const Mesh body = body_with_thin_tail();
   RunParameters p;
   p.steps = 2;
   p.snapshot_every = 0;
   // A sizing that never refines below ℓ (the mean edge, about 0.09) cannot resolve the tail.
   p.retriangulation.pipeline.min_edge_fraction = 1;
-  // Each front end is told in its own words how to resolve it, or to give the coarser ℓ.
+  RetriangulationOptions at_mean = p.retriangulation.pipeline;
+  at_mean.edge_length = mean_edge_length(body);
+  const std::optional<ThinPart> thin = thinnest_unresolved_part(body, at_mean);
+  ASSERT_TRUE(thin);
   const std::pair<FrontEnd, std::string> words[] = {
       {FrontEnd::command_line, "--edge-length"},
       {FrontEnd::python, "retriangulation={\"edge_length\": "},
       {FrontEnd::meshlab, "(EdgeLength) = "}};
   for (const auto& [front_end, setting] : words) {
+    RunParameters q = p;
+    Mesh mesh = body;
+    check_run_input(mesh, q, "body.off", front_end, run_input_limits(front_end, false));
+    EXPECT_DOUBLE_EQ(q.retriangulation.pipeline.edge_length, thin->resolving_edge_length);
+    EXPECT_LT(q.retriangulation.pipeline.edge_length, at_mean.edge_length);
+  }
+  test::TempDir dir;
+  {
+    RunParameters q = p;
+    Mesh mesh = body;
+    check_run_input(mesh, q, "body.off", FrontEnd::command_line, run_input_limits(FrontEnd::command_line, false));
+    q.output_dir = dir / "resolved";
+    const SimulationResult r = run_simulation(mesh, {.parameters = q});
+    EXPECT_EQ(r.steps, 2);
+    EXPECT_NE(test::read_file(dir / "resolved/run.toml").find(fmt::format("edge_length = {}", thin->resolving_edge_length)),
+              std::string::npos)
+        << "run.toml keeps the ℓ the check chose";
+  }
+  // The same coarser ℓ given explicitly: kept, and the run goes on.
+  RunParameters asked = p;
+  asked.retriangulation.pipeline.edge_length = at_mean.edge_length;
+  Mesh mesh = body;
+  EXPECT_NO_THROW(check_run_input(mesh, asked, "body.off", FrontEnd::command_line,
+                                  run_input_limits(FrontEnd::command_line, false)));
+  EXPECT_EQ(asked.retriangulation.pipeline.edge_length, at_mean.edge_length);
+  asked.output_dir = dir / "asked";
+  EXPECT_EQ(run_simulation(mesh, {.parameters = asked}).steps, 2);
+
+  // A sheet 1 × 1 and 0.003 thick on edges of about 0.1: resolving it takes an ℓ of about 0.003,
+  // 35 times finer, more than a run refines by itself.
+  const Mesh sheet = test::cad_plate(1, 1, 0.003, 10, 10);
+  for (const auto& [front_end, setting] : words) {
+    RunParameters q = p;
+    Mesh plate = sheet;
     try {
-      check_run_input(body, p, "body.off", front_end, run_input_limits(front_end, false));
-      ADD_FAILURE() << "the run should have refused the tail";
+      check_run_input(plate, q, "sheet.off", front_end, run_input_limits(front_end, false));
+      ADD_FAILURE() << "the run should have refused the sheet";
     } catch (const InvalidParameter& e) {
-      EXPECT_NE(std::string(e.what()).find(setting), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("only 0.0"), std::string::npos) << "how thin: " << e.what();
+      const std::string text = e.what();
+      EXPECT_NE(text.find(setting), std::string::npos) << text;
+      EXPECT_NE(text.find("only 0.003"), std::string::npos) << "how thin: " << text;
+      EXPECT_NE(text.find("more than a run refines by itself"), std::string::npos) << text;
     }
   }
-  // The same ℓ given explicitly: the check lets it through and the run goes on.
-  p.retriangulation.pipeline.edge_length = mean_edge_length(body);
-  EXPECT_NO_THROW(check_run_input(body, p, "body.off", FrontEnd::command_line,
-                                  run_input_limits(FrontEnd::command_line, false)));
-  test::TempDir dir;
-  p.output_dir = dir / "asked";
-  EXPECT_EQ(run_simulation(body, {.parameters = p}).steps, 2);
+  // A sheet 0.006 thick on a finer grid (edges of about 0.02): resolving it is 3–4 times finer, but
+  // the sheet would then have some 60 000 vertices, more than a run takes by itself.
+  RunParameters q = p;
+  Mesh fine_sheet = test::cad_plate(1, 1, 0.006, 60, 60);
+  try {
+    check_run_input(fine_sheet, q, "sheet.off", FrontEnd::command_line, run_input_limits(FrontEnd::command_line, false));
+    ADD_FAILURE() << "the run should have refused the sheet";
+  } catch (const InvalidParameter& e) {
+    EXPECT_NE(std::string(e.what()).find("more than a run takes by itself (50000)"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ResolutionCheck, a_thin_tail_the_run_resolves_is_evolved_not_cut_off)

@@ -18,7 +18,7 @@ constexpr std::array front_ends{FrontEnd::command_line, FrontEnd::python, FrontE
 
 //! The message check_run_input throws as `E`, or "" when it takes the run.
 template <class E>
-std::string refusal(const Mesh& mesh, const RunParameters& p, FrontEnd front_end, bool force = false)
+std::string refusal(const Mesh& mesh, RunParameters p, FrontEnd front_end, bool force = false)
 {
   try {
     Mesh refined = mesh;

@@ -3,6 +3,7 @@
 #include "sdflow/check/span.h"
 #include "sdflow/flow/substrate_boundary.h"
 #include "sdflow/geometry/measures.h"
+#include "sdflow/limits.h"
 #include "sdflow/log.h"
 #include "sdflow/retri/input_checks.h"
 #include "sdflow/run/coarse_input.h"
@@ -51,25 +52,54 @@ std::string dialog_setting(std::string_view key, std::string_view value)
   return value.empty() ? name : fmt::format("{} = {}", name, value);
 }
 
-//! The resolution check (resolution_check.h) at the run's ℓ: a part thinner than the finest edge of
-//! its sizing is refused, or only warned about when the user gave that ℓ.
-void check_resolution(const Mesh& mesh, RetriangulationOptions pipeline, const UserTerms& terms)
+//! How much finer than its mean edge length a run makes its ℓ by itself to resolve a thin part.
+//! The corpus's thin tails, legs and blades need 1.2–3 times (CGAL's camel.off 1.2, rotor_small.off
+//! 2.8); a part that needs more is sampled too coarsely to say what it is: a vertex pulled out into
+//! a spike 0.0067 thick on edges of 0.44 (tests/data/fuzz_run) asked for 18 times, and its run
+//! took 12 GB before it was stopped.
+constexpr double kThinPartMaxRefinement = 4;
+
+//! The resolution check (resolution_check.h) at the run's ℓ. A part thinner than the finest edge of
+//! its sizing is only warned about when the user gave that ℓ. With the automatic ℓ (the mean edge
+//! length) the run resolves it: it returns the ℓ that does, when that is at most
+//! kThinPartMaxRefinement times finer and the surface re-triangulated to it stays within
+//! kCoarseInputMaxVertices (estimated from its area); otherwise the part is refused with that ℓ,
+//! which the user may still give.
+std::optional<double> resolve_thin_parts(const Mesh& mesh, RetriangulationOptions pipeline, const UserTerms& terms)
 {
   const bool given = pipeline.edge_length > 0;
   if (!given)
     pipeline.edge_length = mean_edge_length(mesh);
   if (!(pipeline.edge_length > 0))
-    return; // a surface without edges is refused by the checks before this one
+    return std::nullopt; // a surface without edges is refused by the checks before this one
   const std::optional<ThinPart> thin = thinnest_unresolved_part(mesh, pipeline);
   if (!thin)
-    return;
+    return std::nullopt;
   const std::string what = describe_thin_part(*thin, pipeline.edge_length, terms);
-  if (!given)
-    throw InvalidParameter(fmt::format("{} (or give the coarser {} explicitly to run anyway)", what,
-                                       terms.name("retriangulation.edge_length")));
-  logger().warn("{}; running with the {} given", what, terms.name("retriangulation.edge_length"));
+  const std::string key = terms.name("retriangulation.edge_length");
+  if (given) {
+    logger().warn("{}; running with the {} given", what, key);
+    return std::nullopt;
+  }
+  const double ell = thin->resolving_edge_length;
+  const double vertices = estimated_vertices(surface_area(mesh), ell);
+  const double refinement = pipeline.edge_length / ell;
+  if (ell > 0 && refinement <= kThinPartMaxRefinement && vertices <= kCoarseInputMaxVertices) {
+    logger().info("{}: the run takes that ℓ = {:.2g} (about {:.0f} vertices) instead of the mean edge length {:.4g} "
+                  "(give {} to choose another)",
+                  what, ell, vertices, pipeline.edge_length, key);
+    return ell;
+  }
+  const std::string why =
+      refinement > kThinPartMaxRefinement
+          ? fmt::format("{:.3g} times finer than the surface's mean edge, more than a run refines by itself ({:g} "
+                        "times: the input samples the part too coarsely to say what it is)",
+                        refinement, kThinPartMaxRefinement)
+          : fmt::format("about {:.0f} vertices, more than a run takes by itself ({:.0f})", vertices,
+                        kCoarseInputMaxVertices);
+  throw InvalidParameter(fmt::format("{}, but that ℓ is {}: give that {} to run at it anyway, or a coarser one", what,
+                                     why, key));
 }
-
 } // namespace
 
 UserTerms run_input_terms(FrontEnd front_end)
@@ -112,7 +142,7 @@ SizeLimits run_input_limits(FrontEnd front_end, bool force)
   return limits;
 }
 
-void check_run_input(Mesh& mesh, const RunParameters& p, std::string_view source, FrontEnd front_end,
+void check_run_input(Mesh& mesh, RunParameters& p, std::string_view source, FrontEnd front_end,
                      const SizeLimits& limits)
 {
   const UserTerms terms = run_input_terms(front_end);
@@ -128,7 +158,8 @@ void check_run_input(Mesh& mesh, const RunParameters& p, std::string_view source
                         fmt::format("run with {}", terms.setting("retriangulation.edge_length", fmt::format("{}", ell))),
                         limits);
     check_retriangulation_input(mesh, p.retriangulation.pipeline, source, terms);
-    check_resolution(mesh, p.retriangulation.pipeline, terms);
+    if (const std::optional<double> resolving = resolve_thin_parts(mesh, p.retriangulation.pipeline, terms))
+      p.retriangulation.pipeline.edge_length = *resolving;
   }
   check_end_time(mesh, p.end_time, p.time_step.mode == TimeStepMode::constant ? p.time_step.tau : 0.0, limits, terms);
 }

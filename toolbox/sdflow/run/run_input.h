@@ -35,14 +35,15 @@ SizeLimits run_input_limits(FrontEnd front_end, bool force);
 //! components that cross themselves or each other (check_crossings), a film off its substrate
 //! (SubstrateBoundary::check_surface, with boundary = "substrate"), with re-triangulation on a
 //! remeshed size beyond the limits (check_remeshed_size) or a surface it cannot take
-//! (check_retriangulation_input, retri/input_checks.h) or a part thinner than its sizing resolves
-//! (resolution_check.h: refused when ℓ is the automatic one, a warning when it was given), and an
-//! absurd end time (check_end_time). With re-triangulation on and no ℓ given, a surface too coarse
-//! to re-triangulate at its mean edge length is first refined in place, exactly, to one the run
-//! takes (refine_coarse_input, coarse_input.h): the run then starts from the refined `mesh`, and
-//! the resolution check uses its ℓ. Throws InvalidMesh or InvalidParameter (exit 2 in the command
-//! line).
-void check_run_input(Mesh& mesh, const RunParameters& p, std::string_view source, FrontEnd front_end,
+//! (check_retriangulation_input, retri/input_checks.h), and an absurd end time (check_end_time).
+//! With re-triangulation on and no ℓ given, a surface too coarse to re-triangulate at its mean edge
+//! length is first refined in place, exactly, to one the run takes (refine_coarse_input,
+//! coarse_input.h): the run then starts from the refined `mesh`, and the resolution check uses its
+//! ℓ. A part thinner than the sizing resolves (resolution_check.h) is a warning when ℓ was given;
+//! with the automatic ℓ the run takes the ℓ that resolves it, set in `p` (the flow and run.toml
+//! use it), unless the surface would then exceed kCoarseInputMaxVertices: then it is refused.
+//! Throws InvalidMesh or InvalidParameter (exit 2 in the command line).
+void check_run_input(Mesh& mesh, RunParameters& p, std::string_view source, FrontEnd front_end,
                      const SizeLimits& limits);
 
 } // namespace sdflow
