@@ -115,8 +115,9 @@ TEST(ResolutionCheck, a_run_takes_the_edge_length_that_resolves_a_thin_part_with
   RunParameters p;
   p.steps = 2;
   p.snapshot_every = 0;
-  // A sizing that never refines below ℓ (the mean edge, about 0.09) cannot resolve the tail.
-  p.retriangulation.pipeline.min_edge_fraction = 1;
+  // A sizing that never refines below 0.7 ℓ (ℓ the mean edge, about 0.1) cannot resolve the tail,
+  // which asks for an ℓ less than 1.5 times finer.
+  p.retriangulation.pipeline.min_edge_fraction = 0.7;
   RetriangulationOptions at_mean = p.retriangulation.pipeline;
   at_mean.edge_length = mean_edge_length(body);
   const std::optional<ThinPart> thin = thinnest_unresolved_part(body, at_mean);
@@ -170,10 +171,11 @@ TEST(ResolutionCheck, a_run_takes_the_edge_length_that_resolves_a_thin_part_with
       EXPECT_NE(text.find("more than a run refines by itself"), std::string::npos) << text;
     }
   }
-  // A sheet 0.006 thick on a finer grid (edges of about 0.02): resolving it is 3–4 times finer, but
-  // the sheet would then have some 60 000 vertices, more than a run takes by itself.
+  // A sheet 1 × 1.25, 0.0052 thick on a fine grid (edges of about 0.01): resolving it is less than
+  // 1.5 times finer, but the sheet would then have some 55 000 vertices, more than a run takes by
+  // itself.
   RunParameters q = p;
-  Mesh fine_sheet = test::cad_plate(1, 1, 0.006, 60, 60);
+  Mesh fine_sheet = test::cad_plate(1, 1.25, 0.0052, 120, 150);
   try {
     check_run_input(fine_sheet, q, "sheet.off", FrontEnd::command_line, run_input_limits(FrontEnd::command_line, false));
     ADD_FAILURE() << "the run should have refused the sheet";
