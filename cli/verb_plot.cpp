@@ -106,7 +106,11 @@ void plot(const PlotArguments& a)
   const std::filesystem::path timings = dir / "timings.csv";
   const bool with_timings = std::filesystem::exists(timings);
   if (with_timings) {
-    // Cumulative wall time by stage against the step (timings.csv's columns, simulation.h).
+    // Cumulative wall time by stage against the step (timings.csv's columns, simulation.h); a run
+    // written before the `retriangulation_other` column has `output` one column earlier.
+    std::string header;
+    std::getline(std::ifstream(timings) >> std::ws, header);
+    const bool other_column = header.find("retriangulation_other") != std::string::npos;
     script += "unset logscale y\nunset arrow\nunset label\nset xlabel 'step'\nset key top left\n";
     script += fmt::format(
         "set output {}\nset title 'Wall time by stage, cumulative'\nset ylabel 'seconds'\n"
@@ -115,10 +119,11 @@ void plot(const PlotArguments& a)
         "'' using 1:6 skip 1 smooth cumulative linewidth 2 title 'solve', "
         "'' using 1:7 skip 1 smooth cumulative linewidth 2 title 'acceptance checks', "
         "'' using 1:8 skip 1 smooth cumulative linewidth 2 title 'intersection and quality check', "
-        "'' using 1:($9+$10+$11+$12+$13+$14+$15+$16) skip 1 smooth cumulative linewidth 2 title 're-triangulation', "
-        "'' using 1:17 skip 1 smooth cumulative linewidth 2 title 'output', "
+        "'' using 1:($9+$10+$11+$12+$13+$14+$15+$16{}) skip 1 smooth cumulative linewidth 2 title 're-triangulation', "
+        "'' using 1:{} skip 1 smooth cumulative linewidth 2 title 'output', "
         "'' using 1:2 skip 1 smooth cumulative linewidth 2 dashtype 2 linecolor rgb 'black' title 'total'\n",
-        gnuplot_quoted((out / "timings.png").string()), gnuplot_quoted(timings.string()));
+        gnuplot_quoted((out / "timings.png").string()), gnuplot_quoted(timings.string()), other_column ? "+$17" : "",
+        other_column ? 18 : 17);
   }
   const std::filesystem::path script_file = out / "plots.gnuplot";
   write_atomically(script_file, [&](std::ostream& s) { s << script; });

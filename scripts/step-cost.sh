@@ -21,11 +21,11 @@ run=$1 first=${2:-1} last=${3:-400}
 python3 - "$run/timings.csv" "$first" "$last" "$json" <<'EOF'
 import csv, json, statistics, sys
 path, first, last, as_json = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4] == "1"
-stages = ("merge", "remesh", "intersections", "normals", "reconstruction", "holes", "components", "volume_restoration")
+stages = ("merge", "remesh", "intersections", "normals", "reconstruction", "holes", "components", "volume_restoration", "retriangulation_other")
 rows = [r for r in csv.DictReader(open(path)) if first <= int(r["step"]) <= last]
 if not rows:
     sys.exit(f"step-cost.sh: no steps {first}..{last} in {path}")
-plain = [r for r in rows if all(float(r[s]) == 0 for s in stages)]
+plain = [r for r in rows if all(float(r.get(s) or 0) == 0 for s in stages)]  # runs before retriangulation_other lack it
 retri = [r for r in rows if r not in plain]
 mean = lambda key, rs: sum(float(r[key]) for r in rs) / len(rs)
 median = lambda key, rs: statistics.median(float(r[key]) for r in rs)

@@ -228,6 +228,34 @@ TEST(Simulation, a_run_without_the_energy_column_resumes_with_it)
   EXPECT_EQ(rows[5][energy_col], rows[5][area_col]);
 }
 
+// A run written before timings.csv had its `retriangulation_other` column resumes with the column
+// added, empty in the rows written before, the later columns where the header names them.
+TEST(Simulation, a_run_without_the_retriangulation_other_column_resumes_with_it)
+{
+  test::TempDir dir;
+  RunParameters p = constant_tau(dir / "run", 0.05, 4);
+  p.checkpoint_every = 2;
+  run_simulation(analytic::ellipsoid(2, 5, 4, 3), {.parameters = p});
+  std::string legacy = "step,total,operators,assembly,factorisation,solve,acceptance,retriangulation_check,merge,"
+                       "remesh,intersections,normals,reconstruction,holes,components,volume_restoration,output,"
+                       "other,cpu,side_by_side\n";
+  const auto written = read_metrics(dir / "run/timings.csv", timings_header, 21);
+  for (const auto& row : written) {
+    std::vector<std::string> fields = row;
+    fields.erase(fields.begin() + 16);
+    legacy += fmt::format("{}\n", fmt::join(fields, ","));
+  }
+  test::write_file(dir / "run/timings.csv", legacy);
+  p.steps = 6;
+  resume_simulation({.parameters = p});
+  const auto rows = read_metrics(dir / "run/timings.csv", timings_header, 21);
+  ASSERT_EQ(rows.size(), 6u);
+  EXPECT_EQ(rows[1][16], "") << "written before the column";
+  EXPECT_EQ(rows[1][17], written[1][17]) << "output stays in its column";
+  EXPECT_EQ(rows[1][20], written[1][20]) << "and side_by_side in its";
+  EXPECT_NE(rows[5][16], "");
+}
+
 TEST(Simulation, corrupt_checkpoint_is_refused)
 {
   test::TempDir dir;
@@ -249,19 +277,19 @@ TEST(Simulation, timings_csv_splits_each_steps_wall_time_by_stage)
   p.retriangulation.every = 3;
   run_simulation(analytic::ellipsoid(3, 5, 4, 3), {.parameters = p});
 
-  const auto rows = read_metrics(dir / "run/timings.csv", timings_header, 20);
+  const auto rows = read_metrics(dir / "run/timings.csv", timings_header, 21);
   ASSERT_EQ(rows.size(), 6u) << "one row per step, none for step 0";
   double solve = 0, cpu = 0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     SCOPED_TRACE(i + 1);
-    ASSERT_EQ(rows[i].size(), 20u);
+    ASSERT_EQ(rows[i].size(), 21u);
     EXPECT_EQ(rows[i][0], std::to_string(i + 1));
     double parts = 0;
-    for (std::size_t c = 2; c < 17; ++c) {
+    for (std::size_t c = 2; c < 18; ++c) {
       EXPECT_GE(column(rows[i], static_cast<int>(c)), 0.0) << "column " << c;
       parts += column(rows[i], static_cast<int>(c));
     }
-    const double total = column(rows[i], 1), other = column(rows[i], 17), side_by_side = column(rows[i], 19);
+    const double total = column(rows[i], 1), other = column(rows[i], 18), side_by_side = column(rows[i], 20);
     EXPECT_GE(side_by_side, 0.0);
     EXPECT_NEAR(parts + other, total + side_by_side, 1e-5)
         << "the stages and `other` make up the total and the seconds counted twice";
@@ -273,8 +301,8 @@ TEST(Simulation, timings_csv_splits_each_steps_wall_time_by_stage)
     else
       EXPECT_EQ(remesh, 0.0);
     solve += column(rows[i], 4) + column(rows[i], 5);
-    EXPECT_GE(column(rows[i], 18), 0.0) << "CPU seconds";
-    cpu += column(rows[i], 18);
+    EXPECT_GE(column(rows[i], 19), 0.0) << "CPU seconds";
+    cpu += column(rows[i], 19);
   }
   EXPECT_GT(solve, 0.0);
   EXPECT_GT(cpu, 0.0) << "the step's CPU time is recorded";

@@ -29,6 +29,7 @@ RetriangulationReport FlowHook::look(Mesh& mesh, long step, double time, bool fo
       tolerated_degraded_ = report.degraded_left;
     times.retriangulation_check += report.check_seconds;
     times.volume_restoration += report.volume_seconds;
+    times.retriangulation_other += report.other_seconds;
     auto& p = times.pipeline;
     const auto& q = report.pipeline_seconds;
     p.merge += q.merge;

@@ -396,6 +396,17 @@ bool only_debris_dropped(const TopologyCount& before, const TopologyCount& after
 constexpr double kFoldPatchRadius = 0.5;
 constexpr int kFoldAttempts = 2;
 
+//! Of `wall`, the seconds of a hook call, those that none of the report's parts counts: the local
+//! surgeries tried (and declined), the measures that judge a topology change, the stages of a
+//! pipeline that failed (RetriangulationReport::other_seconds).
+double unreported_seconds(const RetriangulationReport& r, double wall)
+{
+  const RetriangulationResult::Seconds& p = r.pipeline_seconds;
+  const double counted = r.check_seconds + r.volume_seconds + p.merge + p.remesh + p.intersections + p.normals +
+                         p.reconstruction + p.holes + p.components - p.side_by_side;
+  return std::max(0.0, wall - counted);
+}
+
 } // namespace
 
 std::string_view refusal_name(RefusalReason reason)
@@ -415,7 +426,7 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
   if (!(schedule.pipeline.edge_length > 0))
     throw InvalidParameter("the re-triangulation hook needs a resolved target edge length (> 0)");
   auto watch = std::make_shared<IntersectionWatch>();
-  return [schedule, watch](Mesh& mesh, const RetriangulationContext& context) {
+  const auto look = [schedule, watch](Mesh& mesh, const RetriangulationContext& context) {
     RetriangulationReport report;
     if (!context.force && context.step % schedule.every != 0)
       return report;
@@ -600,6 +611,12 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     report.detail = fmt::format("{}: {}{}{}{}; {} degraded elements left", verdict.reason, fallback,
                                 retriangulation_summary(r), topology_note, volume_note, report.degraded_left);
     mesh = std::move(r.mesh);
+    return report;
+  };
+  return [look](Mesh& mesh, const RetriangulationContext& context) {
+    const Stopwatch whole;
+    RetriangulationReport report = look(mesh, context);
+    report.other_seconds = unreported_seconds(report, whole.seconds());
     return report;
   };
 }

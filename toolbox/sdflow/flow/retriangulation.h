@@ -161,6 +161,9 @@ struct RetriangulationReport {
   //! self-intersections as `intersections`.
   RetriangulationResult::Seconds pipeline_seconds;
   double volume_seconds = 0; //!< of giving the components back their volume
+  //! The rest of the call's wall time: local surgeries tried (and declined), the measures that
+  //! judge a topology change, the stages of a pipeline that failed and was refused.
+  double other_seconds = 0;
   RetriangulationMeasures measures; //!< when it ran (also when `refused`)
   bool changed() const { return remeshed || surgery || split || merged || cleaned || touchdown || contact; }
 };

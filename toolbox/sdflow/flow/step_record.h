@@ -32,6 +32,8 @@ struct StepTimes {
   double retriangulation_check = 0; //!< the hook's look for self-intersections and degraded elements
   RetriangulationResult::Seconds pipeline; //!< the re-triangulation pipeline's stages, when it ran
   double volume_restoration = 0; //!< components given back their volume after re-triangulating
+  //! The re-triangulation's work outside the stages above (RetriangulationReport::other_seconds).
+  double retriangulation_other = 0;
   //! Seconds counted by two of the stages above at once, as they ran side by side on two threads:
   //! the pipeline's (RetriangulationResult::Seconds::side_by_side) and, for a step whose first
   //! trial was taken ahead, the time that trial ran beside the previous step's look at the surface.

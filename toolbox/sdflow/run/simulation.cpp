@@ -18,6 +18,7 @@
 #include <iterator>
 #include <optional>
 #include <sstream>
+#include <string_view>
 
 namespace sdflow {
 namespace {
@@ -61,6 +62,27 @@ std::string with_energy_column(const std::string& metrics)
   return text;
 }
 
+//! timings.csv's text with the `retriangulation_other` column, added empty to the rows of a file an
+//! earlier version wrote (its header lacks it; the column follows `volume_restoration`, the 16th).
+std::string with_retriangulation_other_column(const std::string& timings)
+{
+  constexpr std::string_view legacy =
+      "step,total,operators,assembly,factorisation,solve,acceptance,retriangulation_check,merge,remesh,"
+      "intersections,normals,reconstruction,holes,components,volume_restoration,output,other,cpu,side_by_side\n";
+  if (timings.rfind(legacy, 0) != 0)
+    return timings;
+  std::string text = std::string(timings_header) + '\n';
+  std::istringstream rows(timings.substr(legacy.size()));
+  for (std::string row; std::getline(rows, row);) {
+    std::size_t at = std::string::npos; // the 16th comma, after volume_restoration
+    for (std::size_t k = 0, from = 0; k < 16; ++k, from = at + 1)
+      if ((at = row.find(',', from)) == std::string::npos)
+        break;
+    text += at == std::string::npos ? row + '\n' : row.substr(0, at) + "," + row.substr(at) + '\n';
+  }
+  return text;
+}
+
 //! The stages' wall time summed over the steps of this process, for the line that ends a run.
 class TimingSummary {
 public:
@@ -68,7 +90,7 @@ public:
   {
     const auto& p = t.pipeline;
     const double re_triangulation = p.merge + p.remesh + p.intersections + p.normals + p.reconstruction + p.holes +
-                                    p.components + t.volume_restoration;
+                                    p.components + t.volume_restoration + t.retriangulation_other;
     const double parts[] = {t.operators, t.assembly, t.factorisation, t.solve, t.acceptance,
                             t.retriangulation_check, re_triangulation, output};
     for (std::size_t i = 0; i < std::size(parts); ++i)
@@ -161,8 +183,9 @@ public:
   {
     snapshots_ = checkpoint.snapshots;
     metrics_ = with_energy_column(read_truncated(dir_ / "metrics.csv", "", flow.steps(), true));
-    timings_ = std::filesystem::exists(dir_ / "timings.csv") ? read_truncated(dir_ / "timings.csv", "", flow.steps(), true)
-                                                              : std::string(timings_header) + '\n';
+    timings_ = std::filesystem::exists(dir_ / "timings.csv")
+                   ? with_retriangulation_other_column(read_truncated(dir_ / "timings.csv", "", flow.steps(), true))
+                   : std::string(timings_header) + '\n';
     events_ = read_truncated(dir_ / "events.log", "step ", flow.steps(), false);
     write_atomically(dir_ / "run.toml", [&](std::ostream& out) { out << run_parameters_toml(with_flow_options(run_, flow.options())); });
     log_event(flow, fmt::format("resumed from the checkpoint at t = {}", flow.time()));
@@ -341,12 +364,13 @@ std::string timings_row(long step, const StepTimes& t, double output)
   const double total = t.total + output;
   const double other = total + t.side_by_side - (t.operators + t.assembly + t.factorisation + t.solve + t.acceptance +
                                 t.retriangulation_check + p.merge + p.remesh + p.intersections + p.normals +
-                                p.reconstruction + p.holes + p.components + t.volume_restoration + output);
+                                p.reconstruction + p.holes + p.components + t.volume_restoration +
+                                t.retriangulation_other + output);
   return fmt::format("{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},"
-                     "{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}\n",
+                     "{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}\n",
                      step, total, t.operators, t.assembly, t.factorisation, t.solve, t.acceptance,
                      t.retriangulation_check, p.merge, p.remesh, p.intersections, p.normals, p.reconstruction, p.holes,
-                     p.components, t.volume_restoration, output, other, t.cpu, t.side_by_side);
+                     p.components, t.volume_restoration, t.retriangulation_other, output, other, t.cpu, t.side_by_side);
 }
 
 SimulationResult run_simulation(const Mesh& initial, const SimulationOptions& options)

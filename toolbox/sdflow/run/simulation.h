@@ -47,7 +47,8 @@ std::string metrics_row(long step, double time, double tau, const FlowMetrics& m
 //! total + side_by_side, and `other` is never negative.
 inline constexpr const char* timings_header =
     "step,total,operators,assembly,factorisation,solve,acceptance,retriangulation_check,merge,remesh,"
-    "intersections,normals,reconstruction,holes,components,volume_restoration,output,other,cpu,side_by_side";
+    "intersections,normals,reconstruction,holes,components,volume_restoration,retriangulation_other,output,other,cpu,"
+    "side_by_side";
 
 //! One line of timings.csv (with its newline); `output` is the time spent writing the run's files.
 std::string timings_row(long step, const StepTimes& times, double output);
