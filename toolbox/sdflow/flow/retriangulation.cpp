@@ -260,6 +260,7 @@ std::optional<Mesh> remesh_degraded_region(const Mesh& mesh, Verdict& verdict, c
   if (counted.pairs > 0) {
     fallback = fmt::format("the local remeshing left {} intersecting face pairs, so the whole pipeline ran; ",
                            counted.pairs);
+    report.measures = {}; // of a surface given up
     return std::nullopt;
   }
   report.remeshed = report.local = true;
@@ -312,10 +313,11 @@ constexpr double kFailedStepPatchShare = 0.5;
 //! region around the vertices where it failed (their stars and one ring more, at most
 //! kFailedStepPatchShare of the surface) and give it back its volume. One ring, not the
 //! kLocalRemeshRings of worn regions: on a thin CAD plate three rings reach round its sharp rim,
-//! whose remeshing crosses the other side (the test's plate: 10 pairs), where one ring does not. The result is taken when it keeps the topology and
-//! crosses itself in no more face pairs than the surface did; else the caller runs the whole
-//! pipeline, as before (`fallback` says why). On a CAD part the whole pipeline is often refused
-//! (it would cut thin walls the flow has not closed), which left the step with no surface to go on.
+//! whose remeshing crosses the other side (the test's plate: 10 pairs), where one ring does not.
+//! The result is taken when it keeps the topology and crosses itself in no more face pairs than
+//! the surface did; else the caller runs the whole pipeline, as before (`fallback` says why). On a
+//! CAD part the whole pipeline is often refused (it would cut thin walls the flow has not closed),
+//! which left the step with no surface to go on.
 std::optional<Mesh> remesh_where_step_failed(const Mesh& mesh, const std::vector<int>& failed,
                                              const RetriangulationSchedule& s, IntersectionWatch& watch,
                                              RetriangulationReport& report, std::string& fallback)
@@ -360,6 +362,7 @@ std::optional<Mesh> remesh_where_step_failed(const Mesh& mesh, const std::vector
     fallback = fmt::format("the remeshing around the {} vertices where the step failed left {} intersecting face "
                            "pairs (the surface had {}), so the whole pipeline ran; ",
                            failed.size(), counted.pairs, pairs_before);
+    report.measures = {}; // of a surface given up
     return std::nullopt;
   }
   report.remeshed = report.local = true;
@@ -376,7 +379,6 @@ std::optional<Mesh> remesh_where_step_failed(const Mesh& mesh, const std::vector
                               r.statistics.collapses, r.statistics.flips, volume_note, report.degraded_left);
   return std::move(r.mesh);
 }
-
 
 //! Whether the change from `before` to `after` is only stage 6's clean-up: whole components below
 //! the minimum size dropped as debris (a choice the user makes with min_component_faces, whose

@@ -203,7 +203,7 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
     } catch (const TimeStepTooLarge&) {
       throw; // a smaller τ is needed, not a new surface or adaptive steps in its place
     } catch (const TrianglesTurning& e) {
-      // Re-triangulated (once a step), the step starts again; refused, τ shrinks on as the rule asks.
+      // Re-triangulated (at most twice a step), the step starts again; refused, τ shrinks on as the rule asks.
       controller.forget_turning();
       retriangulated(e.what(), e.vertices);
       continue;
