@@ -42,10 +42,11 @@ TEST(KeptBoundarySizing, the_floor_is_the_boundary_edge_at_the_boundary_and_fade
   for (const auto v : disk.vertices()) {
     const double from_rim = 1 - disk.point(v).norm();
     SCOPED_TRACE(from_rim);
-    if (from_rim >= rim_edge)
+    if (from_rim >= rim_edge) {
       EXPECT_EQ(targets[v.idx()], kTinyTarget); // beyond one edge: untouched
-    else if (!disk.is_boundary(v))
+    } else if (!disk.is_boundary(v)) {
       EXPECT_LE(targets[v.idx()], rim_edge - from_rim + 1e-12); // fading with the distance
+    }
   }
   // Larger targets stay as they are: it is a floor.
   std::vector<double> large(disk.n_vertices(), 10.0);
