@@ -13,9 +13,9 @@ namespace {
 TEST(WindingNumber, is_one_inside_a_sphere_and_zero_outside)
 {
   const Bvh tree(analytic::icosphere(3));
-  for (const Eigen::Vector3d p : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.5, 0.2, -0.3), Eigen::Vector3d(-0.9, 0, 0)})
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.5, 0.2, -0.3), Eigen::Vector3d(-0.9, 0, 0)})
     EXPECT_EQ(winding_number(tree, p), 1) << p.transpose();
-  for (const Eigen::Vector3d p : {Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(0, 0, -1.5), Eigen::Vector3d(-3, 1, 1)})
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(0, 0, -1.5), Eigen::Vector3d(-3, 1, 1)})
     EXPECT_EQ(winding_number(tree, p), 0) << p.transpose();
 }
 

@@ -297,9 +297,8 @@ std::vector<int> faces_around(const Mesh& mesh, const std::vector<int>& vertices
     for (const Mesh::FaceHandle f : mesh.vf_range(mesh.vertex_handle(static_cast<unsigned>(v))))
       faces.push_back(f.idx());
   }
-  std::ranges::sort(faces);
-  const auto repeated = std::ranges::unique(faces);
-  faces.erase(repeated.begin(), repeated.end());
+  std::sort(faces.begin(), faces.end()); // not std::ranges: clang with GCC 12's library rejects ranges::unique
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
   return faces;
 }
 

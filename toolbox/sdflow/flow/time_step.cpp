@@ -342,9 +342,8 @@ StepCheck check_trial(const TrialMotion& trial, const AdaptiveOptions& bounds, b
         if (trial.tau * std::abs(trial.w[v]) > bounds.max_displacement * trial.edge_lengths[v])
           c.failed_vertices.push_back(static_cast<int>(v));
   }
-  std::ranges::sort(c.failed_vertices);
-  const auto repeated = std::ranges::unique(c.failed_vertices);
-  c.failed_vertices.erase(repeated.begin(), repeated.end());
+  std::sort(c.failed_vertices.begin(), c.failed_vertices.end()); // not std::ranges: clang with GCC 12's library rejects ranges::unique
+  c.failed_vertices.erase(std::unique(c.failed_vertices.begin(), c.failed_vertices.end()), c.failed_vertices.end());
   return c;
 }
 

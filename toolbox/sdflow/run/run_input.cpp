@@ -94,13 +94,14 @@ std::optional<double> resolve_thin_parts(const Mesh& mesh, RetriangulationOption
   const std::string why =
       refinement > kThinPartMaxRefinement
           ? fmt::format("{:.3g} times finer than the surface's mean edge, more than a run refines by itself ({:g} "
-                        "times: the input samples the part too coarsely to say what it is)",
+                        "times)",
                         refinement, kThinPartMaxRefinement)
           : fmt::format("about {:.0f} vertices, more than a run takes by itself ({:.0f})", vertices,
                         kCoarseInputMaxVertices);
   throw InvalidParameter(fmt::format("{}, but that ℓ is {}: give that {} to run at it anyway, or a coarser one", what,
                                      why, key));
 }
+
 } // namespace
 
 UserTerms run_input_terms(FrontEnd front_end)
