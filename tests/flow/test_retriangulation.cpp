@@ -562,6 +562,7 @@ TEST(RetriangulationHook, a_remeshing_refused_with_nothing_rebuilt_is_reported_w
     noted = noted || note.text.find("re-triangulation refused (remeshing-crossed)") != std::string::npos;
   EXPECT_TRUE(noted) << "events.log gets the refusal";
 }
+
 //! A step that no τ makes acceptable on a thin CAD plate (whose whole-surface remeshing is refused,
 //! above) fails at a sliver: the forced call remeshes around the vertices where it failed and keeps
 //! the rest of the surface, where before it ran the whole pipeline, was refused and the run stopped
