@@ -626,10 +626,6 @@ TEST(RetriangulationHook, a_pipeline_that_keeps_nothing_is_refused_and_the_surfa
   EXPECT_NE(report.detail.find("nothing is left"), std::string::npos) << report.detail;
   EXPECT_EQ(vertex_positions(mesh), vertex_positions(sphere)) << "a refusal keeps the surface as it was";
   EXPECT_EQ(face_indices(mesh), face_indices(sphere));
-  // The pipeline ran (its remeshing and rebuild) before it failed: its time is the call's `other`,
-  // which the run's time by stage counts under re-triangulation (on CGAL's elk.off such refusals,
-  // uncounted, made 72% of the run's time "other").
-  EXPECT_GT(report.other_seconds, 0.0);
 }
 
 //! A tetrahedron (4 faces, below the clean-up's 16) of edge `size` at `corner`, outward oriented.
