@@ -10,6 +10,7 @@
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/expression.h"
 #include "sdflow/shapes/mesher.h"
+#include "sdflow/spatial/intersect.h"
 #include "support/analytic_meshes.h"
 #include "support/test_meshes.h"
 
@@ -491,6 +492,38 @@ TEST(RetriangulationHook, a_pinch_is_measured_on_the_surface_the_step_started_fr
   const RetriangulationReport unmeasured = make_retriangulation_hook(schedule)(alone, {.step = 1});
   EXPECT_NE(unmeasured.detail.find("before the re-triangulation"), std::string::npos) << unmeasured.detail;
   EXPECT_EQ(face_indices(stepped), face_indices(alone)) << "the start changes what is logged, not what is done";
+}
+
+//! When the surgery and the whole pipeline both fail at a crossing (here: more jet neighbours than
+//! any patch or the surface has points, so every reconstruction throws), the crossing is capped
+//! instead of being left to grow: the pinched capsule still breaks in two, logged with its neck.
+TEST(RetriangulationHook, a_crossing_no_rebuild_can_undo_is_capped)
+{
+  RetriangulationSchedule schedule;
+  schedule.pipeline.edge_length = 0.3;
+  schedule.pipeline.normals.neighbours = 50000;
+  const VertexVectors start = vertex_positions(pinched_capsule(0.95));
+  Mesh crossed = pinched_capsule();
+  const double volume = enclosed_volume(crossed);
+  const RetriangulationReport report = make_retriangulation_hook(schedule)(crossed, {.step = 1, .step_start = &start});
+  EXPECT_FALSE(report.refused) << report.detail;
+  EXPECT_TRUE(report.surgery);
+  EXPECT_TRUE(report.split);
+  EXPECT_NE(report.detail.find("so the crossings were capped"), std::string::npos) << report.detail;
+  EXPECT_NE(report.detail.find("2 cut loops capped"), std::string::npos) << report.detail;
+  EXPECT_EQ(component_topology(crossed).size(), 2u);
+  EXPECT_TRUE(self_intersections(crossed).empty());
+  EXPECT_GT(report.measures.crossing_size, 0.05) << report.detail;
+  EXPECT_LT(report.measures.crossing_size, 0.25) << report.detail;
+  EXPECT_NEAR(enclosed_volume(crossed), volume, 1e-6 * volume) << "the volume is given back";
+
+  // The paper's preset leaves the crossing as it was, refused.
+  schedule.local_surgery = false;
+  schedule.pipeline.refinement_rounds = 0;
+  Mesh paper = pinched_capsule();
+  const RetriangulationReport refused = make_retriangulation_hook(schedule)(paper, {.step = 1});
+  EXPECT_TRUE(refused.refused) << refused.detail;
+  EXPECT_EQ(refused.detail.find("capped"), std::string::npos) << refused.detail;
 }
 
 TEST(RetriangulationHook, touching_components_fall_back_to_the_whole_pipeline_and_say_so)

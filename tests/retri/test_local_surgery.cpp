@@ -360,5 +360,86 @@ TEST(LocalSurgery, nothing_to_do_without_crossings_and_bad_options_are_refused)
   EXPECT_THROW(local_surgery(sphere, {}, {}, {.max_patch_fraction = 1.5}), InvalidParameter);
 }
 
+
+//! The capped surgery of one intersecting surface (capped_surgery): components and genera
+//! `expected`, a valid surface without crossings, far faces kept bit for bit, the caps' loops
+//! counted, and the enclosed volume within `volume_tolerance` of the input's.
+void expect_capped_outcome(const Mesh& crossed, const RetriangulationOptions& options,
+                           const std::vector<std::pair<bool, int>>& expected, int cut_loops, double volume_tolerance)
+{
+  const std::vector<FacePair> crossings = self_intersections(crossed);
+  ASSERT_FALSE(crossings.empty()) << "the fixture must intersect itself";
+  const LocalSurgery capped = capped_surgery(crossed, crossings, options, {.patch_radius = 0.5});
+  ASSERT_TRUE(capped.result.has_value()) << capped.failure;
+  const RetriangulationResult& r = *capped.result;
+  EXPECT_EQ(outcome(r.mesh), expected);
+  EXPECT_EQ(r.filled_holes, cut_loops);
+  EXPECT_EQ(r.intersecting_pairs, static_cast<int>(crossings.size()));
+  EXPECT_EQ(checks::self_intersecting_pairs(r.mesh), 0);
+  EXPECT_TRUE(checks::is_two_manifold(r.mesh));
+  const double ell = options.edge_length > 0 ? options.edge_length : mean_edge_length(crossed);
+  const FarFaces far = far_faces_kept(crossed, crossings, r.mesh, capped.patch_radius + 3 * ell);
+  EXPECT_GT(far.far, static_cast<int>(crossed.n_faces()) / 2);
+  EXPECT_EQ(far.kept, far.far);
+  EXPECT_NEAR(enclosed_volume(r.mesh), enclosed_volume(crossed), volume_tolerance * enclosed_volume(crossed));
+}
+
+TEST(CappedSurgery, a_capsule_pinched_through_its_middle_is_capped_into_two_bodies)
+{
+  // The neck's band is cut by two loops; a cap on each is the pinch-off, whatever the points inside.
+  const Mesh crossed =
+      test::mapped(capsule(9), [](const Eigen::Vector3d& p) { return pinched(p, 0.1, 1.2, 1.3); });
+  expect_capped_outcome(crossed, {}, {{true, 0}, {true, 0}}, 2, 0.02);
+}
+
+TEST(CappedSurgery, a_dent_pushed_through_the_far_side_is_flattened_into_one_body)
+{
+  // A sphere of radius 1 whose cap around the north pole is pushed down through the south pole's
+  // sheet by 0.1: the crossing is a fold, cut by one loop on each sheet, and capping keeps one
+  // body of genus 0.
+  const Mesh sphere = analytic::icosphere(4, 1.0);
+  const Mesh crossed = test::mapped(sphere, [](const Eigen::Vector3d& p) {
+    const double r = std::hypot(p.x(), p.y());
+    if (p.z() < 0 || r > 0.3)
+      return p;
+    const double depth = 2.1 * (1 - r * r / 0.09);
+    return Eigen::Vector3d(p.x(), p.y(), p.z() - depth);
+  });
+  const LocalSurgery capped = capped_surgery(crossed, self_intersections(crossed), {}, {.patch_radius = 0.5});
+  ASSERT_TRUE(capped.result.has_value()) << capped.failure;
+  EXPECT_EQ(checks::self_intersecting_pairs(capped.result->mesh), 0);
+  EXPECT_TRUE(checks::is_two_manifold(capped.result->mesh));
+  EXPECT_EQ(outcome(capped.result->mesh), (std::vector<std::pair<bool, int>>{{true, 0}}));
+  EXPECT_GE(capped.result->filled_holes, 1);
+}
+
+TEST(CappedSurgery, declines_as_the_local_surgery_does)
+{
+  const Mesh touching = analytic::disjoint_union(analytic::icosphere(3, 1.0, {-0.6, 0, 0}),
+                                                 analytic::icosphere(3, 1.0, {0.6, 0, 0}));
+  const LocalSurgery capped = capped_surgery(touching, self_intersections(touching), {.edge_length = 0.1});
+  EXPECT_FALSE(capped.result.has_value());
+  EXPECT_NE(capped.failure.find("components intersect"), std::string::npos) << capped.failure;
+  EXPECT_FALSE(capped_surgery(analytic::icosphere(2), {}, {}).result.has_value());
+}
+
+
+TEST(CappedSurgery, a_small_body_crossing_itself_with_no_cut_is_dropped_as_debris)
+{
+  // A sphere of radius 1 beside a small one (radius 0.25) whose cap is pushed through its far side:
+  // the patch takes the whole small body, which capping drops (its volume then goes to the debris).
+  const Mesh small = test::mapped(analytic::icosphere(2, 0.25, {3, 0, 0}), [](const Eigen::Vector3d& p) {
+    return p.x() > 3.1 ? Eigen::Vector3d(p.x() - 0.45, p.y(), p.z()) : p;
+  });
+  const Mesh crossed = analytic::disjoint_union(analytic::icosphere(3, 1.0), small);
+  const std::vector<FacePair> crossings = self_intersections(crossed);
+  ASSERT_FALSE(crossings.empty());
+  const LocalSurgery capped = capped_surgery(crossed, crossings, {.edge_length = 0.2}, {.patch_radius = 0.5});
+  ASSERT_TRUE(capped.result.has_value()) << capped.failure;
+  EXPECT_EQ(capped.result->dropped_components, 1);
+  EXPECT_EQ(outcome(capped.result->mesh), (std::vector<std::pair<bool, int>>{{true, 0}}));
+  EXPECT_EQ(capped.result->mesh.n_faces(), analytic::icosphere(3, 1.0).n_faces());
+}
+
 } // namespace
 } // namespace sdflow

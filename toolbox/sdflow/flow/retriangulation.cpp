@@ -397,6 +397,96 @@ bool only_debris_dropped(const TopologyCount& before, const TopologyCount& after
 constexpr double kFoldPatchRadius = 0.5;
 constexpr int kFoldAttempts = 2;
 
+//! The largest relative change of the material volume (debris included) that a re-triangulation
+//! at crossings may make before each body is given its volume back. The validation's surgeries
+//! change it by at most 7·10⁻⁴ and the corpus's by 10⁻²; a rebuild that filled a thin bowl solid
+//! (CGAL's turbine.off) by 0.89.
+constexpr double kMaxVolumeChangeAtCrossing = 0.05;
+
+//! The narrowest neck or gap within 2 ℓ of the crossings (crossing_width.h), and how it was measured.
+struct CrossingSize {
+  double size = 0;
+  std::string text; //!< for events.log
+};
+
+//! The size at which the flow closed the neck or gap that crossed: measured as the step found it
+//! when the context gives the step's start (on the crossed surface the walls have already passed
+//! through each other), else before the re-triangulation. Infinite without crossings (only the
+//! paper's pipeline, refinement_rounds = 0, changes topology there).
+CrossingSize crossing_size(const Mesh& mesh, const std::vector<FacePair>& crossings, double ell,
+                           const RetriangulationContext& context)
+{
+  const double width = crossings.empty() ? std::numeric_limits<double>::infinity() : crossing_width(mesh, crossings, ell);
+  if (context.step_start && !crossings.empty()) {
+    Mesh start = mesh;
+    set_vertex_positions(start, *context.step_start);
+    const double at_start = crossing_width(start, crossings, ell);
+    return {at_start, fmt::format("the narrowest neck or gap within 2 ℓ of them {:.3g} = {:.3g} ℓ at the start of the "
+                                  "step that crossed ({:.3g} ℓ after it)",
+                                  at_start, at_start / ell, width / ell)};
+  }
+  return {width, fmt::format("the narrowest neck or gap within 2 ℓ of them {:.3g} = {:.3g} ℓ before the "
+                             "re-triangulation",
+                             width, width / ell)};
+}
+
+//! Where the surface crosses itself and every rebuild was refused or failed (`report`, refused):
+//! the crossings' patches capped instead (capped_surgery, local_surgery.h), taken when the change
+//! of topology it makes is located at the crossings (explain_topology_change). Otherwise the
+//! surface keeps its triangles and the crossing, as before, and the report says why capping did
+//! not help. The run would go on crossed, and a crossing left in place grows step by step until no
+//! step can be taken (CGAL's elk.off and turbine.off ended so, with exit 3).
+void cap_crossings_instead(Mesh& mesh, const std::vector<FacePair>& crossings, const std::string& reason,
+                           const RetriangulationSchedule& s, const RetriangulationContext& context,
+                           RetriangulationReport& report)
+{
+  const double ell = s.pipeline.edge_length;
+  const LocalSurgery capped = capped_surgery(mesh, crossings, s.pipeline, {.patch_radius = kFoldPatchRadius});
+  if (!capped.result) {
+    report.detail += fmt::format("; capping the crossings instead failed ({})", capped.failure);
+    return;
+  }
+  RetriangulationResult r = *capped.result;
+  const TopologyCount before = count_topology(mesh), after = count_topology(r.mesh);
+  std::string topology_note;
+  RetriangulationMeasures measured;
+  measured.crossing_pairs = static_cast<long>(crossings.size());
+  measured.before = before;
+  measured.after = after;
+  measured.faces_before = static_cast<long>(mesh.n_faces());
+  measured.faces_after = static_cast<long>(r.mesh.n_faces());
+  measured.faces_rebuilt = r.patch_faces;
+  if (!(before == after) && !only_debris_dropped(before, after, r)) {
+    const TopologyGuardVerdict located = explain_topology_change(
+        mesh, r.mesh, crossings, ell,
+        {.min_faces = s.pipeline.min_component_faces, .min_thickness = s.pipeline.min_component_thickness * ell});
+    if (!located.explained) {
+      report.detail += fmt::format("; capping the crossings instead would change the topology ({}) beyond them ({})",
+                                   describe_change(before, after), located.reason);
+      return;
+    }
+    const CrossingSize width = crossing_size(mesh, crossings, ell, context);
+    measured.crossing_size = width.size;
+    topology_note = fmt::format("; topology changed ({}) where the flow's surface crossed itself ({} face pairs, {})",
+                                describe_change(before, after), crossings.size(), width.text);
+  }
+  const std::string refusal{refusal_name(report.refusal)};
+  report = RetriangulationReport{.check_seconds = report.check_seconds, .pipeline_seconds = report.pipeline_seconds};
+  report.measures = measured;
+  Stopwatch volume;
+  const std::string volume_note = s.restore_volume ? restore_volume(mesh, r.mesh, report.measures) : std::string{};
+  report.volume_seconds = volume.seconds();
+  report.surgery = true;
+  report.split = r.components_after > r.components_before;
+  report.cleaned = r.dropped_components > 0;
+  report.degraded_left = degraded_elements(r.mesh, s).total();
+  report.detail = fmt::format("{}: every rebuild was refused or failed ({}), so the crossings were capped: a patch of "
+                              "{} faces within {:.3g} ℓ of them, {} cut loops capped (Liepa){}{}; {} degraded elements left",
+                              reason, refusal, r.patch_faces, capped.patch_radius / ell, r.filled_holes, topology_note,
+                              volume_note, report.degraded_left);
+  mesh = std::move(r.mesh);
+}
+
 //! Of `wall`, the seconds of a hook call, those that none of the report's parts counts: the local
 //! surgeries tried (and declined), the measures that judge a topology change, the stages of a
 //! pipeline that failed (RetriangulationReport::other_seconds).
@@ -418,6 +508,7 @@ std::string_view refusal_name(RefusalReason reason)
   case RefusalReason::remeshing_crossed: return "remeshing-crossed";
   case RefusalReason::topology_beyond_crossings: return "topology-beyond-crossings";
   case RefusalReason::nothing_kept: return "nothing-kept";
+  case RefusalReason::volume_not_kept: return "volume-not-kept";
   }
   return "unknown";
 }
@@ -442,6 +533,12 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
       return report;
     if (context.changing)
       context.changing();
+    // A rebuild refused or failed where the surface crosses itself: the crossings capped instead.
+    const auto capped_if_crossed = [&](RetriangulationReport& refused) {
+      if (verdict.intersecting && verdict.watched && schedule.local_surgery && schedule.pipeline.refinement_rounds > 0)
+        cap_crossings_instead(mesh, watch->pairs(), verdict.reason, schedule, context, refused);
+      return refused;
+    };
     std::string fallback;
     if (context.force && schedule.local && schedule.pipeline.remesh_iterations > 0 && !context.failed_vertices.empty()) {
       if (std::optional<Mesh> remeshed =
@@ -467,19 +564,26 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     // The watch's pairs are this surface's unless a local remeshing gave it another one to count;
     // so are the look's curvature targets, found when it does not intersect.
     const bool pairs_known = verdict.watched;
+    // A pipeline that leaves no surface to keep (every component debris, a rebuild that is not a
+    // valid surface) or whose stage refuses what it is given (fewer points than a neighbourhood).
+    const auto nothing_kept = [&](const char* why) {
+      report.refused = true;
+      report.refusal = RefusalReason::nothing_kept;
+      report.degraded_left = degraded_elements(mesh, schedule).total();
+      report.detail = fmt::format("{}: {}refused: the re-triangulation left no surface to keep ({}), so the surface "
+                                  "keeps its triangles; {} degraded elements left",
+                                  verdict.reason, fallback, why, report.degraded_left);
+      return capped_if_crossed(report);
+    };
     RetriangulationResult r;
     try {
       r = surgery       ? std::move(*surgery)
           : pairs_known ? retriangulate(mesh, schedule.pipeline, watch->pairs(), verdict.degraded.targets)
                         : retriangulate(mesh, schedule.pipeline);
     } catch (const InvalidMesh& e) {
-      report.refused = true;
-      report.refusal = RefusalReason::nothing_kept;
-      report.degraded_left = degraded_elements(mesh, schedule).total();
-      report.detail = fmt::format("{}: {}refused: the re-triangulation left no surface to keep ({}), so the surface "
-                                  "keeps its triangles; {} degraded elements left",
-                                  verdict.reason, fallback, e.what(), report.degraded_left);
-      return report;
+      return nothing_kept(e.what());
+    } catch (const InvalidParameter& e) {
+      return nothing_kept(e.what());
     }
     const RetriangulationResult::Seconds local = report.pipeline_seconds; // of a local remeshing given up
     report.pipeline_seconds = r.seconds;
@@ -522,27 +626,10 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
       // drawn through its axis or a gap closed cannot be undone so: cutting out the crossing walls
       // parts them whatever the patch.
       const double ell = schedule.pipeline.edge_length;
-      // (Without crossings only the paper's pipeline, refinement_rounds = 0, gets here.)
-      const double width =
-          crossings.empty() ? std::numeric_limits<double>::infinity() : crossing_width(mesh, crossings, ell);
-      // Where the surface crossed, the neck or gap it closed is measured as the step found it: on the
-      // crossed surface the walls have already passed through each other.
-      std::optional<double> width_at_start;
-      if (context.step_start && !crossings.empty()) {
-        Mesh start = mesh;
-        set_vertex_positions(start, *context.step_start);
-        width_at_start = crossing_width(start, crossings, ell);
-      }
+      const CrossingSize width = crossing_size(mesh, crossings, ell, context);
       measured.crossing_pairs = static_cast<long>(crossings.size());
-      measured.crossing_size = width_at_start ? *width_at_start : width;
-      const std::string measured_width =
-          width_at_start
-              ? fmt::format("the narrowest neck or gap within 2 ℓ of them {:.3g} = {:.3g} ℓ at the start of the step "
-                            "that crossed ({:.3g} ℓ after it)",
-                            *width_at_start, *width_at_start / ell, width / ell)
-              : fmt::format("the narrowest neck or gap within 2 ℓ of them {:.3g} = {:.3g} ℓ before the "
-                            "re-triangulation",
-                            width, width / ell);
+      measured.crossing_size = width.size;
+      const std::string& measured_width = width.text;
       std::optional<LocalSurgery> fold;
       if (schedule.pipeline.refinement_rounds > 0 && !crossings.empty())
         fold = local_surgery(mesh, crossings, schedule.pipeline,
@@ -577,7 +664,7 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
                                         verdict.reason, fallback, retriangulation_summary(r),
                                         describe_change(topology_before, topology_after), crossings.size(),
                                         located.reason, report.degraded_left);
-            return report;
+            return capped_if_crossed(report);
           }
         }
         const std::string needed =
@@ -598,11 +685,27 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
       report.detail = fmt::format("{}: {}{}; refused: nothing was rebuilt, so the surface keeps its triangles; {} "
                                   "degraded elements left",
                                   verdict.reason, fallback, retriangulation_summary(r), report.degraded_left);
-      return report;
+      return capped_if_crossed(report);
     }
+    const double volume_before = verdict.intersecting ? material_volume(mesh) : 0;
+    const double rebuilt_volume = verdict.intersecting ? material_volume(r.mesh) : 0;
     const std::string volume_note =
         schedule.restore_volume ? restore_volume(mesh, r.mesh, report.measures) : std::string{};
     report.volume_seconds += stopwatch.seconds();
+    // Bodies that overlapped and were joined lose the overlap's volume, which they counted twice.
+    if (verdict.intersecting && schedule.pipeline.refinement_rounds > 0 && r.merged_components == 0 &&
+        std::abs(rebuilt_volume + report.measures.debris_volume - volume_before) >
+            kMaxVolumeChangeAtCrossing * std::abs(volume_before)) {
+      report.refused = true;
+      report.refusal = RefusalReason::volume_not_kept;
+      report.degraded_left = degraded_elements(mesh, schedule).total();
+      report.detail = fmt::format("{}: {}{}{}; refused: the rebuild changed the material volume from {:.6g} to {:.6g} "
+                                  "(debris included), more than a surgery at the crossings does, so the surface keeps "
+                                  "its triangles; {} degraded elements left",
+                                  verdict.reason, fallback, retriangulation_summary(r), topology_note, volume_before,
+                                  rebuilt_volume + report.measures.debris_volume, report.degraded_left);
+      return capped_if_crossed(report);
+    }
     report.remeshed = schedule.pipeline.remesh_iterations > 0 && !r.remeshing_refused;
     report.surgery = r.rebuilt;
     report.split = r.components_after > r.components_before - r.merged_components;

@@ -134,6 +134,10 @@ enum class RefusalReason {
   //! The pipeline left no surface it could keep (every component dropped as debris, or a rebuild
   //! that is not a valid surface): the flow keeps each body's volume, so that is never its change.
   nothing_kept,
+  //! Where the surface crossed itself, the rebuild changed the volume of the bodies it kept by more
+  //! than a twentieth (before each was given its volume back): not a surgery at the crossings but
+  //! a different body (CGAL's turbine.off, a thin bowl, was rebuilt solid, 1.9 times its volume).
+  volume_not_kept,
 };
 
 //! The name events.log, metrics and Python use for `reason` ("topology-without-crossing", ...;

@@ -26,6 +26,8 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <set>
+#include <utility>
 
 namespace sdflow {
 namespace {
@@ -542,6 +544,35 @@ const RemeshResult* placed_in_surface(const Mesh& mesh, const SurgeryPatch& sele
   return nullptr;
 }
 
+//! Stage 6: the first of `candidates` (rebuilt patches with the cut's vertices) that crosses no
+//! kept face, put in place of the patch, the result's debris dropped and its boundary loops checked
+//! against the input's; fills `r`'s mesh, remeshing counts, components and patch size.
+void put_in_place(const Mesh& mesh, const SurgeryPatch& selection, const Cut& cut,
+                  const std::vector<RemeshResult>& candidates, const ComponentOptions& debris,
+                  int input_boundary_loops, RetriangulationResult& r)
+{
+  PolygonSoup soup;
+  const RemeshResult* placed = placed_in_surface(mesh, selection, cut, candidates, soup);
+  if (!placed)
+    throw AttemptFailed("the rebuilt patch intersects the surface");
+  r.remesh.splits += placed->statistics.splits;
+  r.remesh.collapses += placed->statistics.collapses;
+  r.remesh.flips += placed->statistics.flips;
+  r.remesh.relaxation_reverts += placed->statistics.relaxation_reverts;
+  r.remesh.edge_length = r.edge_length;
+  ComponentSelection selection_after = keep_components(build_mesh(soup, "local surgery").mesh, debris);
+  r.dropped_components += static_cast<int>(selection_after.dropped.size());
+  r.mesh = std::move(selection_after.mesh);
+  r.open_holes = static_cast<int>(boundary_loops(r.mesh).size());
+  if (r.open_holes != input_boundary_loops)
+    throw AttemptFailed(fmt::format("the result has {} boundary loops, the input {}", r.open_holes, input_boundary_loops));
+  int count = 0;
+  face_component_ids(r.mesh, &count);
+  r.components_after = count;
+  r.rebuilt = true;
+  r.patch_faces = selection.faces;
+}
+
 //! One attempt on one patch: rebuild it and put it back, or throw (AttemptFailed or any stage's error).
 //! `remesh_first`: stage 1 on the patch before the rebuild (the seam is remeshed after it either way,
 //! with options.remesh_iterations > 0).
@@ -608,30 +639,232 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
   candidates.push_back({std::move(rebuilt_patch), {}});
   r.seconds.remesh += seconds_since(start);
 
-  // Stage 6: the kept faces and the rebuilt patch as one soup, checked, validated.
   start = Clock::now();
-  PolygonSoup soup;
-  const RemeshResult* placed = placed_in_surface(mesh, selection, cut, candidates, soup);
-  if (!placed)
-    throw AttemptFailed("the rebuilt patch intersects the surface");
-  r.remesh.splits += placed->statistics.splits;
-  r.remesh.collapses += placed->statistics.collapses;
-  r.remesh.flips += placed->statistics.flips;
-  r.remesh.relaxation_reverts += placed->statistics.relaxation_reverts;
-  r.remesh.edge_length = ell;
-  ComponentSelection selection_after = keep_components(build_mesh(soup, "local surgery").mesh, debris);
-  r.dropped_components += static_cast<int>(selection_after.dropped.size());
-  r.mesh = std::move(selection_after.mesh);
-  r.open_holes = static_cast<int>(boundary_loops(r.mesh).size());
-  if (r.open_holes != input_boundary_loops)
-    throw AttemptFailed(fmt::format("the result has {} boundary loops, the input {}", r.open_holes, input_boundary_loops));
-  int count = 0;
-  face_component_ids(r.mesh, &count);
-  r.components_after = count;
-  r.rebuilt = true;
-  r.patch_faces = selection.faces;
+  put_in_place(mesh, selection, cut, candidates, debris, input_boundary_loops, r);
   r.seconds.components = seconds_since(start);
   return r;
+}
+
+//! Most vertices of a cut loop that capped_patch caps: the minimum-weight triangulation costs
+//! O(n³) (0.3 s at 300, holes.h).
+constexpr std::size_t kMaxCappedLoopVertices = 300;
+
+//! Caps for the cut loops of `cut` (Liepa's hole filling, holes.h), as one mesh whose boundary is
+//! the cut (its vertices at the cut's exact coordinates). The kept faces next to the cut are the
+//! surface each cap is weighed and faired against; the other boundary loops of that collar are
+//! closed by temporary fans so that only the cut loops are filled. Empty for a patch of whole
+//! components.
+Mesh capped_patch(const Mesh& mesh, const SurgeryPatch& selection, const Cut& cut)
+{
+  std::vector<char> on_cut(mesh.n_vertices(), 0);
+  std::set<std::pair<int, int>> cut_edges;
+  std::size_t cut_loops = 0;
+  for (const auto& loop : boundary_loops(cut.patch)) {
+    ++cut_loops;
+    if (loop.size() > kMaxCappedLoopVertices)
+      throw AttemptFailed(fmt::format("a cut loop of {} vertices is too long to cap", loop.size()));
+    for (const auto h : loop) {
+      const int a = cut.global[static_cast<std::size_t>(cut.patch.from_vertex_handle(h).idx())];
+      const int b = cut.global[static_cast<std::size_t>(cut.patch.to_vertex_handle(h).idx())];
+      on_cut[static_cast<std::size_t>(a)] = 1;
+      cut_edges.emplace(std::min(a, b), std::max(a, b));
+    }
+  }
+  if (cut_loops == 0)
+    return Mesh{}; // whole components: nothing to cap
+  // The collar: the kept faces with a corner on the cut.
+  std::vector<int> local(mesh.n_vertices(), -1), global;
+  std::vector<std::array<int, 3>> faces;
+  for (const auto f : mesh.faces()) {
+    if (selection.in_patch[static_cast<std::size_t>(f.idx())])
+      continue;
+    const auto corners = triangle_corners(mesh, f).index;
+    if (!on_cut[static_cast<std::size_t>(corners[0])] && !on_cut[static_cast<std::size_t>(corners[1])] &&
+        !on_cut[static_cast<std::size_t>(corners[2])])
+      continue;
+    std::array<int, 3> t{};
+    for (int k = 0; k < 3; ++k) {
+      int& index = local[static_cast<std::size_t>(corners[static_cast<std::size_t>(k)])];
+      if (index < 0) {
+        index = static_cast<int>(global.size());
+        global.push_back(corners[static_cast<std::size_t>(k)]);
+      }
+      t[static_cast<std::size_t>(k)] = index;
+    }
+    faces.push_back(t);
+  }
+  VertexVectors x(static_cast<Eigen::Index>(global.size()), 3);
+  for (std::size_t i = 0; i < global.size(); ++i)
+    x.row(static_cast<Eigen::Index>(i)) = to_eigen(mesh.point(mesh.vertex_handle(global[i]))).transpose();
+  Mesh collar = make_mesh(x, triangle_rows(faces));
+  std::size_t collar_cut_loops = 0;
+  for (const auto& loop : boundary_loops(collar)) {
+    const bool along_cut = std::all_of(loop.begin(), loop.end(), [&](Mesh::HalfedgeHandle h) {
+      const int a = global[static_cast<std::size_t>(collar.from_vertex_handle(h).idx())];
+      const int b = global[static_cast<std::size_t>(collar.to_vertex_handle(h).idx())];
+      return cut_edges.count({std::min(a, b), std::max(a, b)}) > 0;
+    });
+    if (along_cut) {
+      ++collar_cut_loops;
+      continue;
+    }
+    const std::vector<int> vertices = loop_vertices(collar, loop);
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (const int v : vertices)
+      centre += to_eigen(collar.point(collar.vertex_handle(v)));
+    const auto fan = collar.add_vertex(to_point(centre / static_cast<double>(vertices.size())));
+    for (std::size_t i = 0; i < vertices.size(); ++i)
+      if (!collar.add_face(collar.vertex_handle(vertices[i]), collar.vertex_handle(vertices[(i + 1) % vertices.size()]), fan)
+               .is_valid())
+        throw AttemptFailed("the surface around the cut is not a simple band, so its loops cannot be capped alone");
+  }
+  if (collar_cut_loops != cut_loops)
+    throw AttemptFailed("the cut loops do not bound the surface kept around them");
+  const auto first_cap_face = static_cast<int>(collar.n_faces());
+  const FilledHoles filled = fill_holes(collar);
+  for (const HoleReport& loop : filled.loops)
+    if (loop.outcome != LoopOutcome::filled)
+      throw AttemptFailed("a cut loop could not be capped");
+  // The caps alone: their faces, the cut's vertices and the vertices the filling added.
+  std::vector<int> cap_index(filled.mesh.n_vertices(), -1);
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<int, 3>> caps;
+  for (const auto f : filled.mesh.faces()) {
+    if (f.idx() < first_cap_face)
+      continue;
+    const auto corners = triangle_corners(filled.mesh, f).index;
+    std::array<int, 3> t{};
+    for (int k = 0; k < 3; ++k) {
+      int& index = cap_index[static_cast<std::size_t>(corners[static_cast<std::size_t>(k)])];
+      if (index < 0) {
+        index = static_cast<int>(points.size());
+        points.push_back(to_eigen(filled.mesh.point(filled.mesh.vertex_handle(corners[static_cast<std::size_t>(k)]))));
+      }
+      t[static_cast<std::size_t>(k)] = index;
+    }
+    caps.push_back(t);
+  }
+  return make_mesh(point_rows(points), triangle_rows(caps));
+}
+
+//! Components of the patch with no cut loop: whole components, which capping drops.
+int whole_components(const Mesh& patch)
+{
+  int count = 0;
+  const std::vector<int> component = face_component_ids(patch, &count);
+  std::vector<char> cut(static_cast<std::size_t>(count), 0);
+  for (const auto h : patch.halfedges())
+    if (patch.is_boundary(h))
+      cut[static_cast<std::size_t>(component[static_cast<std::size_t>(patch.face_handle(patch.opposite_halfedge_handle(h)).idx())])] = 1;
+  return static_cast<int>(std::count(cut.begin(), cut.end(), 0));
+}
+
+//! A patch replaced by caps of its cut loops (capped_patch), remeshed with the cut fixed, and put
+//! back as rebuild_patch puts its rebuild; whole components in the patch are dropped as debris. Throws AttemptFailed (or a stage's error).
+RetriangulationResult cap_patch(const Mesh& mesh, const SurgeryPatch& selection, const RetriangulationOptions& options,
+                                double ell, int input_boundary_loops)
+{
+  RetriangulationResult r;
+  r.edge_length = ell;
+  const ComponentOptions debris{.min_faces = options.min_component_faces,
+                                .min_thickness = options.min_component_thickness * ell};
+  auto start = Clock::now();
+  const Cut cut = cut_out(mesh, selection);
+  Mesh caps = capped_patch(mesh, selection, cut);
+  r.removed_faces = selection.faces;
+  r.filled_holes = static_cast<int>(boundary_loops(cut.patch).size());
+  r.dropped_components = whole_components(cut.patch);
+  r.seconds.holes = seconds_since(start);
+  start = Clock::now();
+  std::vector<RemeshResult> candidates;
+  if (options.remesh_iterations > 0 && caps.n_faces() > 0)
+    candidates.push_back(remesh_keeping_cut(caps, patch_sizing(cut.patch, ell, options.min_edge_fraction), ell,
+                                            options.remesh_iterations));
+  candidates.push_back({std::move(caps), {}});
+  r.seconds.remesh = seconds_since(start);
+  start = Clock::now();
+  put_in_place(mesh, selection, cut, candidates, debris, input_boundary_loops, r);
+  r.seconds.components = seconds_since(start);
+  return r;
+}
+
+//! What a patch's rebuild is given besides the patch: ℓ, the input's boundary loops (the result
+//! must have as many) and the bound below which inner holes are filled.
+struct PatchSetting {
+  double ell = 0;
+  int boundary_loops = 0;
+  double hole_bound = 0;
+};
+
+//! The patches of local_surgery and capped_surgery, each twice the radius of the last, until
+//! `rebuild` (a patch, the setting, the outcome to count its attempts and failure in → a result or
+//! nothing) gives a result; declines as local_surgery.h says.
+template <class Rebuild>
+LocalSurgery surgery_in_patches(const Mesh& mesh, const std::vector<FacePair>& crossings,
+                                const RetriangulationOptions& options, const LocalSurgeryOptions& local,
+                                Rebuild&& rebuild)
+{
+  validate_retriangulation_options(options);
+  validate_local_surgery_options(local);
+  LocalSurgery outcome;
+  if (crossings.empty()) {
+    outcome.failure = "nothing intersects";
+    return outcome;
+  }
+  int components = 0;
+  const std::vector<int> component = face_component_ids(mesh, &components);
+  for (const FacePair& pair : crossings)
+    if (component[static_cast<std::size_t>(pair.first)] != component[static_cast<std::size_t>(pair.second)]) {
+      outcome.failure = "two components intersect each other (their union is made on the whole surface)";
+      return outcome;
+    }
+  PatchSetting setting;
+  setting.ell = options.edge_length > 0 ? options.edge_length : mean_edge_length(mesh);
+  const std::vector<double> boundary = boundary_loop_lengths(mesh);
+  setting.boundary_loops = static_cast<int>(boundary.size());
+  setting.hole_bound = options.max_hole_length > 0 ? options.max_hole_length
+                       : boundary.empty()           ? std::numeric_limits<double>::infinity()
+                                                    : 0.5 * *std::min_element(boundary.begin(), boundary.end());
+  double radius = local.patch_radius * setting.ell;
+  int previous_faces = -1;
+  for (int attempt = 0; attempt < local.attempts; ++attempt, radius *= 2) {
+    const SurgeryPatch patch = surgery_patch(mesh, crossings, radius, options.min_component_faces);
+    if (patch.touches_boundary) {
+      outcome.failure = "the patch reaches a boundary of the surface";
+      return outcome;
+    }
+    if (patch.faces > local.max_patch_fraction * static_cast<double>(mesh.n_faces())) {
+      outcome.failure = fmt::format("the patch would hold {} of the {} faces", patch.faces, mesh.n_faces());
+      return outcome;
+    }
+    if (patch.faces == previous_faces)
+      return outcome; // a larger radius takes no more faces: the last failure stands
+    previous_faces = patch.faces;
+    outcome.patch_radius = radius;
+    if (std::optional<RetriangulationResult> r = rebuild(patch, setting, outcome)) {
+      r->intersecting_pairs = static_cast<int>(crossings.size());
+      r->components_before = components;
+      logger().debug("local surgery: {}", retriangulation_summary(*r));
+      outcome.result = std::move(r);
+      outcome.failure.clear();
+      return outcome;
+    }
+  }
+  return outcome;
+}
+
+//! One attempt of `rebuild` (→ a result) on `patch`, its failure recorded in `outcome`.
+template <class Attempt>
+std::optional<RetriangulationResult> attempted(const SurgeryPatch& patch, LocalSurgery& outcome, Attempt&& attempt)
+{
+  ++outcome.attempts;
+  try {
+    return attempt();
+  } catch (const Error& e) {
+    outcome.failure = fmt::format("patch of {} faces: {}", patch.faces, e.what());
+    logger().debug("local surgery, attempt {}: {}", outcome.attempts, outcome.failure);
+  }
+  return std::nullopt;
 }
 
 } // namespace
@@ -661,68 +894,35 @@ void validate_local_surgery_options(const LocalSurgeryOptions& o)
 LocalSurgery local_surgery(const Mesh& mesh, const std::vector<FacePair>& crossings,
                            const RetriangulationOptions& options, const LocalSurgeryOptions& local)
 {
-  validate_retriangulation_options(options);
-  validate_local_surgery_options(local);
-  LocalSurgery outcome;
-  if (crossings.empty()) {
-    outcome.failure = "nothing intersects";
-    return outcome;
-  }
-  int components = 0;
-  const std::vector<int> component = face_component_ids(mesh, &components);
-  for (const FacePair& pair : crossings)
-    if (component[static_cast<std::size_t>(pair.first)] != component[static_cast<std::size_t>(pair.second)]) {
-      outcome.failure = "two components intersect each other (their union is made on the whole surface)";
-      return outcome;
-    }
-  const double ell = options.edge_length > 0 ? options.edge_length : mean_edge_length(mesh);
-  const std::vector<double> boundary = boundary_loop_lengths(mesh);
-  const double hole_bound = options.max_hole_length > 0 ? options.max_hole_length
-                            : boundary.empty()           ? std::numeric_limits<double>::infinity()
-                                                         : 0.5 * *std::min_element(boundary.begin(), boundary.end());
-  double radius = local.patch_radius * ell;
-  int previous_faces = -1;
-  for (int attempt = 0; attempt < local.attempts; ++attempt, radius *= 2) {
-    const SurgeryPatch patch = surgery_patch(mesh, crossings, radius, options.min_component_faces);
-    if (patch.touches_boundary) {
-      outcome.failure = "the patch reaches a boundary of the surface";
-      return outcome;
-    }
-    if (patch.faces > local.max_patch_fraction * static_cast<double>(mesh.n_faces())) {
-      outcome.failure = fmt::format("the patch would hold {} of the {} faces", patch.faces, mesh.n_faces());
-      return outcome;
-    }
-    if (patch.faces == previous_faces)
-      return outcome; // a larger radius takes no more faces: the last failure stands
-    previous_faces = patch.faces;
-    outcome.patch_radius = radius;
-    // The patch remeshed first, as the pipeline's stage 1 does; then as it is (a remeshing of a
-    // thin neck can leave the rebuild too little room).
-    const RetriangulationOptions as_it_is = [&] {
-      RetriangulationOptions o = options;
-      o.remesh_iterations = 0;
-      return o;
-    }();
-    for (const RetriangulationOptions* variant : {&options, &as_it_is}) {
-      if (variant == &as_it_is && options.remesh_iterations == 0)
-        break;
-      ++outcome.attempts;
-      try {
-        RetriangulationResult r =
-            rebuild_patch(mesh, patch, *variant, ell, static_cast<int>(boundary.size()), hole_bound);
-        r.intersecting_pairs = static_cast<int>(crossings.size());
-        r.components_before = components;
-        logger().debug("local surgery: {}", retriangulation_summary(r));
-        outcome.result = std::move(r);
-        outcome.failure.clear();
-        return outcome;
-      } catch (const Error& e) {
-        outcome.failure = fmt::format("patch of {} faces: {}", patch.faces, e.what());
-        logger().debug("local surgery, attempt {}: {}", outcome.attempts, outcome.failure);
-      }
-    }
-  }
-  return outcome;
+  // The patch remeshed first, as the pipeline's stage 1 does; then as it is (a remeshing of a thin
+  // neck can leave the rebuild too little room).
+  RetriangulationOptions as_it_is = options;
+  as_it_is.remesh_iterations = 0;
+  const std::array<const RetriangulationOptions*, 2> variants{&options, &as_it_is};
+  return surgery_in_patches(mesh, crossings, options, local,
+                            [&](const SurgeryPatch& patch, const PatchSetting& set, LocalSurgery& outcome) {
+                              for (const RetriangulationOptions* variant : variants) {
+                                if (variant == &as_it_is && options.remesh_iterations == 0)
+                                  break;
+                                if (auto r = attempted(patch, outcome, [&] {
+                                      return rebuild_patch(mesh, patch, *variant, set.ell, set.boundary_loops,
+                                                           set.hole_bound);
+                                    }))
+                                  return r;
+                              }
+                              return std::optional<RetriangulationResult>{};
+                            });
+}
+
+LocalSurgery capped_surgery(const Mesh& mesh, const std::vector<FacePair>& crossings,
+                            const RetriangulationOptions& options, const LocalSurgeryOptions& local)
+{
+  return surgery_in_patches(mesh, crossings, options, local,
+                            [&](const SurgeryPatch& patch, const PatchSetting& set, LocalSurgery& outcome) {
+                              return attempted(patch, outcome, [&] {
+                                return cap_patch(mesh, patch, options, set.ell, set.boundary_loops);
+                              });
+                            });
 }
 
 } // namespace sdflow

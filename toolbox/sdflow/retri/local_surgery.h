@@ -82,4 +82,13 @@ void validate_local_surgery_options(const LocalSurgeryOptions& options);
 LocalSurgery local_surgery(const Mesh& mesh, const std::vector<FacePair>& crossings,
                            const RetriangulationOptions& options, const LocalSurgeryOptions& local = {});
 
+//! The last resort at a crossing that neither local_surgery nor the whole pipeline could rebuild
+//! (the points around it too few or too tangled for a reconstruction): the same patches, each
+//! replaced by caps of its cut loops (Liepa's hole filling against the surface kept around the
+//! cut, holes.h), remeshed with the cut fixed. A patch cut by one loop becomes a disc (a fold
+//! flattened); one cut by two loops around a neck becomes two discs (the neck pinched off), as
+//! the crossing's topology dictates. Declines and throws as local_surgery does.
+LocalSurgery capped_surgery(const Mesh& mesh, const std::vector<FacePair>& crossings,
+                            const RetriangulationOptions& options, const LocalSurgeryOptions& local = {});
+
 } // namespace sdflow
