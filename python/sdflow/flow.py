@@ -28,8 +28,11 @@ class Event:
     A "refused" event names why in `refusal`: "topology-without-crossing" (a topology change where
     the surface did not cross itself), "topology-beyond-crossings" (a change larger than, or away
     from, what the crossings explain), "remeshing-crossed" (the remeshing kept making crossings
-    of its own and nothing was rebuilt) or "nothing-kept" (the pipeline left no surface it could
-    keep, which is never the flow's: it keeps each body's volume).
+    of its own and nothing was rebuilt), "nothing-kept" (the pipeline left no surface it could
+    keep, which is never the flow's: it keeps each body's volume) or "volume-not-kept" (at a
+    crossing, the rebuild changed the material volume by more than a twentieth). A crossing whose
+    rebuild is refused is capped instead when that works: a "surgery" event whose detail says
+    "so the crossings were capped".
     """
     kind: str
     step: int

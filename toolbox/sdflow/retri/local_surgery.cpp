@@ -70,6 +70,42 @@ std::vector<int> loop_vertices(const Mesh& mesh, const std::vector<Mesh::Halfedg
   return vertices;
 }
 
+//! Faces of a mesh taken out as a mesh of their own, its vertices numbered anew in the order met.
+struct FaceSubset {
+  Mesh mesh;
+  std::vector<int> global; //!< the input index of each vertex
+  std::vector<int> local;  //!< by input vertex: its index in `mesh`, or -1
+};
+
+//! The faces of `mesh` for which `take(face)` holds, as a FaceSubset.
+template <class Take>
+FaceSubset taken_out(const Mesh& mesh, Take&& take)
+{
+  FaceSubset subset;
+  subset.local.assign(mesh.n_vertices(), -1);
+  std::vector<std::array<int, 3>> triangles;
+  for (const auto f : mesh.faces()) {
+    if (!take(f))
+      continue;
+    std::array<int, 3> t{};
+    int k = 0;
+    for (const auto v : mesh.fv_range(f)) {
+      int& index = subset.local[static_cast<std::size_t>(v.idx())];
+      if (index < 0) {
+        index = static_cast<int>(subset.global.size());
+        subset.global.push_back(v.idx());
+      }
+      t[static_cast<std::size_t>(k++)] = index;
+    }
+    triangles.push_back(t);
+  }
+  VertexVectors x(static_cast<Eigen::Index>(subset.global.size()), 3);
+  for (std::size_t i = 0; i < subset.global.size(); ++i)
+    x.row(static_cast<Eigen::Index>(i)) = to_eigen(mesh.point(mesh.vertex_handle(subset.global[i]))).transpose();
+  subset.mesh = make_mesh(x, triangle_rows(triangles));
+  return subset;
+}
+
 //! The patch faces as their own mesh (its boundary is the cut), with the input index of each of
 //! its vertices, and the kept vertices within kContextRings of the cut.
 struct Cut {
@@ -81,27 +117,11 @@ struct Cut {
 Cut cut_out(const Mesh& mesh, const SurgeryPatch& selection)
 {
   Cut cut;
-  std::vector<int> local(mesh.n_vertices(), -1);
-  std::vector<std::array<int, 3>> triangles;
-  for (const auto f : mesh.faces()) {
-    if (!selection.in_patch[static_cast<std::size_t>(f.idx())])
-      continue;
-    std::array<int, 3> t{};
-    int k = 0;
-    for (const auto v : mesh.fv_range(f)) {
-      int& index = local[static_cast<std::size_t>(v.idx())];
-      if (index < 0) {
-        index = static_cast<int>(cut.global.size());
-        cut.global.push_back(v.idx());
-      }
-      t[k++] = index;
-    }
-    triangles.push_back(t);
-  }
-  VertexVectors x(static_cast<Eigen::Index>(cut.global.size()), 3);
-  for (std::size_t i = 0; i < cut.global.size(); ++i)
-    x.row(static_cast<Eigen::Index>(i)) = to_eigen(mesh.point(mesh.vertex_handle(cut.global[i]))).transpose();
-  cut.patch = make_mesh(x, triangle_rows(triangles));
+  FaceSubset taken =
+      taken_out(mesh, [&](Mesh::FaceHandle f) { return selection.in_patch[static_cast<std::size_t>(f.idx())] != 0; });
+  cut.patch = std::move(taken.mesh);
+  cut.global = std::move(taken.global);
+  const std::vector<int>& local = taken.local;
 
   // Rings of kept vertices around the cut, walking only through vertices with a kept face.
   const auto has_kept_face = [&](Mesh::VertexHandle v) {
@@ -673,30 +693,14 @@ Mesh capped_patch(const Mesh& mesh, const SurgeryPatch& selection, const Cut& cu
   if (cut_loops == 0)
     return Mesh{}; // whole components: nothing to cap
   // The collar: the kept faces with a corner on the cut.
-  std::vector<int> local(mesh.n_vertices(), -1), global;
-  std::vector<std::array<int, 3>> faces;
-  for (const auto f : mesh.faces()) {
+  const FaceSubset taken = taken_out(mesh, [&](Mesh::FaceHandle f) {
     if (selection.in_patch[static_cast<std::size_t>(f.idx())])
-      continue;
+      return false;
     const auto corners = triangle_corners(mesh, f).index;
-    if (!on_cut[static_cast<std::size_t>(corners[0])] && !on_cut[static_cast<std::size_t>(corners[1])] &&
-        !on_cut[static_cast<std::size_t>(corners[2])])
-      continue;
-    std::array<int, 3> t{};
-    for (int k = 0; k < 3; ++k) {
-      int& index = local[static_cast<std::size_t>(corners[static_cast<std::size_t>(k)])];
-      if (index < 0) {
-        index = static_cast<int>(global.size());
-        global.push_back(corners[static_cast<std::size_t>(k)]);
-      }
-      t[static_cast<std::size_t>(k)] = index;
-    }
-    faces.push_back(t);
-  }
-  VertexVectors x(static_cast<Eigen::Index>(global.size()), 3);
-  for (std::size_t i = 0; i < global.size(); ++i)
-    x.row(static_cast<Eigen::Index>(i)) = to_eigen(mesh.point(mesh.vertex_handle(global[i]))).transpose();
-  Mesh collar = make_mesh(x, triangle_rows(faces));
+    return std::any_of(corners.begin(), corners.end(), [&](int v) { return on_cut[static_cast<std::size_t>(v)] != 0; });
+  });
+  Mesh collar = taken.mesh;
+  const std::vector<int>& global = taken.global;
   std::size_t collar_cut_loops = 0;
   for (const auto& loop : boundary_loops(collar)) {
     const bool along_cut = std::all_of(loop.begin(), loop.end(), [&](Mesh::HalfedgeHandle h) {
@@ -726,25 +730,7 @@ Mesh capped_patch(const Mesh& mesh, const SurgeryPatch& selection, const Cut& cu
     if (loop.outcome != LoopOutcome::filled)
       throw AttemptFailed("a cut loop could not be capped");
   // The caps alone: their faces, the cut's vertices and the vertices the filling added.
-  std::vector<int> cap_index(filled.mesh.n_vertices(), -1);
-  std::vector<Eigen::Vector3d> points;
-  std::vector<std::array<int, 3>> caps;
-  for (const auto f : filled.mesh.faces()) {
-    if (f.idx() < first_cap_face)
-      continue;
-    const auto corners = triangle_corners(filled.mesh, f).index;
-    std::array<int, 3> t{};
-    for (int k = 0; k < 3; ++k) {
-      int& index = cap_index[static_cast<std::size_t>(corners[static_cast<std::size_t>(k)])];
-      if (index < 0) {
-        index = static_cast<int>(points.size());
-        points.push_back(to_eigen(filled.mesh.point(filled.mesh.vertex_handle(corners[static_cast<std::size_t>(k)]))));
-      }
-      t[static_cast<std::size_t>(k)] = index;
-    }
-    caps.push_back(t);
-  }
-  return make_mesh(point_rows(points), triangle_rows(caps));
+  return taken_out(filled.mesh, [&](Mesh::FaceHandle f) { return f.idx() >= first_cap_face; }).mesh;
 }
 
 //! Components of the patch with no cut loop: whole components, which capping drops.
