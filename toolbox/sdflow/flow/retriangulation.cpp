@@ -403,6 +403,17 @@ constexpr int kFoldAttempts = 2;
 //! (CGAL's turbine.off) by 0.89.
 constexpr double kMaxVolumeChangeAtCrossing = 0.05;
 
+//! Marks `report` refused for `reason`, the surface kept as it was: `what` (for events.log) with
+//! the degraded elements the surface keeps.
+void refuse(RetriangulationReport& report, RefusalReason reason, const Mesh& mesh, const RetriangulationSchedule& s,
+            const std::string& what)
+{
+  report.refused = true;
+  report.refusal = reason;
+  report.degraded_left = degraded_elements(mesh, s).total();
+  report.detail = fmt::format("{}; {} degraded elements left", what, report.degraded_left);
+}
+
 //! The narrowest neck or gap within 2 ℓ of the crossings (crossing_width.h), and how it was measured.
 struct CrossingSize {
   double size = 0;
@@ -567,12 +578,10 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     // A pipeline that leaves no surface to keep (every component debris, a rebuild that is not a
     // valid surface) or whose stage refuses what it is given (fewer points than a neighbourhood).
     const auto nothing_kept = [&](const char* why) {
-      report.refused = true;
-      report.refusal = RefusalReason::nothing_kept;
-      report.degraded_left = degraded_elements(mesh, schedule).total();
-      report.detail = fmt::format("{}: {}refused: the re-triangulation left no surface to keep ({}), so the surface "
-                                  "keeps its triangles; {} degraded elements left",
-                                  verdict.reason, fallback, why, report.degraded_left);
+      refuse(report, RefusalReason::nothing_kept, mesh, schedule,
+             fmt::format("{}: {}refused: the re-triangulation left no surface to keep ({}), so the surface "
+                         "keeps its triangles",
+                         verdict.reason, fallback, why));
       return capped_if_crossed(report);
     };
     RetriangulationResult r;
@@ -609,13 +618,11 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
       // refinement_rounds = 0 asks for the paper's pipeline, whose remeshing may make a pinch's
       // crossing itself: its change is then taken as it comes.
       if (crossings.empty() && schedule.pipeline.refinement_rounds > 0) {
-        report.refused = true;
-        report.refusal = RefusalReason::topology_without_crossing;
-        report.degraded_left = degraded_elements(mesh, schedule).total();
-        report.detail = fmt::format("{}: {}{}; refused: it would change the topology ({}) where the surface does not "
-                                    "cross itself, so the surface keeps its triangles; {} degraded elements left",
-                                    verdict.reason, fallback, retriangulation_summary(r),
-                                    describe_change(topology_before, topology_after), report.degraded_left);
+        refuse(report, RefusalReason::topology_without_crossing, mesh, schedule,
+               fmt::format("{}: {}{}; refused: it would change the topology ({}) where the surface does not "
+                           "cross itself, so the surface keeps its triangles",
+                           verdict.reason, fallback, retriangulation_summary(r),
+                           describe_change(topology_before, topology_after)));
         return report;
       }
       // Where it crossed, the change is the flow's only if the crossing needs it: a surgery in a
@@ -655,15 +662,12 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
                   {.min_faces = schedule.pipeline.min_component_faces,
                    .min_thickness = schedule.pipeline.min_component_thickness * ell});
               !located.explained) {
-            report.refused = true;
-            report.refusal = RefusalReason::topology_beyond_crossings;
-            report.degraded_left = degraded_elements(mesh, schedule).total();
-            report.detail = fmt::format("{}: {}{}; refused: it would change the topology ({}) beyond what the {} face "
-                                        "pairs crossed explain ({}), so the surface keeps its triangles; {} degraded "
-                                        "elements left",
-                                        verdict.reason, fallback, retriangulation_summary(r),
-                                        describe_change(topology_before, topology_after), crossings.size(),
-                                        located.reason, report.degraded_left);
+            refuse(report, RefusalReason::topology_beyond_crossings, mesh, schedule,
+                   fmt::format("{}: {}{}; refused: it would change the topology ({}) beyond what the {} face "
+                               "pairs crossed explain ({}), so the surface keeps its triangles",
+                               verdict.reason, fallback, retriangulation_summary(r),
+                               describe_change(topology_before, topology_after), crossings.size(),
+                               located.reason));
             return capped_if_crossed(report);
           }
         }
@@ -679,12 +683,9 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     }
     if (r.remeshing_refused && !r.rebuilt && r.dropped_components == 0 && r.merged_components == 0) {
       // Stage 1 refused and nothing else to do: the surface keeps its triangles, and the run says so.
-      report.refused = true;
-      report.refusal = RefusalReason::remeshing_crossed;
-      report.degraded_left = degraded_elements(mesh, schedule).total();
-      report.detail = fmt::format("{}: {}{}; refused: nothing was rebuilt, so the surface keeps its triangles; {} "
-                                  "degraded elements left",
-                                  verdict.reason, fallback, retriangulation_summary(r), report.degraded_left);
+      refuse(report, RefusalReason::remeshing_crossed, mesh, schedule,
+             fmt::format("{}: {}{}; refused: nothing was rebuilt, so the surface keeps its triangles",
+                         verdict.reason, fallback, retriangulation_summary(r)));
       return capped_if_crossed(report);
     }
     const double volume_before = verdict.intersecting ? material_volume(mesh) : 0;
@@ -696,14 +697,12 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     if (verdict.intersecting && schedule.pipeline.refinement_rounds > 0 && r.merged_components == 0 &&
         std::abs(rebuilt_volume + report.measures.debris_volume - volume_before) >
             kMaxVolumeChangeAtCrossing * std::abs(volume_before)) {
-      report.refused = true;
-      report.refusal = RefusalReason::volume_not_kept;
-      report.degraded_left = degraded_elements(mesh, schedule).total();
-      report.detail = fmt::format("{}: {}{}{}; refused: the rebuild changed the material volume from {:.6g} to {:.6g} "
-                                  "(debris included), more than a surgery at the crossings does, so the surface keeps "
-                                  "its triangles; {} degraded elements left",
-                                  verdict.reason, fallback, retriangulation_summary(r), topology_note, volume_before,
-                                  rebuilt_volume + report.measures.debris_volume, report.degraded_left);
+      refuse(report, RefusalReason::volume_not_kept, mesh, schedule,
+             fmt::format("{}: {}{}{}; refused: the rebuild changed the material volume from {:.6g} to {:.6g} "
+                         "(debris included), more than a surgery at the crossings does, so the surface keeps "
+                         "its triangles",
+                         verdict.reason, fallback, retriangulation_summary(r), topology_note, volume_before,
+                         rebuilt_volume + report.measures.debris_volume));
       return capped_if_crossed(report);
     }
     report.remeshed = schedule.pipeline.remesh_iterations > 0 && !r.remeshing_refused;

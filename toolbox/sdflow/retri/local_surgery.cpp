@@ -564,6 +564,12 @@ const RemeshResult* placed_in_surface(const Mesh& mesh, const SurgeryPatch& sele
   return nullptr;
 }
 
+//! The sizes below which stage 6 drops a component as debris, at ℓ = `ell`.
+ComponentOptions debris_bounds(const RetriangulationOptions& options, double ell)
+{
+  return {.min_faces = options.min_component_faces, .min_thickness = options.min_component_thickness * ell};
+}
+
 //! Stage 6: the first of `candidates` (rebuilt patches with the cut's vertices) that crosses no
 //! kept face, put in place of the patch, the result's debris dropped and its boundary loops checked
 //! against the input's; fills `r`'s mesh, remeshing counts, components and patch size.
@@ -602,8 +608,7 @@ RetriangulationResult rebuild_patch(const Mesh& mesh, const SurgeryPatch& select
 {
   RetriangulationResult r;
   r.edge_length = ell;
-  const ComponentOptions debris{.min_faces = options.min_component_faces,
-                                .min_thickness = options.min_component_thickness * ell};
+  const ComponentOptions debris = debris_bounds(options, ell);
 
   // Stage 1 on the patch, its cut fixed.
   auto start = Clock::now();
@@ -746,14 +751,14 @@ int whole_components(const Mesh& patch)
 }
 
 //! A patch replaced by caps of its cut loops (capped_patch), remeshed with the cut fixed, and put
-//! back as rebuild_patch puts its rebuild; whole components in the patch are dropped as debris. Throws AttemptFailed (or a stage's error).
+//! back as rebuild_patch puts its rebuild; whole components in the patch are dropped as debris.
+//! Throws AttemptFailed (or a stage's error).
 RetriangulationResult cap_patch(const Mesh& mesh, const SurgeryPatch& selection, const RetriangulationOptions& options,
                                 double ell, int input_boundary_loops)
 {
   RetriangulationResult r;
   r.edge_length = ell;
-  const ComponentOptions debris{.min_faces = options.min_component_faces,
-                                .min_thickness = options.min_component_thickness * ell};
+  const ComponentOptions debris = debris_bounds(options, ell);
   auto start = Clock::now();
   const Cut cut = cut_out(mesh, selection);
   Mesh caps = capped_patch(mesh, selection, cut);
