@@ -49,7 +49,14 @@ TEST(Quality, smallest_angle_is_the_least_of_the_corner_angles)
     const std::array<double, 3> angles = corner_angles(mesh, f);
     const double least = *std::min_element(angles.begin(), angles.end()) * 180 / std::numbers::pi;
     EXPECT_NEAR(smallest_angle_deg(mesh, f), least, 1e-12) << "face " << f.idx();
+    EXPECT_NEAR(smallest_angle_cosine(mesh, f), std::cos(least * std::numbers::pi / 180), 1e-12) << "face " << f.idx();
   }
+  // A triangle with a side of zero length has a zero angle.
+  VertexVectors x(3, 3);
+  x << 0, 0, 0, 0, 0, 0, 1, 0, 0;
+  FaceIndices t(1, 3);
+  t << 0, 1, 2;
+  EXPECT_EQ(smallest_angle_cosine(make_mesh(x, t), Mesh::FaceHandle(0)), 1.0);
 }
 
 TEST(Quality, disk_reports_boundary_valences_separately)

@@ -223,6 +223,21 @@ std::vector<NamedMesh> adversarial_meshes()
     t << 0, 1, 2, 0, 2, 1;
     cases.push_back({"doubled face", make_mesh(x, t), true});
   }
+  {
+    // Vertices slid across their stars by one to two edges: folded stars whose triangles overlap
+    // their neighbours', beside flat ones (the flat-fan filter must let only the latter pass).
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> slide(-0.25, 0.25);
+    int index = 0;
+    cases.push_back({"icosphere with vertices slid across their stars",
+                     test::mapped(analytic::icosphere(3), [&](const Eigen::Vector3d& p) {
+                       if (index++ % 7 != 0)
+                         return p;
+                       const Eigen::Vector3d q = p + Eigen::Vector3d(slide(rng), slide(rng), slide(rng));
+                       return Eigen::Vector3d(q.normalized());
+                     }),
+                     true});
+  }
   cases.push_back({"smooth icosphere", analytic::icosphere(3), false});
   cases.push_back({"smooth torus", analytic::torus(24, 12, 3, 1), false});
   return cases;

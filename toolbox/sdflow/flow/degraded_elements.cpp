@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace sdflow {
 
@@ -19,8 +20,9 @@ DegradedElements degraded_elements(const Mesh& mesh, const RetriangulationSchedu
   const double ell = pipeline.edge_length;
   DegradedElements d;
   // The targets the pipeline's remesher would aim at (a closing neck asks for shorter edges), and
-  // beside them, on the other core, every triangle's smallest angle: the run looks after each step.
-  std::vector<double> smallest_angle(mesh.n_faces(), 0.0);
+  // beside them, on the other core, the cosine of every triangle's smallest angle: the run looks
+  // after each step.
+  std::vector<double> smallest_angle_cos(mesh.n_faces(), 1.0);
   tbb::parallel_invoke(
     [&] {
       d.targets = pipeline.edges_per_radius > 0 ? curvature_targets(mesh, pipeline, ell)
@@ -35,7 +37,7 @@ DegradedElements degraded_elements(const Mesh& mesh, const RetriangulationSchedu
                         [&](const tbb::blocked_range<int>& r) {
                           for (int i = r.begin(); i < r.end(); ++i)
                             if (const Mesh::FaceHandle f(i); !mesh.status(f).deleted())
-                              smallest_angle[i] = smallest_angle_deg(mesh, f);
+                              smallest_angle_cos[i] = smallest_angle_cosine(mesh, f);
                         });
     });
   // 2: degraded, 1: worn (halfway to degraded), 0: neither.
@@ -55,11 +57,14 @@ DegradedElements degraded_elements(const Mesh& mesh, const RetriangulationSchedu
     mark(e.h0().face(), degraded ? 2 : 1);
     mark(e.h1().face(), degraded ? 2 : 1);
   }
+  // An angle below θ is a cosine above cos θ.
+  const double sharp = std::cos(s.min_angle_deg * std::numbers::pi / 180);
+  const double half_sharp = std::cos(std::min(2 * s.min_angle_deg, 180.0) * std::numbers::pi / 180);
   for (const auto f : mesh.faces()) {
-    const double angle = smallest_angle[f.idx()];
-    if (angle < s.min_angle_deg)
+    const double cosine = smallest_angle_cos[f.idx()];
+    if (cosine > sharp)
       ++d.triangles;
-    mark(f, angle < s.min_angle_deg ? 2 : angle < 2 * s.min_angle_deg ? 1 : 0);
+    mark(f, cosine > sharp ? 2 : cosine > half_sharp ? 1 : 0);
   }
   for (const auto f : mesh.faces()) {
     if (state[f.idx()] == 2)

@@ -22,10 +22,12 @@ std::array<double, 3> corner_angles(const Mesh& mesh, Mesh::FaceHandle f)
   return angles;
 }
 
-double smallest_angle_deg(const Mesh& mesh, Mesh::FaceHandle f)
+namespace {
+
+//! The two sides at face f's smallest corner, which faces the shortest side (law of sines): one
+//! angle to measure instead of three, as the per-step look at the surface measures every triangle.
+std::array<Eigen::Vector3d, 2> sides_at_smallest_angle(const Mesh& mesh, Mesh::FaceHandle f)
 {
-  // The smallest angle faces the shortest side (law of sines): one atan2 instead of three, as the
-  // per-step look at the surface measures every triangle.
   const std::array<Eigen::Vector3d, 3> p = triangle_corners(mesh, f).point;
   int corner = 0;
   double shortest = std::numeric_limits<double>::infinity();
@@ -34,8 +36,22 @@ double smallest_angle_deg(const Mesh& mesh, Mesh::FaceHandle f)
       shortest = opposite;
       corner = c;
     }
-  const Eigen::Vector3d a = p[(corner + 1) % 3] - p[corner], b = p[(corner + 2) % 3] - p[corner];
+  return {p[(corner + 1) % 3] - p[corner], p[(corner + 2) % 3] - p[corner]};
+}
+
+} // namespace
+
+double smallest_angle_deg(const Mesh& mesh, Mesh::FaceHandle f)
+{
+  const auto [a, b] = sides_at_smallest_angle(mesh, f);
   return angle_between(a, b) * 180 / std::numbers::pi;
+}
+
+double smallest_angle_cosine(const Mesh& mesh, Mesh::FaceHandle f)
+{
+  const auto [a, b] = sides_at_smallest_angle(mesh, f);
+  const double lengths = std::sqrt(a.squaredNorm() * b.squaredNorm());
+  return lengths > 0 ? std::clamp(a.dot(b) / lengths, -1.0, 1.0) : 1.0;
 }
 
 MeshQuality mesh_quality(const Mesh& mesh)

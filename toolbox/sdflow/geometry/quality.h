@@ -15,6 +15,10 @@ std::array<double, 3> corner_angles(const Mesh& mesh, Mesh::FaceHandle f);
 //! The smallest corner angle of face f, in degrees.
 double smallest_angle_deg(const Mesh& mesh, Mesh::FaceHandle f);
 
+//! The cosine of face f's smallest corner angle (1 when a side has zero length): what a threshold
+//! test needs, without the arc tangent (cos is decreasing on [0°, 180°]).
+double smallest_angle_cosine(const Mesh& mesh, Mesh::FaceHandle f);
+
 struct MeshQuality {
   double min_angle_deg = 0;             //!< smallest triangle angle
   double max_angle_deg = 0;             //!< largest triangle angle
