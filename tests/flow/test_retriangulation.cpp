@@ -266,11 +266,21 @@ TEST(RetriangulationHook, takes_a_few_percent_more_degraded_elements_than_left_f
   Mesh strictly = mesh;
   EXPECT_TRUE(make_retriangulation_hook(strict)(strictly, {.step = 1, .tolerated_degraded = static_cast<long>(std::ceil(degraded / 1.03))})
                   .remeshed);
-  // 10% more: the flow wore the mesh.
+  // From 20 left on, a remeshing's own scatter is about the square root of the count: up to twice
+  // it more is left alone (5% alone would call a remeshing here).
+  const auto scattered = static_cast<long>(std::ceil(degraded - 1.5 * std::sqrt(static_cast<double>(degraded))));
+  ASSERT_GT(degraded, static_cast<long>(std::ceil(1.05 * static_cast<double>(scattered))));
+  Mesh noisy = mesh;
+  EXPECT_FALSE(hook(noisy, {.step = 1, .tolerated_degraded = scattered}).changed());
+  // Beyond both: the flow wore the mesh.
+  const auto worn = static_cast<long>(std::floor(degraded / 1.5));
+  ASSERT_GT(static_cast<double>(degraded), worn + 2 * std::sqrt(static_cast<double>(worn)));
   Mesh beyond = mesh;
-  const auto acted = hook(beyond, {.step = 1, .tolerated_degraded = static_cast<long>(std::floor(degraded / 1.1))});
+  const auto acted = hook(beyond, {.step = 1, .tolerated_degraded = worn});
   EXPECT_TRUE(acted.remeshed);
   EXPECT_LT(acted.degraded_left, degraded);
+  // Below 20 left, 5% is the whole margin: one more than 19 · 1.05 calls it.
+  EXPECT_TRUE(make_retriangulation_hook(schedule)(beyond = mesh, {.step = 1, .tolerated_degraded = 19}).remeshed);
 }
 
 TEST(RetriangulationHook, gives_back_the_volume_a_remeshing_takes)

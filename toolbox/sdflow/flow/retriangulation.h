@@ -40,8 +40,9 @@ struct RetriangulationSchedule {
   //! how much the count a remeshing leaves varies from one remeshing of a surface to the next (on
   //! CGAL's fandisk_large.off five in a row left 6659, 6573, 6259, 5950 and 6242), so that
   //! thousands the remesher cannot fix at a CAD part's sharp edges do not call the whole pipeline
-  //! after every step. Below 20 left (every validation run, docs/validation.md) any increase calls
-  //! it. Not a run parameter: 0 gives the rule before it (the fixtures of tests made by such runs).
+  //! after every step. From 20 left on, the margin is at least twice their square root, the scatter
+  //! of such counts (flow/retriangulation.cpp, degraded_slack). Not a run parameter: 0 gives the
+  //! rule before it, any increase calling it (the fixtures of tests made by such runs).
   double degraded_variation = 0.05;
   bool always = false;        //!< run the whole pipeline after every k-th step (the paper's practice)
   //! When only degraded elements call for it (nothing intersects), remesh just the regions around
