@@ -234,22 +234,29 @@ std::vector<LoopPair> match_rims_to_cuts(const VertexVectors& positions, const s
   return pairs;
 }
 
+//! Closes the boundary loop `loop` (vertices in boundary order) of `mesh` by a fan of triangles
+//! around a new vertex at its centroid, which it returns; throws AttemptFailed with `failure` when
+//! the loop is not a simple boundary loop.
+Mesh::VertexHandle close_with_fan(Mesh& mesh, const std::vector<int>& loop, const char* failure)
+{
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const int v : loop)
+    centre += to_eigen(mesh.point(mesh.vertex_handle(v)));
+  const auto fan = mesh.add_vertex(to_point(centre / static_cast<double>(loop.size())));
+  for (std::size_t i = 0; i < loop.size(); ++i)
+    if (!mesh.add_face(mesh.vertex_handle(loop[i]), mesh.vertex_handle(loop[(i + 1) % loop.size()]), fan).is_valid())
+      throw AttemptFailed(failure);
+  return fan;
+}
+
 //! Fills the holes of `mesh` that are not its cut loops (Liepa 2003, holes.h): each cut loop is
 //! closed by a temporary fan, the holes shorter than `bound` filled, the fans removed.
 Mesh fill_inner_holes(const Mesh& input, const std::vector<std::vector<int>>& cuts, double bound, int& filled_count)
 {
   Mesh mesh = input;
   std::vector<Mesh::VertexHandle> caps;
-  for (const auto& loop : cuts) {
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-    for (const int v : loop)
-      centre += to_eigen(mesh.point(mesh.vertex_handle(v)));
-    const auto cap = mesh.add_vertex(to_point(centre / static_cast<double>(loop.size())));
-    caps.push_back(cap);
-    for (std::size_t i = 0; i < loop.size(); ++i)
-      if (!mesh.add_face(mesh.vertex_handle(loop[i]), mesh.vertex_handle(loop[(i + 1) % loop.size()]), cap).is_valid())
-        throw AttemptFailed("a cut loop could not be capped (not a simple boundary loop)");
-  }
+  for (const auto& loop : cuts)
+    caps.push_back(close_with_fan(mesh, loop, "a cut loop could not be capped (not a simple boundary loop)"));
   HoleFillingOptions holes;
   holes.max_loop_length = bound;
   FilledHoles filled = fill_holes(mesh, holes);
@@ -717,15 +724,8 @@ Mesh capped_patch(const Mesh& mesh, const SurgeryPatch& selection, const Cut& cu
       ++collar_cut_loops;
       continue;
     }
-    const std::vector<int> vertices = loop_vertices(collar, loop);
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-    for (const int v : vertices)
-      centre += to_eigen(collar.point(collar.vertex_handle(v)));
-    const auto fan = collar.add_vertex(to_point(centre / static_cast<double>(vertices.size())));
-    for (std::size_t i = 0; i < vertices.size(); ++i)
-      if (!collar.add_face(collar.vertex_handle(vertices[i]), collar.vertex_handle(vertices[(i + 1) % vertices.size()]), fan)
-               .is_valid())
-        throw AttemptFailed("the surface around the cut is not a simple band, so its loops cannot be capped alone");
+    close_with_fan(collar, loop_vertices(collar, loop),
+                   "the surface around the cut is not a simple band, so its loops cannot be capped alone");
   }
   if (collar_cut_loops != cut_loops)
     throw AttemptFailed("the cut loops do not bound the surface kept around them");
