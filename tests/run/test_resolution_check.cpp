@@ -198,8 +198,7 @@ TEST(ResolutionCheck, a_run_refines_its_edge_length_up_to_two_and_a_half_times_b
   const double refinement = mean / q.retriangulation.pipeline.edge_length;
   EXPECT_GT(refinement, 1.5) << "the fixture no longer asks for more than the old bound";
   EXPECT_LE(refinement, 2.5);
-  RetriangulationOptions taken = q.retriangulation.pipeline;
-  EXPECT_FALSE(thinnest_unresolved_part(sheet, taken)) << "the ℓ taken resolves the sheet";
+  EXPECT_FALSE(thinnest_unresolved_part(sheet, q.retriangulation.pipeline)) << "the ℓ taken resolves the sheet";
 
   RunParameters thinner;
   Mesh thin_sheet = test::cad_plate(1, 1, 0.0024, 10, 10);
