@@ -43,7 +43,7 @@ TEST_F(ShapeCommand, list_names_every_shape_and_parameter)
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* s : {"sphere", "ellipsoid", "torus", "dumbbell", "sintering", "spheres-on-plane", "packing",
                         "cuboid-island", "film-with-hole", "--thickness", "--hole",
-                        "--min-distance", "--spheres", "--major", "--minor",
+                        "--min-distance", "--contacts", "--candidates", "--spheres", "--major", "--minor",
                         "--neck-width", "--neck-radius", "--disk-radius", "--blend", "--expr"})
     EXPECT_NE(r.output.find(s), std::string::npos) << s;
 }

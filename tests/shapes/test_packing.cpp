@@ -52,6 +52,72 @@ TEST(Packing, random_tree_keeps_its_contacts_and_gaps_and_is_seeded)
   EXPECT_THROW(random_packing({.count = 10, .spacing = 1.8, .min_distance = 1.0}), InvalidParameter);
 }
 
+//! Pairs of spheres that overlap: the contacts of a packing.
+int count_contacts(const std::vector<PackedSphere>& spheres)
+{
+  int contacts = 0;
+  for (std::size_t i = 0; i < spheres.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      contacts += (spheres[i].centre - spheres[j].centre).norm() < spheres[i].radius + spheres[j].radius;
+  return contacts;
+}
+
+TEST(Packing, random_cluster_with_two_contacts_closes_loops_and_keeps_its_gaps)
+{
+  const RandomPacking options{.count = 30, .radius = 1, .spacing = 1.8, .min_distance = 2.4, .seed = 7, .contacts = 2};
+  const auto spheres = random_packing(options);
+  ASSERT_EQ(spheres.size(), 30u);
+  int bridging = 0;
+  for (std::size_t i = 1; i < spheres.size(); ++i) {
+    SCOPED_TRACE(i);
+    int touching = 0;
+    for (std::size_t j = 0; j < i; ++j) {
+      const double d = (spheres[i].centre - spheres[j].centre).norm();
+      EXPECT_TRUE(d >= 2.4 || std::abs(d - 1.8) < 1e-9) << d;
+      touching += std::abs(d - 1.8) < 1e-9;
+    }
+    EXPECT_TRUE(touching == 1 || touching == 2) << touching;
+    bridging += touching == 2;
+  }
+  // Only the third sphere cannot bridge (its two predecessors touch each other); a few more may
+  // find no pair with room.
+  EXPECT_GE(bridging, 8);
+  EXPECT_EQ(count_contacts(spheres), 29 + bridging) << "each bridge adds one contact to the tree's";
+  // The tree's draws are unchanged by the option.
+  const auto tree = random_packing({.count = 30, .seed = 7});
+  EXPECT_EQ(count_contacts(tree), 29);
+  EXPECT_THROW(random_packing({.count = 5, .contacts = 3}), InvalidParameter);
+}
+
+//! Root-mean-square distance of the centres from their centroid.
+double gyration_radius(const std::vector<PackedSphere>& spheres)
+{
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const auto& s : spheres)
+    centroid += s.centre / static_cast<double>(spheres.size());
+  double sum = 0;
+  for (const auto& s : spheres)
+    sum += (s.centre - centroid).squaredNorm();
+  return std::sqrt(sum / static_cast<double>(spheres.size()));
+}
+
+TEST(Packing, more_candidates_grow_a_more_compact_tree_with_the_same_contacts_and_gaps)
+{
+  for (std::uint64_t seed : {1, 2, 3}) {
+    SCOPED_TRACE(seed);
+    const auto loose = random_packing({.count = 60, .seed = seed});
+    const auto compact = random_packing({.count = 60, .seed = seed, .candidates = 16});
+    EXPECT_LT(gyration_radius(compact), 0.8 * gyration_radius(loose));
+    EXPECT_EQ(count_contacts(compact), 59) << "still a tree";
+    for (std::size_t i = 0; i < compact.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j) {
+        const double d = (compact[i].centre - compact[j].centre).norm();
+        EXPECT_TRUE(d >= 2.4 || std::abs(d - 1.8) < 1e-9) << i << ", " << j << ": " << d;
+      }
+  }
+  EXPECT_THROW(random_packing({.count = 5, .candidates = 0}), InvalidParameter);
+}
+
 TEST(Packing, csv_is_read_with_its_header_and_bad_lines_are_named)
 {
   test::TempDir dir;
@@ -112,6 +178,20 @@ TEST(Packing, random_tree_of_spheres_meshes_to_genus_zero_without_crossings)
     const ImplicitSurface s = packing_surface(random_packing({.count = 6, .seed = seed}));
     expect_one_sphere_like_body(mesh_implicit_surface(s, {.edge_length = 0.2}).mesh);
   }
+}
+
+// A cluster with loops meshes to one body whose genus is its number of independent loops,
+// contacts − spheres + 1 (each loop of four or more spheres leaves a pore channel through it).
+TEST(Packing, random_cluster_with_loops_meshes_to_its_genus_without_crossings)
+{
+  const auto spheres = random_packing({.count = 7, .seed = 2, .contacts = 2});
+  const int loops = count_contacts(spheres) - static_cast<int>(spheres.size()) + 1;
+  ASSERT_GE(loops, 2);
+  const Mesh mesh = mesh_implicit_surface(packing_surface(spheres), {.edge_length = 0.15}).mesh;
+  const auto topology = component_topology(mesh);
+  ASSERT_EQ(topology.size(), 1u);
+  EXPECT_EQ(topology[0].genus, loops);
+  EXPECT_TRUE(self_intersections(mesh).empty());
 }
 
 // Issue 32: the crease where two spheres meet, at an orientation that matches no grid axis.

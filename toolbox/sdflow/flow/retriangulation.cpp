@@ -243,6 +243,21 @@ LocalRounds remesh_worn_regions(const Mesh& mesh, const DegradedElements& degrad
   return rounds;
 }
 
+//! restore_volume on a local remeshing `r` of `mesh`; nullopt, with `fallback` saying why (`what` left
+//! it), when `r` has a vertex whose degenerate star gives no normal to offset along.
+std::optional<std::string> restore_local_volume(const Mesh& mesh, LocalRemeshResult& r, RetriangulationReport& report,
+                                                std::string_view what, std::string& fallback)
+{
+  try {
+    return restore_volume(mesh, r.mesh, report.measures, r.vertex_map);
+  } catch (const InvalidMesh& e) {
+    fallback = fmt::format("{} left a surface whose volume cannot be restored ({}), so the whole pipeline ran; ", what,
+                           e.what());
+    report.measures = {};
+    return std::nullopt;
+  }
+}
+
 //! The local remeshing of a hook: the regions around the degraded elements remeshed and their
 //! volume given back, accepted unless they are too large (kLocalPatchShare), the patch cannot be
 //! cut out or put back, or the result intersects itself (then the caller falls back to the whole
@@ -269,8 +284,10 @@ std::optional<Mesh> remesh_degraded_region(const Mesh& mesh, Verdict& verdict, c
                            r.patch_faces, mesh.n_faces());
     return std::nullopt;
   }
-  const std::string volume_note =
-      s.restore_volume ? restore_volume(mesh, r.mesh, report.measures, r.vertex_map) : std::string{};
+  const std::optional<std::string> volume_note =
+      s.restore_volume ? restore_local_volume(mesh, r, report, "the local remeshing", fallback) : std::string{};
+  if (!volume_note)
+    return std::nullopt;
   report.volume_seconds = stopwatch.restart();
   verdict.watched = false; // the watch now holds the remeshed surface's pairs
   // The volume restoration moved the vertices by a tiny normal offset: count the degraded elements
@@ -293,7 +310,7 @@ std::optional<Mesh> remesh_degraded_region(const Mesh& mesh, Verdict& verdict, c
   report.detail = fmt::format("{}: local remeshing of {} faces in {} patches into {} in {} rounds ({} splits, {} "
                               "collapses, {} flips){}; {} degraded elements left",
                               verdict.reason, r.patch_faces, r.patches, r.new_faces, rounds.rounds,
-                              r.statistics.splits, r.statistics.collapses, r.statistics.flips, volume_note,
+                              r.statistics.splits, r.statistics.collapses, r.statistics.flips, *volume_note,
                               report.degraded_left);
   return std::move(r.mesh);
 }
@@ -372,8 +389,14 @@ std::optional<Mesh> remesh_where_step_failed(const Mesh& mesh, const std::vector
                            "({}), so the whole pipeline ran; ", failed.size(), describe_change(before, after));
     return std::nullopt;
   }
-  const std::string volume_note =
-      s.restore_volume ? restore_volume(mesh, r.mesh, report.measures, r.vertex_map) : std::string{};
+  const std::optional<std::string> volume_note =
+      s.restore_volume
+          ? restore_local_volume(mesh, r, report,
+                                 fmt::format("the remeshing around the {} vertices where the step failed", failed.size()),
+                                 fallback)
+          : std::string{};
+  if (!volume_note)
+    return std::nullopt;
   report.volume_seconds = stopwatch.restart();
   SurfaceCount counted = count_surface(r.mesh, s, watch);
   report.pipeline_seconds.intersections = stopwatch.seconds();
@@ -395,7 +418,7 @@ std::optional<Mesh> remesh_where_step_failed(const Mesh& mesh, const std::vector
                               "faces in {} patches into {} ({} splits, {} collapses, {} flips){}; {} degraded "
                               "elements left",
                               failed.size(), r.patch_faces, r.patches, r.new_faces, r.statistics.splits,
-                              r.statistics.collapses, r.statistics.flips, volume_note, report.degraded_left);
+                              r.statistics.collapses, r.statistics.flips, *volume_note, report.degraded_left);
   return std::move(r.mesh);
 }
 
@@ -710,8 +733,13 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     }
     const double volume_before = verdict.intersecting ? material_volume(mesh) : 0;
     const double rebuilt_volume = verdict.intersecting ? material_volume(r.mesh) : 0;
-    const std::string volume_note =
-        schedule.restore_volume ? restore_volume(mesh, r.mesh, report.measures) : std::string{};
+    std::string volume_note;
+    try {
+      volume_note = schedule.restore_volume ? restore_volume(mesh, r.mesh, report.measures) : std::string{};
+    } catch (const InvalidMesh& e) {
+      report.measures = {};
+      return nothing_kept(e.what());
+    }
     report.volume_seconds += stopwatch.seconds();
     // Bodies that overlapped and were joined lose the overlap's volume, which they counted twice.
     if (verdict.intersecting && schedule.pipeline.refinement_rounds > 0 && r.merged_components == 0 &&

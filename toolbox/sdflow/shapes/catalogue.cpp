@@ -389,7 +389,7 @@ const std::vector<Entry>& entries()
     const RandomPacking random;
     e.push_back({{"packing",
                   "spheres joined where they overlap (a powder compact): an nx × ny × nz lattice, or with count > 0 "
-                  "a seeded random tree; from a CSV of x,y,z,r with `sdflow shape packing --spheres FILE`",
+                  "a seeded random cluster (a tree, or with contacts = 2 loops); from a CSV of x,y,z,r with `sdflow shape packing --spheres FILE`",
                   {{"nx", static_cast<double>(lattice.nx), "lattice spheres along x"},
                    {"ny", static_cast<double>(lattice.ny), "lattice spheres along y"},
                    {"nz", static_cast<double>(lattice.nz), "lattice spheres along z"},
@@ -399,6 +399,10 @@ const std::vector<Entry>& entries()
                    {"min-distance", random.min_distance,
                     "random: least distance from a new sphere's centre to all but the one it grew from"},
                    {"seed", static_cast<double>(random.seed), "random: seed of the generator"},
+                   {"contacts", static_cast<double>(random.contacts),
+                    "random: spheres each new one touches, 1 (a tree) or 2 (it bridges two: loops, pore channels)"},
+                   {"candidates", static_cast<double>(random.candidates),
+                    "random: placements drawn for each sphere, the one nearest the centroid kept (> 1: a compact cluster)"},
                    {"blend", PackingSurfaceOptions{}.blend, "smooth-union width (0 = sharp creases)"}}},
                  [](const auto& get) {
                    const auto whole = [&](const char* name, double low) {
@@ -414,7 +418,9 @@ const std::vector<Entry>& entries()
                                                    .radius = get("radius"),
                                                    .spacing = get("spacing"),
                                                    .min_distance = get("min-distance"),
-                                                   .seed = static_cast<std::uint64_t>(whole("seed", 0))})
+                                                   .seed = static_cast<std::uint64_t>(whole("seed", 0)),
+                                                   .contacts = static_cast<int>(whole("contacts", 1)),
+                                                   .candidates = static_cast<int>(whole("candidates", 1))})
                                  : lattice_packing({.nx = static_cast<int>(whole("nx", 1)),
                                                     .ny = static_cast<int>(whole("ny", 1)),
                                                     .nz = static_cast<int>(whole("nz", 1)),

@@ -12,6 +12,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -115,6 +116,63 @@ std::vector<PackedSphere> lattice_packing(const LatticePacking& l)
   return spheres;
 }
 
+namespace {
+
+//! True when `centre` is at least min_distance from every sphere but those it was placed to touch.
+bool has_room(const std::vector<PackedSphere>& spheres, const Eigen::Vector3d& centre, std::size_t touched_a,
+              std::size_t touched_b, double min_distance)
+{
+  for (std::size_t k = 0; k < spheres.size(); ++k)
+    if (k != touched_a && k != touched_b && (spheres[k].centre - centre).norm() < min_distance)
+      return false;
+  return true;
+}
+
+//! One try at a sphere touching spheres[a] only: at `spacing` in a uniform direction.
+std::optional<PackedSphere> grow_from_one(const std::vector<PackedSphere>& spheres, const RandomPacking& r,
+                                          std::mt19937_64& generator)
+{
+  const auto a = std::min(spheres.size() - 1, static_cast<std::size_t>(unit_uniform(generator) * spheres.size()));
+  const Eigen::Vector3d centre = spheres[a].centre + r.spacing * random_direction(generator);
+  if (!has_room(spheres, centre, a, a, r.min_distance))
+    return std::nullopt;
+  return PackedSphere{centre, r.radius};
+}
+
+//! One try at a sphere bridging two spheres a, b that do not touch (min_distance ≤ |ab| < 2 spacing):
+//! its centre on the circle of points at `spacing` from both, at a uniform angle.
+std::optional<PackedSphere> bridge_two(const std::vector<PackedSphere>& spheres, const RandomPacking& r,
+                                       std::mt19937_64& generator)
+{
+  const auto a = std::min(spheres.size() - 1, static_cast<std::size_t>(unit_uniform(generator) * spheres.size()));
+  std::vector<std::size_t> partners;
+  for (std::size_t b = 0; b < spheres.size(); ++b) {
+    const double d = (spheres[b].centre - spheres[a].centre).norm();
+    if (b != a && d >= r.min_distance && d < 2 * r.spacing)
+      partners.push_back(b);
+  }
+  if (partners.empty())
+    return std::nullopt;
+  const auto b = partners[std::min(partners.size() - 1, static_cast<std::size_t>(unit_uniform(generator) * partners.size()))];
+  const Eigen::Vector3d axis = spheres[b].centre - spheres[a].centre;
+  const double half = axis.norm() / 2;
+  const Eigen::Vector3d u = axis / (2 * half);
+  Eigen::Vector3d e1 = random_direction(generator);
+  e1 -= e1.dot(u) * u;
+  if (e1.norm() < 1e-6)
+    return std::nullopt;
+  e1.normalize();
+  const Eigen::Vector3d e2 = u.cross(e1);
+  const double phi = 2 * std::numbers::pi * unit_uniform(generator);
+  const double rho = std::sqrt(r.spacing * r.spacing - half * half);
+  const Eigen::Vector3d centre = spheres[a].centre + half * u + rho * (std::cos(phi) * e1 + std::sin(phi) * e2);
+  if (!has_room(spheres, centre, a, b, r.min_distance))
+    return std::nullopt;
+  return PackedSphere{centre, r.radius};
+}
+
+} // namespace
+
 std::vector<PackedSphere> random_packing(const RandomPacking& r)
 {
   if (r.count < 1 || r.count > 100000)
@@ -124,24 +182,34 @@ std::vector<PackedSphere> random_packing(const RandomPacking& r)
   if (!(r.min_distance >= r.spacing) || !std::isfinite(r.min_distance))
     throw InvalidParameter(fmt::format("packing: min-distance {} must be at least the spacing {}", r.min_distance,
                                        r.spacing));
+  if (r.contacts != 1 && r.contacts != 2)
+    throw InvalidParameter(fmt::format("packing: contacts must be 1 (a tree) or 2 (loops), got {}", r.contacts));
+  if (r.candidates < 1 || r.candidates > 1000)
+    throw InvalidParameter(fmt::format("packing: candidates must be in [1, 1000], got {}", r.candidates));
   std::mt19937_64 generator(r.seed);
   std::vector<PackedSphere> spheres{{Eigen::Vector3d::Zero(), r.radius}};
+  Eigen::Vector3d centre_sum = Eigen::Vector3d::Zero();
   while (static_cast<int>(spheres.size()) < r.count) {
-    bool placed = false;
-    for (int attempt = 0; attempt < r.attempts_per_sphere && !placed; ++attempt) {
-      const auto parent = std::min(spheres.size() - 1, static_cast<std::size_t>(unit_uniform(generator) * spheres.size()));
-      const Eigen::Vector3d centre = spheres[parent].centre + r.spacing * random_direction(generator);
-      placed = true;
-      for (std::size_t k = 0; k < spheres.size() && placed; ++k)
-        placed = k == parent || (spheres[k].centre - centre).norm() >= r.min_distance;
-      if (placed)
-        spheres.push_back({centre, r.radius});
-    }
-    if (!placed)
+    const auto place = [&]() {
+      std::optional<PackedSphere> next;
+      for (int attempt = 0; attempt < r.attempts_per_sphere && !next && r.contacts == 2; ++attempt)
+        next = bridge_two(spheres, r, generator);
+      for (int attempt = 0; attempt < r.attempts_per_sphere && !next; ++attempt)
+        next = grow_from_one(spheres, r, generator);
+      return next;
+    };
+    const Eigen::Vector3d centroid = centre_sum / static_cast<double>(spheres.size());
+    std::optional<PackedSphere> next = place();
+    for (int candidate = 1; candidate < r.candidates && next; ++candidate)
+      if (const auto other = place(); other && (other->centre - centroid).norm() < (next->centre - centroid).norm())
+        next = other;
+    if (!next)
       throw InvalidParameter(fmt::format("packing: no place found for sphere {} of {} in {} attempts (spacing {}, "
                                          "min-distance {}): lower min-distance or the count",
                                          spheres.size() + 1, r.count, r.attempts_per_sphere, r.spacing,
                                          r.min_distance));
+    spheres.push_back(*next);
+    centre_sum += next->centre;
   }
   return spheres;
 }

@@ -3,7 +3,7 @@
 //! \brief A packing of spheres as one implicit surface: the union of the balls, joined by a neck
 //! where two overlap (a powder compact, the start of solid-state sintering), optionally blended
 //! (smooth_union.h). The spheres come from a CSV file of centres and radii, a lattice, or a
-//! seeded random tree in which every sphere overlaps the one it grew from.
+//! seeded random cluster in which every sphere overlaps one or two it grew from.
 
 #include "sdflow/shapes/implicit.h"
 
@@ -28,17 +28,25 @@ struct LatticePacking {
 };
 std::vector<PackedSphere> lattice_packing(const LatticePacking& lattice);
 
-//! `count` spheres of one radius grown as a random tree: each new sphere sits at `spacing` from an
-//! earlier one (uniform choice of that one, uniform direction) and is kept only if its centre is
-//! at least `min_distance` from every other centre: one body of genus 0, and with min_distance >
-//! 2·radius a gap of at least min_distance − 2·radius between spheres that do not touch.
-//! Deterministic for a seed on every platform.
+//! `count` spheres of one radius grown at random. With contacts = 1, a random tree: each new
+//! sphere sits at `spacing` from an earlier one (uniform choice of that one, uniform direction).
+//! With contacts = 2, a cluster with loops: each new sphere bridges two earlier spheres that do
+//! not overlap each other (at `spacing` from both, uniform angle about their axis), closing a loop
+//! of at least four spheres, a pore channel of the compact; a sphere for which no such pair has
+//! room is grown from one as in the tree. Either way a centre is kept only if it is at least
+//! `min_distance` from every centre it does not touch: one body, of genus (contacts − spheres + 1),
+//! and with min_distance > 2·radius a gap of at least min_distance − 2·radius between spheres that
+//! do not touch. With candidates > 1 each sphere is the one nearest the centroid of those placed
+//! so far among that many valid placements: a compact cluster (an Eden-like growth) rather than
+//! one with long branches. Deterministic for a seed on every platform.
 struct RandomPacking {
   int count = 20;
   double radius = 1;
   double spacing = 1.8;
   double min_distance = 2.4;
   std::uint64_t seed = 1;
+  int contacts = 1;                //!< spheres each new one touches: 1 (a tree) or 2 (loops)
+  int candidates = 1;              //!< valid placements drawn for each sphere; the most central is kept
   int attempts_per_sphere = 10000; //!< then InvalidParameter: the cluster is too crowded
 };
 std::vector<PackedSphere> random_packing(const RandomPacking& random);
