@@ -356,6 +356,39 @@ TEST(Remesh, radius_targets_apply_their_rule_to_a_given_curvature)
   EXPECT_THROW(radius_targets(mesh, Eigen::VectorXd::Ones(3), o), InvalidParameter);
 }
 
+TEST(Remesh, radius_targets_grade_by_at_most_their_growth_limit)
+{
+  // κ = ½ everywhere but at one vertex, whose κ = 40 asks for a target 80 times smaller than its
+  // neighbours': unlimited, the target jumps within one edge; limited, it grows by at most g per
+  // unit length along every edge, the spike keeps its target, and no target is raised.
+  const Mesh mesh = analytic::icosphere(3);
+  Eigen::VectorXd kappa = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(mesh.n_vertices()), 0.5);
+  kappa[7] = 40;
+  const RadiusSizingOptions free{.edges_per_radius = 4, .min_length = 0.001, .max_length = 0.5};
+  RadiusSizingOptions graded = free;
+  graded.max_growth = 1;
+  const std::vector<double> unlimited = radius_targets(mesh, kappa, free);
+  const std::vector<double> limited = radius_targets(mesh, kappa, graded);
+  EXPECT_DOUBLE_EQ(limited[7], unlimited[7]);
+  double steepest_unlimited = 0;
+  for (const auto e : mesh.edges()) {
+    const int a = e.v0().idx(), b = e.v1().idx();
+    const double length = (mesh.point(e.v0()) - mesh.point(e.v1())).norm();
+    EXPECT_LE(std::abs(limited[a] - limited[b]), length * (1 + 1e-12)) << "edge " << a << "-" << b;
+    steepest_unlimited = std::max(steepest_unlimited, std::abs(unlimited[a] - unlimited[b]) / length);
+  }
+  EXPECT_GT(steepest_unlimited, 1) << "the spike must be steeper than the limit for the test to say anything";
+  int lowered = 0;
+  for (std::size_t v = 0; v < limited.size(); ++v) {
+    EXPECT_LE(limited[v], unlimited[v]);
+    lowered += limited[v] < unlimited[v];
+  }
+  EXPECT_GT(lowered, 5);
+  EXPECT_LT(lowered, static_cast<int>(mesh.n_vertices()) / 4) << "the grading stays around the spike";
+  graded.max_growth = -1;
+  EXPECT_THROW(radius_targets(mesh, kappa, graded), InvalidParameter);
+}
+
 TEST(Remesh, refuses_bad_options)
 {
   const Mesh sphere = analytic::icosphere(2);

@@ -30,6 +30,13 @@ TEST(CurvatureTargets, without_an_anisotropy_they_are_radius_targets_exactly)
     constexpr double ell = 0.3;
     EXPECT_EQ(curvature_targets(mesh, options, ell),
               radius_targets(mesh, {.edges_per_radius = 4, .min_length = 0.25 * ell, .max_length = ell}));
+    RetriangulationOptions graded = options;
+    graded.graded_remeshing = true;
+    EXPECT_EQ(curvature_targets(mesh, graded, ell),
+              radius_targets(mesh, {.edges_per_radius = 4,
+                                    .min_length = 0.25 * ell,
+                                    .max_length = ell,
+                                    .max_growth = kCurvatureTargetGrowth}));
   }
 }
 

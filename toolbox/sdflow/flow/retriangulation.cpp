@@ -213,7 +213,8 @@ LocalRounds remesh_worn_regions(const Mesh& mesh, const DegradedElements& degrad
                        {.edge_length = o.edge_length, .iterations = o.remesh_iterations, .rings = kLocalRemeshRings,
                         .curved_projection = o.curved_projection,
                         .crease_angle_deg = o.crease_angle_deg,
-                        .max_patch_share = rounds.rounds == 0 ? kLocalPatchShare : 1.0});
+                        .max_patch_share = rounds.rounds == 0 ? kLocalPatchShare : 1.0,
+                        .area_weighted_relaxation = o.graded_remeshing});
     if (next.declined) {
       total.patch_faces = next.patch_faces;
       total.declined = true;
@@ -370,7 +371,8 @@ std::optional<Mesh> remesh_where_step_failed(const Mesh& mesh, const std::vector
                        {.edge_length = o.edge_length, .iterations = o.remesh_iterations, .rings = 1,
                         .curved_projection = o.curved_projection,
                         .crease_angle_deg = o.crease_angle_deg,
-                        .max_patch_share = kFailedStepPatchShare});
+                        .max_patch_share = kFailedStepPatchShare,
+                        .area_weighted_relaxation = o.graded_remeshing});
   } catch (const InvalidMesh& e) {
     fallback = fmt::format("the remeshing around the {} vertices where the step failed failed ({}), so the whole "
                            "pipeline ran; ", failed.size(), e.what());

@@ -70,6 +70,7 @@ LocalRemeshResult remesh_locally(const Mesh& mesh, const std::vector<int>& faces
     for (const int v : patch.vertices)
       lengths.push_back(targets[v]);
     remesh.sizing = nearest_vertex_sizing(patch.mesh, std::move(lengths));
+    remesh.area_weighted_relaxation = options.area_weighted_relaxation;
   }
   RemeshResult remeshed = isotropic_remesh(patch.mesh, remesh);
   result.statistics = remeshed.statistics;

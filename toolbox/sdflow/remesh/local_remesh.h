@@ -30,6 +30,8 @@ struct LocalRemeshOptions {
   //! Remesh nothing when the patch (chosen faces, rings, closure) would hold more than this share
   //! of the surface's faces (in (0, 1]): so much of it is worn that the whole pipeline is called for.
   double max_patch_share = 1;
+  //! With targets: relax by area / target² (RemeshOptions::area_weighted_relaxation).
+  bool area_weighted_relaxation = false;
 };
 
 //! What a local remeshing did.

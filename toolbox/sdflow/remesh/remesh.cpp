@@ -28,6 +28,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <queue>
 #include <unordered_set>
 #include <vector>
 
@@ -770,7 +771,9 @@ private:
   }
 
   //! Where a sweep moves v, projected: a boundary vertex toward the midpoint of its two boundary
-  //! neighbours, an interior one toward the (sizing-weighted) centroid of its neighbours, within
+  //! neighbours, an interior one toward the centroid of its neighbours (each weighted by its target
+  //! with a sizing field; with RemeshOptions::area_weighted_relaxation, the centroid of its faces'
+  //! centroids, each weighted by area / target²), within
   //! the plane normal to the area-weighted normal of its star.
   Eigen::Vector3d relaxed(int v, const Neighbourhoods& n, const std::vector<Eigen::Vector3d>& x,
                           const std::vector<Eigen::Vector3d>& face_normal) const
@@ -781,10 +784,20 @@ private:
       return project_boundary_(0.5 * (x[w[first]] + x[w[first + 1]]));
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     double weight = 0;
-    for (int i = first; i < last; ++i) {
-      const double omega = options_.sizing ? target_[w[i]] : 1.0;
-      centroid += omega * x[w[i]];
-      weight += omega;
+    if (options_.sizing && options_.area_weighted_relaxation) {
+      for (int i = n.first_face[v]; i < n.first_face[v + 1]; ++i) {
+        const auto& [p, q, r] = n.corners[n.faces[i]];
+        const double target = (target_[p] + target_[q] + target_[r]) / 3;
+        const double omega = face_normal[n.faces[i]].norm() / (target * target);
+        centroid += omega * (x[p] + x[q] + x[r]) / 3;
+        weight += omega;
+      }
+    } else {
+      for (int i = first; i < last; ++i) {
+        const double omega = options_.sizing ? target_[w[i]] : 1.0;
+        centroid += omega * x[w[i]];
+        weight += omega;
+      }
     }
     if (!(weight > 0))
       return x[v];
@@ -1067,14 +1080,41 @@ SizingField curvature_sizing(const Mesh& mesh, const CurvatureSizingOptions& opt
 
 namespace {
 
+//! Lowers `lengths` (one per vertex) until no target exceeds a neighbour's by more than `growth`
+//! times the edge between them: ℓ(v) = min_u ℓ(u) + growth · d(u, v) over edge paths (Persson 2006,
+//! "Mesh size functions for implicit geometries and PDE-based gradient limiting"), by Dijkstra's
+//! sweep from the smallest targets.
+void limit_growth(const Mesh& mesh, double growth, std::vector<double>& lengths)
+{
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  for (std::size_t v = 0; v < lengths.size(); ++v)
+    queue.emplace(lengths[v], static_cast<int>(v));
+  while (!queue.empty()) {
+    const auto [length, v] = queue.top();
+    queue.pop();
+    if (length > lengths[v])
+      continue;
+    const Mesh::VertexHandle vh(v);
+    for (const auto u : mesh.vv_range(vh)) {
+      const double bound = length + growth * (mesh.point(u) - mesh.point(vh)).norm();
+      if (bound < lengths[u.idx()]) {
+        lengths[u.idx()] = bound;
+        queue.emplace(bound, u.idx());
+      }
+    }
+  }
+}
+
 //! Throws InvalidParameter for RadiusSizingOptions out of range.
 void check_radius_sizing(const RadiusSizingOptions& options)
 {
   if (!(options.edges_per_radius > 0) || !(options.min_length > 0) || !(options.max_length >= options.min_length) ||
-      !std::isfinite(options.max_length))
-    throw InvalidParameter(fmt::format("radius_targets: need edges_per_radius > 0 and 0 < min_length ≤ max_length, "
-                                       "got {}, min = {}, max = {}",
-                                       options.edges_per_radius, options.min_length, options.max_length));
+      !std::isfinite(options.max_length) || !(options.max_growth >= 0) || !std::isfinite(options.max_growth))
+    throw InvalidParameter(fmt::format("radius_targets: need edges_per_radius > 0, 0 < min_length ≤ max_length and "
+                                       "a finite max_growth ≥ 0, got {}, min = {}, max = {}, growth = {}",
+                                       options.edges_per_radius, options.min_length, options.max_length,
+                                       options.max_growth));
 }
 
 } // namespace
@@ -1104,6 +1144,8 @@ std::vector<double> radius_targets(const Mesh& mesh, const Eigen::VectorXd& kapp
       length = 1 / (options.edges_per_radius * kappa[v]);
     lengths.push_back(std::clamp(length, options.min_length, options.max_length));
   }
+  if (options.max_growth > 0)
+    limit_growth(mesh, options.max_growth, lengths);
   return lengths;
 }
 

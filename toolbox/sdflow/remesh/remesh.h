@@ -84,6 +84,14 @@ struct RemeshOptions {
   //! radius_targets); empty: uniform ℓ. It is called from several threads at once (both of those
   //! may be). An edge's target is the mean of the targets at its two ends.
   SizingField sizing;
+  //! With a sizing field: relax each vertex toward the centroid of its faces' centroids, each
+  //! weighted by its area / target² (Dunyach et al. 2013, "Adaptive remeshing for real-time mesh
+  //! deformation"), instead of toward the centroid of its neighbours weighted by their targets. The
+  //! latter pulls vertices out of a band of small targets toward the larger ones around it: where
+  //! targets drop fourfold within an edge or two (a neck, a crease between particles) it leaves
+  //! slivers and triangles of up to 178°. The re-triangulation uses it when graded
+  //! (RetriangulationOptions::graded_remeshing).
+  bool area_weighted_relaxation = false;
   //! Stop splitting once the mesh has this many vertices (0: no bound), and remesh no further
   //! (RemeshStatistics::stopped says so): for a caller that discards a remeshing grown beyond
   //! what its targets ask for rather than waiting for it.
@@ -148,6 +156,11 @@ struct RadiusSizingOptions {
   double edges_per_radius = 4; //!< n (> 0)
   double min_length = 0;       //!< floor (> 0)
   double max_length = 0;       //!< ceiling (≥ min_length, finite)
+  //! Gradient limit (≥ 0, 0: none): targets are lowered until none exceeds a neighbour's by more
+  //! than this × the edge between them (Persson 2006), so that they grade over several edges where
+  //! the curvature jumps (a neck, a crease) instead of within one, where the remesher has to leave
+  //! slivers.
+  double max_growth = 0;
 };
 
 //! The target length ℓ(v) of the rule above at each vertex of `mesh` (no deleted elements).

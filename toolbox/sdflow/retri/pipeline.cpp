@@ -481,6 +481,7 @@ std::vector<FacePair> remeshed_stage(Mesh& mesh, const RetriangulationOptions& o
   RemeshOptions remesh;
   remesh.edge_length = r.edge_length;
   remesh.iterations = options.remesh_iterations;
+  remesh.area_weighted_relaxation = options.graded_remeshing;
   // A resampled rim is a contact line: a curve in the plane with no corners of its own. A kink a
   // cut left is blunted by the remeshing, not kept as a corner whose flat tip the flow turns over.
   if (rim_kept_in_stage_one(options))

@@ -122,6 +122,13 @@ void add_retriangulation_entries(std::vector<ParameterEntry>& s)
     bind<double>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::crease_angle_deg);
   }
   {
+    auto& e = add(s, entry("retriangulation.graded_remeshing", "--graded-remeshing", ParameterType::boolean,
+                           "Grade the curvature-adapted edge lengths (growth ≤ ½ per unit length) and relax the "
+                           "remeshing by area: no slivers where a neck or crease asks for edges 4× finer"));
+    bind<bool>(e, &RunParameters::retriangulation, &RS::pipeline, &RO::graded_remeshing);
+    e.paper = false;
+  }
+  {
     auto& e = add(s, entry("retriangulation.neighbours", "--neighbours", ParameterType::integer,
                            "k, the nearest neighbours of the jet-fitted point normals"));
     e.range = retriangulation_ranges.neighbours;
