@@ -18,8 +18,9 @@ inline constexpr double kCurvatureTargetGrowth = 0.5;
 
 //! The target ℓ(v) at each vertex of `mesh` (no deleted elements) for the pipeline's options
 //! (edges_per_radius > 0, min_edge_fraction, anisotropy) and its resolved ℓ = `ell` (> 0):
-//! radius_targets with edges_per_radius, min_edge_fraction·ℓ, ℓ (and kCurvatureTargetGrowth when graded), by the geometric curvature
-//! when options.anisotropy is empty (exactly radius_targets' answer), by its weighted one otherwise.
+//! radius_targets with edges_per_radius, min_edge_fraction·ℓ and ℓ (and kCurvatureTargetGrowth
+//! with graded_remeshing), by the geometric curvature when options.anisotropy is empty (exactly
+//! radius_targets' answer), by its weighted one otherwise.
 std::vector<double> curvature_targets(const Mesh& mesh, const RetriangulationOptions& options, double ell);
 
 } // namespace sdflow
