@@ -1,6 +1,7 @@
 //! The composed re-triangulation of paper §3.2.1 with Appendix B (retri/pipeline.h).
 #include "sdflow/errors.h"
 #include "sdflow/geometry/measures.h"
+#include "sdflow/geometry/quality.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/io/soup.h"
 #include "sdflow/io/validate.h"
@@ -10,7 +11,6 @@
 #include "sdflow/shapes/catalogue.h"
 #include "sdflow/shapes/mesher.h"
 #include "sdflow/shapes/packing.h"
-#include "sdflow/geometry/quality.h"
 #include "sdflow/spatial/intersect.h"
 #include "support/analytic_meshes.h"
 #include "support/mesh_checks.h"
