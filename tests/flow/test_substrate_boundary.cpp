@@ -1,8 +1,9 @@
 //! The substrate boundary condition (substrate_boundary.h): a film off the plane, below it or turned
 //! inside out is refused, a pocket of vapour under a film is not; a cap at Young's angle stays, an island
 //! relaxes to the cap of its volume and Young's angle under refinement with its contact line on
-//! the plane bit for bit, its volume kept and W = A − cos θ_Y A_base never rising beyond a rise that
-//! falls under refinement; an anisotropic island reaches its Winterbottom shape; bad parameters
+//! the plane bit for bit, its volume kept and W = A − cos θ_Y A_base falling in every step of a
+//! constant τ (with the adaptive one and the restoration, never rising beyond a rise that falls
+//! under refinement); an anisotropic island reaches its Winterbottom shape; bad parameters
 //! are refused with the key named.
 #include "sdflow/flow/substrate_boundary.h"
 
@@ -19,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -26,7 +28,7 @@
 namespace sdflow {
 namespace {
 
-constexpr double kSecondOrderShare = 0.8;  //!< a ratio of errors per halving of h at least 0.8 × 4
+constexpr double kOrderShare = 0.8;        //!< a ratio of errors per halving of h at least 0.8 × 2^order
 constexpr double kMinDriftOrder = 1.5;     //!< the one-step drift's order between 12 and 24 rings (1.7–1.9 measured)
 constexpr double kMinShapeOrder = 1.5;     //!< the relaxed island's errors between 6 and 12 rings
 constexpr double kRelaxationTime = 2.5;    //!< with η = 10 the contact angle is within 1e-8 of θ_Y by then
@@ -214,7 +216,7 @@ double contact_angle_error(int rings, double degrees)
   const Mesh cap = analytic::spherical_cap(rings, 1, degrees);
   const FlowOperators op = flow_operators(cap, SchemeOptions{.boundary = BoundaryCondition::substrate});
   double error = 0;
-  for (const double c : contact_angle_cosines(cap, vertex_positions(cap), op))
+  for (const double c : contact_angle_cosines(cap, vertex_positions(cap), op, 0))
     error = std::max(error, std::abs(c - std::cos(radians(degrees))));
   return error;
 }
@@ -223,12 +225,13 @@ TEST(SubstrateBoundary, a_cap_at_youngs_angle_stays_for_any_tau_to_an_error_that
 {
   for (const double degrees : {60.0, 90.0, 120.0}) {
     SCOPED_TRACE(::testing::Message() << degrees << "°");
-    // The discrete contact angle of the exact cap: second order (ratios 4.1–4.7 measured).
+    // The discrete contact angle of the exact cap: first order (ratios 1.96–2.14 measured). The
+    // rim's own stiffness k_b ~ 1/h turns it into a displacement of O(h²): the drift below.
     const std::vector<double> angle{contact_angle_error(6, degrees), contact_angle_error(12, degrees),
                                     contact_angle_error(24, degrees)};
     RecordProperty(fmt::format("cos_error_{}deg", degrees), fmt::format("{:.3e} {:.3e} {:.3e}", angle[0], angle[1], angle[2]));
-    EXPECT_GT(angle[0] / angle[1], 4 * kSecondOrderShare);
-    EXPECT_GT(angle[1] / angle[2], 4 * kSecondOrderShare);
+    EXPECT_GT(angle[0] / angle[1], 2 * kOrderShare);
+    EXPECT_GT(angle[1] / angle[2], 2 * kOrderShare);
     // One step of any τ from the cap: the rim's law and the interior's ΔH act on what is left of the
     // discretisation; what the step moves falls under refinement at every τ from the scheme's
     // natural scale up (below it, τ ΔH of the mesh's own curvature noise moves the interior, as
@@ -321,6 +324,41 @@ TEST(SubstrateBoundary, a_hemisphere_relaxes_to_the_cap_of_its_volume_and_youngs
     EXPECT_LT(runs[1].energy_rise, runs[0].energy_rise / 4);
     EXPECT_LT(runs[0].energy_rise, 1e-6);
   }
+}
+
+//! The largest rise of W = A − cos θ_Y A_base in one of `steps` steps of constant τ of an island
+//! spreading (60°) or retracting (120°) from a hemisphere of 6 rings, relative to W, without the
+//! volume restoration.
+double largest_energy_rise(double young, double tau, int steps)
+{
+  FlowOptions p = substrate_run(young, 10);
+  p.steps = steps;
+  p.time_step.mode = TimeStepMode::constant;
+  p.time_step.tau = tau;
+  p.conserve_volume = false;
+  SurfaceDiffusion flow(analytic::spherical_cap(6, 1, 90), p);
+  double energy = substrate_energy(flow.mesh(), young), rise = -std::numeric_limits<double>::infinity();
+  while (!flow.finished()) {
+    flow.step();
+    const double now = substrate_energy(flow.mesh(), young);
+    rise = std::max(rise, (now - energy) / std::abs(energy));
+    energy = now;
+  }
+  return rise;
+}
+
+//! The rim's law and the interior offset that gives its swept volume back share one pressure λ, so
+//! W_h falls in every step whatever τ, near equilibrium too, where a pressure from the rim's own μ
+//! raised it at a rate that did not depend on τ (docs/method.md, "Substrate", "Energy").
+TEST(SubstrateBoundary, the_energy_falls_in_every_step_of_constant_tau)
+{
+  for (const double young : {60.0, 120.0})
+    for (const double tau : {1e-4, 1e-2}) {
+      SCOPED_TRACE(::testing::Message() << "θ_Y = " << young << "°, τ = " << tau);
+      const double rise = largest_energy_rise(young, tau, 150);
+      RecordProperty(fmt::format("energy_rise_{}deg_tau{}", young, tau), fmt::format("{:.3e}", rise));
+      EXPECT_LT(rise, 1e-13) << "relative to W: round-off, no rise";
+    }
 }
 
 //! |V(T) − V(0)| / V(0) of the material volume with the substrate after `steps` steps of τ = T / steps

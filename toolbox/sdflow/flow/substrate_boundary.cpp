@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -22,16 +23,61 @@ struct ContactPoint {
   int vertex = 0;
   Eigen::Vector3d outward = Eigen::Vector3d::Zero();
   double half_chord = 0; //!< ℓ_b = |∂A_base/∂x_b|
-  double cos_angle = 0;  //!< ((∂E_h/∂x_b + 2 μ_b M_b N_b) · n̂_b) / ℓ_b (E_h the area for the isotropic energy)
+  double cos_angle = 0;  //!< ((∂E_h/∂x_b − λ ∂V/∂x_b) · n̂_b) / ℓ_b (E_h the area for the isotropic energy)
   double stiffness = 0;  //!< k_b = n̂ᵀ ∂²E_h/∂x_b² n̂ / ℓ_b
 };
 
-//! The contact points of every boundary loop, loop by loop. A boundary loop runs against its faces,
-//! so with the film's normals outward it turns clockwise seen from above and e_z × (x_{b+1} − x_{b−1})
-//! points out of the film: it is 2 ∂A_base/∂x_b, the base polygon's area gradient.
-std::vector<ContactPoint> contact_points(const Mesh& mesh, const VertexVectors& x, const FlowOperators& op)
+//! Each film component's pressure λ = Σ_v ∂E_h/∂x_v·N_v / Σ_v ∂V/∂x_v·N_v over its vertices off the
+//! rim: the energy a normal offset of its interior (move_rim's volume correction) trades per unit
+//! of volume, the discrete Lagrange multiplier of the volume. `component` gives each vertex's
+//! component (rim vertices included), `offset_rate` the denominator, the volume's rate under the offset.
+struct InteriorPressure {
+  std::vector<int> component;
+  std::vector<double> pressure, offset_rate;
+};
+
+InteriorPressure interior_pressure(const Mesh& mesh, const VertexVectors& x, const FlowOperators& op)
+{
+  int count = 0;
+  const std::vector<int> face_component = face_component_ids(mesh, &count);
+  InteriorPressure p{std::vector<int>(static_cast<std::size_t>(x.rows()), -1),
+                     std::vector<double>(static_cast<std::size_t>(count), 0.0),
+                     std::vector<double>(static_cast<std::size_t>(count), 0.0)};
+  std::vector<double> energy_rate(static_cast<std::size_t>(count), 0.0);
+  for (const auto f : mesh.faces()) {
+    const std::size_t k = static_cast<std::size_t>(face_component[static_cast<std::size_t>(f.idx())]);
+    std::array<int, 3> v{};
+    int c = 0;
+    for (const auto u : mesh.fv_range(f))
+      v[static_cast<std::size_t>(c++)] = u.idx();
+    const Eigen::Vector3d x0 = x.row(v[0]), x1 = x.row(v[1]), x2 = x.row(v[2]);
+    const FaceEnergy face = op.parts.energy->face_energy(0.5 * (x1 - x0).cross(x2 - x0));
+    for (c = 0; c < 3; ++c) {
+      const int corner = v[static_cast<std::size_t>(c)];
+      p.component[static_cast<std::size_t>(corner)] = static_cast<int>(k);
+      if (mesh.is_boundary(Mesh::VertexHandle(corner)))
+        continue;
+      const Eigen::Vector3d a = x.row(v[static_cast<std::size_t>((c + 1) % 3)]),
+                            b = x.row(v[static_cast<std::size_t>((c + 2) % 3)]);
+      const Eigen::Vector3d normal = op.normals.row(corner).transpose();
+      energy_rate[k] += (0.5 * (a - b).cross(face.gradient)).dot(normal);
+      p.offset_rate[k] += a.cross(b).dot(normal) / 6.0; // an interior star is closed: any origin
+    }
+  }
+  for (std::size_t k = 0; k < p.pressure.size(); ++k)
+    p.pressure[k] = std::abs(p.offset_rate[k]) > 0 ? energy_rate[k] / p.offset_rate[k] : 0.0;
+  return p;
+}
+
+//! The contact points of every boundary loop, loop by loop, on the substrate z = `z0`. A boundary
+//! loop runs against its faces, so with the film's normals outward it turns clockwise seen from
+//! above and e_z × (x_{b+1} − x_{b−1}) points out of the film: it is 2 ∂A_base/∂x_b, the base
+//! polygon's area gradient.
+std::vector<ContactPoint> contact_points(const Mesh& mesh, const VertexVectors& x, const FlowOperators& op, double z0,
+                                         const InteriorPressure& interior)
 {
   std::vector<ContactPoint> points;
+  const Eigen::Vector3d origin(0, 0, z0); // on the plane, where the loops' caps hold no volume
   for (const auto& loop : boundary_loops(mesh)) {
     const std::size_t n = loop.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -44,7 +90,7 @@ std::vector<ContactPoint> contact_points(const Mesh& mesh, const VertexVectors& 
       if (!(p.half_chord > 0))
         throw InvalidMesh(fmt::format("substrate: the contact line folds back on itself at vertex {}", p.vertex));
       p.outward = Eigen::Vector3d(-chord.y(), chord.x(), 0.0) / chord.norm();
-      Eigen::Vector3d area_gradient = Eigen::Vector3d::Zero();
+      Eigen::Vector3d energy_gradient = Eigen::Vector3d::Zero(), volume_gradient = Eigen::Vector3d::Zero();
       double curvature = 0;
       const Eigen::Vector3d xb = x.row(p.vertex);
       for (const auto h : mesh.voh_range(b)) {
@@ -59,13 +105,16 @@ std::vector<ContactPoint> contact_points(const Mesh& mesh, const VertexVectors& 
         // convex along n̂ with second derivative uᵀ D²γ(a) u (for the area, |e|² (n̂·N_f)² / (4 |f|)).
         const FaceEnergy face = op.parts.energy->face_energy(area_vector);
         const Eigen::Vector3d u = 0.5 * p.outward.cross(xp - xq);
-        area_gradient += 0.5 * (xp - xq).cross(face.gradient);
+        energy_gradient += 0.5 * (xp - xq).cross(face.gradient);
+        volume_gradient += (xp - origin).cross(xq - origin) / 6.0;
         curvature += u.dot(face.hessian * u);
       }
-      // Less the part of ∂A/∂x_b that the surface's curvature makes, −2 μ_b M_b N_b: it is balanced by
-      // the pressure, not by the contact line (an exact cap then has cos θ_d = cos θ to O(h²)).
-      area_gradient += 2 * op.curvature[p.vertex] * op.areas[p.vertex] * op.normals.row(p.vertex).transpose();
-      p.cos_angle = area_gradient.dot(p.outward) / p.half_chord;
+      // Less the pressure's part, λ ∂V/∂x_b: it is balanced by the volume, not by the contact line
+      // (an exact cap then has cos θ_d = cos θ to O(h²)). With the λ of the interior offset that
+      // gives the swept volume back, rim and offset together lower W_h (docs/method.md, "Energy").
+      energy_gradient -= interior.pressure[static_cast<std::size_t>(interior.component[static_cast<std::size_t>(p.vertex)])] *
+                         volume_gradient;
+      p.cos_angle = energy_gradient.dot(p.outward) / p.half_chord;
       p.stiffness = curvature / p.half_chord;
       points.push_back(p);
     }
@@ -122,7 +171,6 @@ SubstrateBoundary::SubstrateBoundary(const SubstrateOptions& options) : options_
                                        r.mobility.text(), options.mobility));
   if (!r.z.contains(options.z))
     throw InvalidParameter(fmt::format("substrate.z must be finite, got {}", options.z));
-  cos_young_ = std::cos(options.contact_angle * std::numbers::pi / 180);
 }
 
 void SubstrateBoundary::check_surface(const Mesh& mesh, const UserTerms& terms) const
@@ -163,11 +211,15 @@ void SubstrateBoundary::check_surface(const Mesh& mesh, const UserTerms& terms) 
   }
 }
 
-VertexVectors contact_line_displacements(const Mesh& mesh, const VertexVectors& positions,
-                                         const FlowOperators& operators, double cos_young, double mobility, double tau)
+namespace {
+
+//! The rim's in-plane displacements δ_b n̂_b (zero off the rim) with the pressure `interior`.
+VertexVectors rim_displacements(const Mesh& mesh, const VertexVectors& positions, const FlowOperators& operators,
+                                const SubstrateOptions& substrate, double tau, const InteriorPressure& interior)
 {
+  const double cos_young = std::cos(substrate.contact_angle * std::numbers::pi / 180), mobility = substrate.mobility;
   VertexVectors displacement = VertexVectors::Zero(positions.rows(), 3);
-  for (const ContactPoint& p : contact_points(mesh, positions, operators)) {
+  for (const ContactPoint& p : contact_points(mesh, positions, operators, substrate.z, interior)) {
     const double drive = cos_young - p.cos_angle;
     double delta = 0;
     if (std::isinf(mobility))
@@ -179,21 +231,32 @@ VertexVectors contact_line_displacements(const Mesh& mesh, const VertexVectors& 
   return displacement;
 }
 
+} // namespace
+
+VertexVectors contact_line_displacements(const Mesh& mesh, const VertexVectors& positions,
+                                         const FlowOperators& operators, const SubstrateOptions& substrate, double tau)
+{
+  return rim_displacements(mesh, positions, operators, substrate, tau, interior_pressure(mesh, positions, operators));
+}
+
 std::vector<double> contact_angle_cosines(const Mesh& mesh, const VertexVectors& positions,
-                                          const FlowOperators& operators)
+                                          const FlowOperators& operators, double substrate_z)
 {
   std::vector<double> cosines;
-  for (const ContactPoint& p : contact_points(mesh, positions, operators))
+  for (const ContactPoint& p :
+       contact_points(mesh, positions, operators, substrate_z, interior_pressure(mesh, positions, operators)))
     cosines.push_back(p.cos_angle);
   return cosines;
 }
 
 double SubstrateBoundary::tau_limit(const Mesh& mesh, const FlowOperators& operators) const
 {
+  if (std::isinf(options_.mobility))
+    return std::numeric_limits<double>::infinity();
+  const VertexVectors x = vertex_positions(mesh);
   double stiffest = 0;
-  if (!std::isinf(options_.mobility))
-    for (const ContactPoint& p : contact_points(mesh, vertex_positions(mesh), operators))
-      stiffest = std::max(stiffest, p.stiffness);
+  for (const ContactPoint& p : contact_points(mesh, x, operators, options_.z, interior_pressure(mesh, x, operators)))
+    stiffest = std::max(stiffest, p.stiffness);
   return stiffest > 0 ? 1 / (options_.mobility * stiffest) : std::numeric_limits<double>::infinity();
 }
 
@@ -202,7 +265,10 @@ void SubstrateBoundary::move_rim(const Mesh& mesh, const FlowOperators& operator
 {
   if (!positions.allFinite())
     return; // the trial is rejected as it stands
-  const VertexVectors displacement = contact_line_displacements(mesh, positions, operators, cos_young_, options_.mobility, tau);
+  // One pressure for the rim's law and the offset below: the offset then changes E_h by λ times the
+  // volume it gives back, which the rim's angle already counted, so the two together lower W_h.
+  const InteriorPressure interior = interior_pressure(mesh, positions, operators);
+  const VertexVectors displacement = rim_displacements(mesh, positions, operators, options_, tau, interior);
   int count = 0;
   const std::vector<int> component = face_component_ids(mesh, &count);
   const FaceIndices faces = face_indices(mesh);
@@ -216,27 +282,14 @@ void SubstrateBoundary::move_rim(const Mesh& mesh, const FlowOperators& operator
       positions(v, 1) += displacement(v, 1);
     }
   const std::vector<double> after = material_volumes(positions, faces, component, count, loops);
-  // The volume the rim swept, given back by one normal offset c of each component's interior: its
-  // volume's rate along the normals is Σ_f of the volume gradient at the face's interior corners.
-  std::vector<double> rate(static_cast<std::size_t>(count), 0.0);
-  std::vector<int> vertex_component(static_cast<std::size_t>(positions.rows()), -1);
-  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    const int k = component[static_cast<std::size_t>(f)];
-    for (int c = 0; c < 3; ++c) {
-      const int v = faces(f, c);
-      if (mesh.is_boundary(Mesh::VertexHandle(v)))
-        continue;
-      vertex_component[static_cast<std::size_t>(v)] = k;
-      const Eigen::Vector3d a = positions.row(faces(f, (c + 1) % 3)), b = positions.row(faces(f, (c + 2) % 3));
-      rate[static_cast<std::size_t>(k)] += a.cross(b).dot(operators.normals.row(v).transpose()) / 6.0;
-    }
-  }
+  // The volume the rim swept, given back by one normal offset c of each component's interior, at
+  // the rate Σ_v ∂V/∂x_v·N_v of the pressure's denominator.
   for (Eigen::Index v = 0; v < positions.rows(); ++v) {
-    const int k = vertex_component[static_cast<std::size_t>(v)];
-    if (k < 0 || !(std::abs(rate[static_cast<std::size_t>(k)]) > 0))
+    const int k = interior.component[static_cast<std::size_t>(v)];
+    const double rate = k < 0 ? 0.0 : interior.offset_rate[static_cast<std::size_t>(k)];
+    if (mesh.is_boundary(Mesh::VertexHandle(static_cast<int>(v))) || !(std::abs(rate) > 0))
       continue;
-    const double offset = (before[static_cast<std::size_t>(k)] - after[static_cast<std::size_t>(k)]) /
-                          rate[static_cast<std::size_t>(k)];
+    const double offset = (before[static_cast<std::size_t>(k)] - after[static_cast<std::size_t>(k)]) / rate;
     positions.row(v) += offset * operators.normals.row(v);
   }
 }

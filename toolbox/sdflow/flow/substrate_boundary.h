@@ -7,10 +7,10 @@
 //! the plane along its outward normal n̂_b by the relaxed contact-angle law
 //! v = η (cos θ_Y − cos θ_d) (Wang, Jiang and Bao 2015; Zhao, Jiang and Bao 2020). The discrete
 //! cos θ_d is the variational one of W = A − cos θ_Y A_base less the pressure's part,
-//!   ℓ_b cos θ_d = (∂A/∂x_b + 2 μ_b M_b N_b) · n̂_b,   ℓ_b = ½ |x_{b+1} − x_{b−1}| = |∂A_base/∂x_b|
-//! (the term 2 μ_b M_b N_b removes what the surface's curvature contributes to the area gradient:
-//! an exact cap's angle is then right to O(h²), not O(h)), taken linearly implicit in b's own
-//! displacement δ_b:
+//!   ℓ_b cos θ_d = (∂A/∂x_b − λ ∂V/∂x_b) · n̂_b,   ℓ_b = ½ |x_{b+1} − x_{b−1}| = |∂A_base/∂x_b|,
+//! λ = Σ_v ∂A/∂x_v·N_v / Σ_v ∂V/∂x_v·N_v over the component's interior (the term removes what the
+//! surface's curvature contributes to the area gradient: an exact cap's angle is then right to
+//! O(h²), not O(h)), taken linearly implicit in b's own displacement δ_b:
 //!   δ_b = τη (cos θ_Y − cos θ_d) / (1 + τη k_b),   k_b = n̂ᵀ (∂²A/∂x_b²) n̂ / ℓ_b ≥ 0,
 //! where k_b is exact: each face's area is |e|/2 times b's distance to the line of its opposite
 //! edge e, whose second derivative along n̂ is (n̂·N_f)²/dist. A step never takes b past the
@@ -18,9 +18,11 @@
 //! Newton step); adaptive steps are bounded by τ ≤ 1/(η max k_b) for it to stay accurate
 //! (tau_limit). With an anisotropic energy E_h = Σ_f γ(a_f) the same holds with A replaced by E_h
 //! (its face gradient ξ(a_f) and Hessian D²γ(a_f), SurfaceEnergy::face_energy) and cos θ_Y read
-//! as σ = γ_VS − γ_FS in γ's units: equilibria are Winterbottom shapes. The volume that rim motion sweeps is given back by one uniform normal offset of
-//! the component's interior (first order in the offset), so a step conserves the material volume
-//! (material_volume.h; its cap lies on the plane) to first order in τ.
+//! as σ = γ_VS − γ_FS in γ's units: equilibria are Winterbottom shapes. The volume that rim motion
+//! sweeps is given back by one uniform normal offset of the component's interior (first order in
+//! the offset), so a step conserves the material volume (material_volume.h; its cap lies on the
+//! plane) to first order in τ. The offset trades energy for volume at the rate λ, so the rim's
+//! motion and the offset together lower W_h: the semi-discrete flow is W_h's gradient flow.
 
 #include "sdflow/flow/boundary_condition.h"
 #include "sdflow/flow/fixed_boundary.h"
@@ -67,19 +69,19 @@ public:
 
 private:
   SubstrateOptions options_;
-  double cos_young_ = 0;
   FixedBoundary fixed_;
 };
 
 //! The rim's in-plane displacements of one contact-line step (#V by 3, zero off the rim) on the
-//! surface `mesh` with vertex `positions`: δ_b n̂_b by the law of substrate_boundary.h; η = ∞ takes
-//! the Newton step δ_b = (cos θ_Y − cos θ_d)/k_b.
+//! surface `mesh` with vertex `positions`, standing on `substrate`: δ_b n̂_b by the law above;
+//! η = ∞ takes the Newton step δ_b = (cos θ_Y − cos θ_d)/k_b.
 VertexVectors contact_line_displacements(const Mesh& mesh, const VertexVectors& positions,
-                                         const FlowOperators& operators, double cos_young, double mobility, double tau);
+                                         const FlowOperators& operators, const SubstrateOptions& substrate, double tau);
 
 //! The discrete contact angle cos θ_d of each rim vertex (in the order of boundary_loops, loop by
-//! loop): (∂A/∂x_b · n̂_b) / ℓ_b, as contact_line_displacements takes it.
+//! loop) on the substrate z = `substrate_z`: ((∂A/∂x_b − λ ∂V/∂x_b) · n̂_b) / ℓ_b, as
+//! contact_line_displacements takes it.
 std::vector<double> contact_angle_cosines(const Mesh& mesh, const VertexVectors& positions,
-                                          const FlowOperators& operators);
+                                          const FlowOperators& operators, double substrate_z);
 
 } // namespace sdflow
