@@ -17,8 +17,11 @@ contact line's vertices from the centroid of the area they enclose) against the 
 every step: the largest relative change of the material volume in a step that did not
 re-triangulate, the change over the run, and the steps in which W = ∫ γ dA − σ A_base rose by more
 than 10⁻¹² relative (flow steps and re-triangulations counted apart), A_base the area inside the
-contact lines, σ = cos θ_Y. Each case is run twice: with the volume restoration (`conserve_volume`,
-what the samples use) and without (the step's own drift). Then the 60° case at ℓ = 0.05 without the
+contact lines, σ = cos θ_Y. Each case is run four times: with the volume restoration
+(`conserve_volume`, what the samples use) and without (the step's own drift), each with the mixed
+Voronoi vertex areas (the default) and with the volume-gradient ones (`mass = "volume_gradient"`,
+which keep the volume to second order in τ, so the restoration's offset, which changes W by the
+pressure times the volume it gives back, is second order too). Then the 60° case at ℓ = 0.05 without the
 restoration to t = 0.2, with the adaptive τ and with a constant one: whether W's rises are the
 adaptive τ's.
 
@@ -90,16 +93,18 @@ def exact_shape(volume, theta, g):
     return r * (c - sigma), r * math.sqrt(1 - sigma ** 2 / (c * c))
 
 
-def cached_case(work, force, theta, g, edge_length, end_time, conserve, tau=None):
+def cached_case(work, force, theta, g, edge_length, end_time, conserve, tau=None, mass="voronoi"):
     """run_case's figures, from work/NAME.json when there (and not force), else run and saved there."""
     name = f"theta_{theta:g}_g_{'-'.join(f'{x:g}' for x in g) if g else 'iso'}_edge_{edge_length:g}_t_{end_time:g}_{'conserve' if conserve else 'free'}"
     if tau is not None:
         name += f"_tau_{tau:g}"
+    if mass != "voronoi":
+        name += f"_{mass}"
     path = os.path.join(work, name + ".json")
     if not force and os.path.exists(path):
         with open(path) as f:
             return json.load(f)
-    record = run_case(theta, g, edge_length, end_time, conserve, tau, BUDGET)
+    record = run_case(theta, g, edge_length, end_time, conserve, tau, BUDGET, mass)
     for series in ("w", "volume", "retri"):
         del record[series]
     os.makedirs(work, exist_ok=True)
@@ -109,15 +114,16 @@ def cached_case(work, force, theta, g, edge_length, end_time, conserve, tau=None
     return record
 
 
-def run_case(theta, g, edge_length, end_time, conserve, tau=None, budget=600.0):
-    """One run's figures; tau given: constant steps of that τ, else the adaptive τ (the default).
-    A run that has not reached end_time after `budget` CPU seconds is stopped there."""
+def run_case(theta, g, edge_length, end_time, conserve, tau=None, budget=600.0, mass="voronoi"):
+    """One run's figures; tau given: constant steps of that τ, else the adaptive τ (the default);
+    `mass` the vertex areas of the scheme. A run that has not reached end_time after `budget` CPU
+    seconds is stopped there."""
     mesh = sdflow.shape("cuboid-island", a=1, b=1, c=0.5, radius=0.45, edge_length=edge_length)
     energy = {"kind": "ellipsoidal", "g": list(g)} if g else {"kind": "isotropic"}
     time_step = {} if tau is None else {"time_step": "constant", "tau": tau}
     flow = sdflow.Flow(mesh.V, mesh.F, boundary="substrate", conserve_volume=conserve,
                        substrate={"z": 0.0, "contact_angle": theta, "mobility": 10.0},
-                       energy=energy, t_end=end_time, **time_step)
+                       energy=energy, mass=mass, t_end=end_time, **time_step)
     sigma = math.cos(math.radians(theta))
     w = lambda: float(flow.metrics["energy"]) - sigma * base_area(flow.V, flow.F)
     volume0 = float(flow.metrics["volume"])
@@ -171,18 +177,23 @@ def main():
     edges = [float(h) for h in a.edge_lengths.split(",")]
     lines = [f"#### Islands on z = 0 relaxing to their equilibria (η = 10, from the rounded 1 × 1 × 0.5 box; at most {BUDGET:g} CPU s a run)",
              "",
-             "| case | ℓ | vertices | t, steps | height error | base radius error | volume: largest step (no re-triangulation) | volume: over the run | W rose in flow steps / re-triangulations | without restoration: largest step; over the run; W rose (flow steps) | CPU s |",
-             "|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| case | ℓ | vertices | t, steps | height error | base radius error | volume: largest step (no re-triangulation) | volume: over the run | W rose in flow steps / re-triangulations | without restoration: largest step; over the run; W rose (flow steps) | volume-gradient areas, with restoration: steps; height, base radius error; W rose in flow steps / re-triangulations | volume-gradient areas, without restoration: largest step; over the run | CPU s |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for label, theta, g, end_time in CASES:
         for h in edges:
             r = cached_case(a.work, a.force, theta, g, h, end_time, True)
             free = cached_case(a.work, a.force, theta, g, h, end_time, False)
+            vg = cached_case(a.work, a.force, theta, g, h, end_time, True, mass="volume_gradient")
+            vg_free = cached_case(a.work, a.force, theta, g, h, end_time, False, mass="volume_gradient")
             stopped = "" if r["time"] >= end_time * (1 - 1e-12) else f" (stopped by the CPU budget, τ = {r['tau']:.1e})"
             line = (f"| {label} | {h:g} | {r['vertices']} | {r['time']:.4g}, {r['steps']}{stopped} | {100 * r['height']:+.3f}% | "
                     f"{100 * r['base']:+.3f}% | {r['step_drift']:.1e} | {r['run_drift']:.1e} | "
                     f"{cell_rises(r['flow_rises'])} / {cell_rises(r['retri_rises'])} | "
                     f"{free['step_drift']:.1e}; {free['run_drift']:.1e}; {cell_rises(free['flow_rises'])} | "
-                    f"{r['seconds'] + free['seconds']:.0f} |")
+                    f"{vg['steps']}; {100 * vg['height']:+.3f}%, {100 * vg['base']:+.3f}%; "
+                    f"{cell_rises(vg['flow_rises'])} / {cell_rises(vg['retri_rises'])} | "
+                    f"{vg_free['step_drift']:.1e}; {vg_free['run_drift']:.1e} | "
+                    f"{r['seconds'] + free['seconds'] + vg['seconds'] + vg_free['seconds']:.0f} |")
             print(line, flush=True)
             lines.append(line)
     lines.append("")

@@ -267,6 +267,34 @@ TEST(TimeStepController, constant_and_tabled_steps_that_break_the_volume_bound_a
   }
 }
 
+// The adaptive rule keeps W_h from rising (time_step.h): a trial that raises it beyond round-off is
+// rejected and τ shrunk; constant and tabled steps take their τ as given.
+TEST(TimeStepController, an_adaptive_trial_that_raises_the_energy_is_rejected_and_tau_shrunk)
+{
+  const AdaptiveOptions bounds;
+  const VertexVectors x = VertexVectors::Zero(3, 3);
+  const Eigen::VectorXd w = Eigen::VectorXd::Zero(3), h = Eigen::VectorXd::Ones(3);
+  const FaceIndices no_faces(0, 3);
+  const VertexVectors no_error(0, 3);
+  const auto check = [&](double energy_change, bool adaptive) {
+    return check_trial({.tau = 1, .now = x, .next = x, .w = w, .error = no_error, .triangles = no_faces,
+                        .edge_lengths = h, .energy_change = energy_change},
+                       bounds, adaptive);
+  };
+  EXPECT_FALSE(check(-1e-3, true).failed()) << "a fall is what the flow does";
+  EXPECT_FALSE(check(0.5 * kEnergyRoundOff, true).failed()) << "round-off";
+  const StepCheck rose = check(2e-9, true);
+  EXPECT_TRUE(rose.energy_rose);
+  EXPECT_TRUE(rose.failed());
+  EXPECT_NE(rose.describe().find("the energy rose by 2e-09"), std::string::npos) << rose.describe();
+  EXPECT_FALSE(check(2e-9, false).failed()) << "a constant τ is taken as given";
+
+  TimeStepController adaptive({.mode = TimeStepMode::adaptive, .adaptive = {.initial_tau = 0.1}});
+  const double tau = adaptive.propose(1, 0.0, 100.0);
+  EXPECT_FALSE(adaptive.judge(1, tau, rose));
+  EXPECT_DOUBLE_EQ(adaptive.propose(1, 0.0, 100.0), tau * bounds.shrink);
+}
+
 TEST(TimeStepController, schedule_retries_apply_to_schedules_only_and_are_bounded)
 {
   // Without retries a schedule stops at the first unstable step, as the paper's tables would.

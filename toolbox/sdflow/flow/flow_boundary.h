@@ -57,6 +57,10 @@ public:
   {
   }
 
+  //! The boundary's part of the energy W_h the flow lowers, at vertex `positions` of `mesh`: the
+  //! substrate's −σ A_base; zero for a rim without one.
+  virtual double energy(const Mesh& /*mesh*/, const VertexVectors& /*positions*/) const { return 0; }
+
   //! The largest τ an adaptive step may take on `mesh` for the rim's own motion to stay accurate
   //! (FlowOperators::tau_limit); ∞ for a rim without one.
   virtual double tau_limit(const Mesh& /*mesh*/, const FlowOperators& /*operators*/) const

@@ -13,6 +13,11 @@
 
 namespace sdflow {
 
+double flow_energy(const SchemeParts& parts, const Mesh& mesh, const VertexVectors& positions)
+{
+  return parts.energy->value_at(mesh, positions) + parts.boundary->energy(mesh, positions);
+}
+
 SchemeParts scheme_parts(const SchemeOptions& options)
 {
   std::shared_ptr<const SurfaceEnergy> energy;

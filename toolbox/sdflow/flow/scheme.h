@@ -74,6 +74,10 @@ struct SchemeParts {
 //! its `energy` (InvalidParameter on bad numbers or formulas, make_anisotropy), and its `boundary`.
 SchemeParts scheme_parts(const SchemeOptions& options);
 
+//! W_h = E_h + the boundary's term (FlowBoundary::energy) of `mesh` at vertex `positions`:
+//! the discrete energy the flow lowers, which the adaptive rule keeps from rising (time_step.h).
+double flow_energy(const SchemeParts& parts, const Mesh& mesh, const VertexVectors& positions);
+
 //! A volume-gradient area below this fraction of the Voronoi area marks a folded star.
 inline constexpr double kMassFallbackFraction = 0.1;
 

@@ -20,6 +20,7 @@ target_sources(sdflow_toolbox PRIVATE
   sdflow/flow/substrate_topology.cpp
   sdflow/flow/substrate_topology_hook.cpp
   sdflow/flow/surface_diffusion.cpp
+  sdflow/flow/surface_energy.cpp
   sdflow/flow/surface_energy_options.cpp
   sdflow/flow/time_step.cpp
   sdflow/flow/topology_guard.cpp

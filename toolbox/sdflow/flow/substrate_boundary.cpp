@@ -260,6 +260,19 @@ double SubstrateBoundary::tau_limit(const Mesh& mesh, const FlowOperators& opera
   return stiffest > 0 ? 1 / (options_.mobility * stiffest) : std::numeric_limits<double>::infinity();
 }
 
+double SubstrateBoundary::energy(const Mesh& mesh, const VertexVectors& positions) const
+{
+  // A loop runs clockwise seen from above round the film (against its faces), counter-clockwise
+  // round a hole: minus the shoelace sum over the boundary halfedges is the base area.
+  double twice_area = 0;
+  for (const auto h : mesh.halfedges())
+    if (mesh.is_boundary(h)) {
+      const int a = mesh.from_vertex_handle(h).idx(), b = mesh.to_vertex_handle(h).idx();
+      twice_area -= positions(a, 0) * positions(b, 1) - positions(b, 0) * positions(a, 1);
+    }
+  return -std::cos(options_.contact_angle * std::numbers::pi / 180) * 0.5 * twice_area;
+}
+
 void SubstrateBoundary::move_rim(const Mesh& mesh, const FlowOperators& operators, double tau,
                                  VertexVectors& positions) const
 {

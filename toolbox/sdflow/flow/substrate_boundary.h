@@ -63,6 +63,9 @@ public:
   //! steps stay stable but lag: the interior follows the rim, so the slow mode's stiffness is
   //! O(1/R), not k_b.
   double tau_limit(const Mesh& mesh, const FlowOperators& operators) const override;
+  //! −σ A_base, σ = cos θ_Y: A_base the area the contact lines enclose in the plane (a hole's
+  //! counted negatively, by its orientation).
+  double energy(const Mesh& mesh, const VertexVectors& positions) const override;
   //! `hook` with the substrate's topology changes made first (substrate_topology_hook.h): the film
   //! reaching the plane away from its contact lines, and contact lines meeting.
   RetriangulationHook rim_topology_hook(RetriangulationHook hook, const RetriangulationSchedule& schedule) const override;

@@ -574,6 +574,7 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
   Eigen::VectorXd edge_lengths = vertex_mean_edge_lengths(surface_.mesh);
   const Topology& topology = surface_.topology;
   volumes = material_volumes(positions, surface_.triangles, topology.face_component, topology.count, topology.loops);
+  const double energy = flow_energy(parts_, surface_.mesh, positions);
   times.acceptance += watch.seconds();
   TrialPlan plan = plan_trials(next_step, std::move(edge_lengths));
   const AdaptiveOptions& adaptive = plan.adaptive;
@@ -597,6 +598,10 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
     trial = solve_trial(tau, plan.start, guesses, next_step, record);
     watch.restart();
     const double volume_change = largest_volume_change(trial.positions, volumes);
+    const double energy_change =
+        energy != 0 && trial.positions.allFinite()
+            ? (flow_energy(parts_, surface_.mesh, trial.positions) - energy) / std::abs(energy)
+            : 0.0;
     StepCheck check = check_trial({.tau = tau,
                                    .now = positions,
                                    .next = trial.positions,
@@ -604,7 +609,8 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
                                    .error = trial.error,
                                    .triangles = surface_.triangles,
                                    .edge_lengths = plan.edge_lengths,
-                                   .volume_change = volume_change},
+                                   .volume_change = volume_change,
+                                   .energy_change = energy_change},
                                   adaptive, controller.adaptive());
     logger().debug("step {}: the trial of τ = {} changes a component's material volume by {:.3g} (relative)", next_step,
                    tau, volume_change);

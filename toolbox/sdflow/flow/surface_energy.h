@@ -38,6 +38,10 @@ public:
   //! E of the surface (the area, for the isotropic energy): the flow never increases it.
   virtual double value(const Mesh& mesh) const = 0;
 
+  //! E of `mesh`'s triangles at vertex `positions` (a trial step's, time_step.h): Σ_f γ(a_f) of
+  //! face_energy, unless the energy has more than its faces' terms.
+  virtual double value_at(const Mesh& mesh, const VertexVectors& positions) const;
+
   //! μ at each vertex (#V), the first variation δE = -2 ∫ μ N·δX dA; the boundary condition
   //! (flow_boundary.h) then sets it on rim vertices.
   virtual Eigen::VectorXd first_variation(const SurfaceGeometry& geometry) const = 0;

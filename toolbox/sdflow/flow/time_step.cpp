@@ -138,6 +138,8 @@ std::string StepCheck::describe() const
     parts.push_back(fmt::format("relative volume change {:.3g}", volume_change));
   if (error_exceeded)
     parts.push_back(fmt::format("local error estimate {:.3g} of the local edge length", error_estimate));
+  if (energy_rose)
+    parts.push_back(fmt::format("the energy rose by {:.3g} (relative)", energy_change));
   if (parts.empty())
     return "accepted";
   std::string text = parts.front();
@@ -334,7 +336,9 @@ StepCheck check_trial(const TrialMotion& trial, const AdaptiveOptions& bounds, b
   }
   c.volume_change = trial.volume_change;
   c.volume_exceeded = c.volume_change > bounds.max_volume_change;
+  c.energy_change = trial.energy_change;
   if (adaptive) {
+    c.energy_rose = c.energy_change > kEnergyRoundOff;
     c.displacement_exceeded = c.displacement_ratio > bounds.max_displacement;
     c.error_exceeded = bounds.tolerance > 0 && c.error_estimate > bounds.tolerance;
     if (c.displacement_exceeded)

@@ -11,6 +11,11 @@
 //! - A step is also rejected when a triangle turns over (its normal reverses), a position is not
 //!   finite, or a component's material volume (material_volume.h) changes by more than `max_volume_change`
 //!   (relative): τ is then multiplied by `shrink`.
+//! - A step is rejected, τ multiplied by `shrink`, when it raises the energy the flow lowers,
+//!   W_h = Σ_f γ(a_f) plus the boundary's term (the substrate's −σ A_base; flow_energy, scheme.h),
+//!   by more than kEnergyRoundOff relative: the semi-discrete flow lowers it (docs/method.md,
+//!   "Substrate", "Energy"), so a rise is the time step's. The volume restoration after the step is
+//!   not part of the trial.
 //! - With a `tolerance` ε > 0 (extrapolated steps only, scheme.h): e = max_v |X_{τ/2∘τ/2} − X_τ|_v / h_v,
 //!   the local error estimate that step doubling provides (Hairer, Nørsett, Wanner I §II.4), must
 //!   be ≤ ε, and the next τ is also scaled by at most safety · √(ε / e) (the estimate is O(τ²)).
@@ -176,6 +181,10 @@ public:
   using UnacceptableStep::UnacceptableStep;
 };
 
+//! The relative rise of W_h in a trial that the adaptive rule takes for round-off: the sum over
+//! the faces of a 10⁵-face surface rounds at about 10⁻¹⁴.
+inline constexpr double kEnergyRoundOff = 1e-12;
+
 //! Why a trial step was not accepted.
 struct StepCheck {
   double displacement_ratio = 0;   //!< max τ|w|/h
@@ -183,9 +192,11 @@ struct StepCheck {
   bool non_finite = false;
   double volume_change = 0;        //!< largest relative material-volume change of a component
   double error_estimate = 0;       //!< max_v |X_{τ/2∘τ/2} − X_τ|_v / h_v of an extrapolated step (else 0)
+  double energy_change = 0;        //!< (W_h after − W_h before) / |W_h before|
   bool displacement_exceeded = false;
   bool volume_exceeded = false;
   bool error_exceeded = false;
+  bool energy_rose = false;        //!< adaptive mode: energy_change > kEnergyRoundOff
   //! Steps of a constant or tabled τ that broke the volume bound: the τ the adaptive rule would
   //! start with on this surface (automatic_tau), to say how much smaller τ should be (0: unknown).
   double adaptive_tau = 0;
@@ -194,7 +205,8 @@ struct StepCheck {
   std::vector<int> failed_vertices;
   bool failed() const
   {
-    return non_finite || inverted_triangles > 0 || displacement_exceeded || volume_exceeded || error_exceeded;
+    return non_finite || inverted_triangles > 0 || displacement_exceeded || volume_exceeded || error_exceeded ||
+           energy_rose;
   }
   std::string describe() const;
 };
@@ -209,10 +221,12 @@ struct TrialMotion {
   const FaceIndices& triangles;
   const Eigen::VectorXd& edge_lengths; //!< mean length of the edges at each vertex (h_v)
   double volume_change = 0;           //!< largest relative material-volume change of a component
+  double energy_change = 0;           //!< relative change of W_h (flow_energy)
 };
 
 //! The checks of the rule above on one trial: finite positions, no triangle turned over, the
-//! volume bound of `bounds` in every mode, and when `adaptive` the displacement and error bounds.
+//! volume bound of `bounds` in every mode, and when `adaptive` the displacement and error bounds
+//! and no rise of the energy.
 StepCheck check_trial(const TrialMotion& trial, const AdaptiveOptions& bounds, bool adaptive);
 
 //! τ of the first adaptive step when no initial τ is given: the explicit speed |ΔH| bounds the

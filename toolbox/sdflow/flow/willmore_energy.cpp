@@ -28,6 +28,13 @@ double WillmoreRegularisedEnergy::value(const Mesh& mesh) const
   return energy_->value(mesh) + 0.5 * epsilon_ * epsilon_ * (4 * h.array().square() * areas.array()).sum();
 }
 
+double WillmoreRegularisedEnergy::value_at(const Mesh& mesh, const VertexVectors& positions) const
+{
+  Mesh moved = mesh;
+  set_vertex_positions(moved, positions);
+  return value(moved);
+}
+
 Eigen::VectorXd WillmoreRegularisedEnergy::first_variation(const SurfaceGeometry& g) const
 {
   for (const auto v : g.mesh.vertices())

@@ -21,6 +21,8 @@ public:
 
   //! E + (ε²/2) Σ_i (2 H_i)² M_i with the cotangent H and mixed Voronoi areas M.
   double value(const Mesh& mesh) const override;
+  //! value() of a copy of `mesh` moved to `positions`: the Willmore term is not a sum over faces.
+  double value_at(const Mesh& mesh, const VertexVectors& positions) const override;
 
   //! E's μ plus μ_W = −ε² (M⁻¹L H + 2H (H² − K)), H the cotangent mean curvature and K the angle
   //! defect over M. Throws InvalidParameter on a surface with a boundary, where H and K are not
