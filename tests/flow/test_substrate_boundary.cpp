@@ -323,7 +323,8 @@ TEST(SubstrateBoundary, a_hemisphere_relaxes_to_the_cap_of_its_volume_and_youngs
     EXPECT_GT(std::log2(runs[0].base_error / runs[1].base_error), kMinShapeOrder);
     EXPECT_GT(std::log2(runs[0].energy_excess / runs[1].energy_excess), kMinShapeOrder);
     EXPECT_LT(runs[1].distance, 0.01) << "within 1% of the cap's radius at 12 rings (469 vertices)";
-    // W rises only at the discretisation's level, near the discrete equilibrium, and less so finer.
+    // W rises only by the volume restoration's offset (Voronoi areas), near the discrete equilibrium,
+    // and less so finer.
     EXPECT_LT(runs[1].energy_rise, runs[0].energy_rise / 4);
     EXPECT_LT(runs[0].energy_rise, 1e-6);
   }

@@ -293,6 +293,21 @@ TEST(TimeStepController, an_adaptive_trial_that_raises_the_energy_is_rejected_an
   const double tau = adaptive.propose(1, 0.0, 100.0);
   EXPECT_FALSE(adaptive.judge(1, tau, rose));
   EXPECT_DOUBLE_EQ(adaptive.propose(1, 0.0, 100.0), tau * bounds.shrink);
+  // A rise that falls like τ² with τ is the time step's: rejected again.
+  EXPECT_FALSE(adaptive.judge(1, tau * bounds.shrink, check(2e-9 * bounds.shrink * bounds.shrink, true)));
+  EXPECT_FALSE(adaptive.energy_stood_aside());
+  // One that falls only like τ is not (β = ½ flips the modes the mesh does not resolve rather than
+  // damping them, whatever τ above their scale): accepted, said so, and the next step tries the
+  // τ of the first rejection again instead of creeping down.
+  const double smaller = adaptive.propose(1, 0.0, 100.0);
+  EXPECT_TRUE(adaptive.judge(1, smaller, check(2e-9 * smaller / tau, true)));
+  ASSERT_TRUE(adaptive.energy_stood_aside());
+  EXPECT_DOUBLE_EQ(adaptive.energy_stood_aside()->rejected_tau, tau);
+  EXPECT_DOUBLE_EQ(adaptive.energy_stood_aside()->accepted_tau, smaller);
+  EXPECT_DOUBLE_EQ(adaptive.propose(2, 0.0, 100.0), tau);
+  // The next step starts afresh: its first rise is rejected.
+  EXPECT_FALSE(adaptive.judge(2, tau, rose));
+  EXPECT_FALSE(adaptive.energy_stood_aside());
 }
 
 TEST(TimeStepController, schedule_retries_apply_to_schedules_only_and_are_bounded)

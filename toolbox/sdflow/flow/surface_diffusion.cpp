@@ -645,8 +645,16 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
       plan.start = ++start_retries <= kStartRetries && plan.start_tau > plan.automatic;
       continue;
     }
-    if (controller.judge(next_step, tau, check))
+    if (controller.judge(next_step, tau, check)) {
+      if (const auto& aside = controller.energy_stood_aside())
+        note(next_step, time_,
+             fmt::format("accepted τ = {:g} although the energy rose by {:.3g} (relative): at τ = {:g} it rose by {:.3g}, "
+                         "so the rise does not fall with τ as a time step's would; the energy rule stands aside for "
+                         "this step",
+                         aside->accepted_tau, aside->accepted_rise, aside->rejected_tau, aside->rejected_rise),
+             false, context.held_notes);
       return tau;
+    }
     ++rejections;
     trials_.rejected();
     note(next_step, time_, fmt::format("rejected τ = {}: {}", tau, check.describe()), false, context.held_notes);

@@ -14,8 +14,13 @@
 //! - A step is rejected, τ multiplied by `shrink`, when it raises the energy the flow lowers,
 //!   W_h = Σ_f γ(a_f) plus the boundary's term (the substrate's −σ A_base; flow_energy, scheme.h),
 //!   by more than kEnergyRoundOff relative: the semi-discrete flow lowers it (docs/method.md,
-//!   "Substrate", "Energy"), so a rise is the time step's. The volume restoration after the step is
-//!   not part of the trial.
+//!   "Substrate", "Energy"), so a rise is the time step's and falls at least like τ². The volume
+//!   restoration after the step is not part of the trial. Where the rule finds a rise that does not
+//!   fall so (the next trial, of a smaller τ, still rises by more than kEnergyRateShare · (τ'/τ)^1.5
+//!   of it: a rate, which a region the mesh no longer resolves can have, near a pinch), it stands
+//!   aside for that step: the trial is accepted, the next step tries the τ of the first rejection
+//!   again, and the run says so (energy_stood_aside). Near the touchdown of a ridge on a substrate the
+//!   rule otherwise held τ at 5·10⁻¹² for tens of thousands of steps.
 //! - With a `tolerance` ε > 0 (extrapolated steps only, scheme.h): e = max_v |X_{τ/2∘τ/2} − X_τ|_v / h_v,
 //!   the local error estimate that step doubling provides (Hairer, Nørsett, Wanner I §II.4), must
 //!   be ≤ ε, and the next τ is also scaled by at most safety · √(ε / e) (the estimate is O(τ²)).
@@ -66,6 +71,7 @@
 
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -184,6 +190,9 @@ public:
 //! The relative rise of W_h in a trial that the adaptive rule takes for round-off: the sum over
 //! the faces of a 10⁵-face surface rounds at about 10⁻¹⁴.
 inline constexpr double kEnergyRoundOff = 1e-12;
+//! A rise that falls less than this share of (τ'/τ)^1.5 when τ falls to τ' is a rate, not the time
+//! step's (which falls like τ'² or faster).
+inline constexpr double kEnergyRateShare = 1.0;
 
 //! Why a trial step was not accepted.
 struct StepCheck {
@@ -311,6 +320,13 @@ public:
   bool turning_collapsed() const;
   //! Forget the τ at which triangles began turning over (the triangulation changed, or could not).
   void forget_turning() { state_.turning_since_tau = 0; }
+  //! Whether the last accepted trial raised the energy and was accepted because the rise did not
+  //! fall with τ (the energy rule above stood aside), and the rises it saw: the first rejected
+  //! trial's τ and rise, then the accepted one's.
+  struct EnergyStandAside {
+    double rejected_tau = 0, rejected_rise = 0, accepted_tau = 0, accepted_rise = 0;
+  };
+  const std::optional<EnergyStandAside>& energy_stood_aside() const { return energy_stood_aside_; }
 
   //! Schedule mode: cover the table's step for flow step `step`, which failed, with adaptive steps
   //! (the rule at the top of this file). Starts from the automatic τ.
@@ -331,6 +347,9 @@ private:
 
   TimeStepOptions options_;
   TimeStepState state_;
+  //! This step's first trial rejected for the energy alone (τ and rise; τ = 0: none).
+  double energy_rejected_tau_ = 0, energy_rejected_rise_ = 0;
+  std::optional<EnergyStandAside> energy_stood_aside_;
 };
 
 } // namespace sdflow
