@@ -36,6 +36,7 @@ struct InteriorPressure {
   std::vector<double> pressure, offset_rate;
 };
 
+//! λ of each component of `mesh` at vertex positions `x`, with the normals of `op`.
 InteriorPressure interior_pressure(const Mesh& mesh, const VertexVectors& x, const FlowOperators& op)
 {
   int count = 0;
@@ -110,8 +111,9 @@ std::vector<ContactPoint> contact_points(const Mesh& mesh, const VertexVectors& 
         curvature += u.dot(face.hessian * u);
       }
       // Less the pressure's part, λ ∂V/∂x_b: it is balanced by the volume, not by the contact line
-      // (an exact cap then has cos θ_d = cos θ to O(h²)). With the λ of the interior offset that
-      // gives the swept volume back, rim and offset together lower W_h (docs/method.md, "Energy").
+      // (on an exact cap cos θ_d is then off by O(h), which moves the rim by O(h²) only). With the
+      // λ of the interior offset that gives the swept volume back, rim and offset together lower
+      // W_h (docs/method.md, "Substrate", "Energy").
       energy_gradient -= interior.pressure[static_cast<std::size_t>(interior.component[static_cast<std::size_t>(p.vertex)])] *
                          volume_gradient;
       p.cos_angle = energy_gradient.dot(p.outward) / p.half_chord;

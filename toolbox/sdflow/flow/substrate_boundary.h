@@ -9,8 +9,9 @@
 //! cos θ_d is the variational one of W = A − cos θ_Y A_base less the pressure's part,
 //!   ℓ_b cos θ_d = (∂A/∂x_b − λ ∂V/∂x_b) · n̂_b,   ℓ_b = ½ |x_{b+1} − x_{b−1}| = |∂A_base/∂x_b|,
 //! λ = Σ_v ∂A/∂x_v·N_v / Σ_v ∂V/∂x_v·N_v over the component's interior (the term removes what the
-//! surface's curvature contributes to the area gradient: an exact cap's angle is then right to
-//! O(h²), not O(h)), taken linearly implicit in b's own displacement δ_b:
+//! surface's curvature contributes to the area gradient: an exact cap's angle is then off by O(h),
+//! a third of the error without it, which moves the rim by O(h²)), taken linearly implicit in b's
+//! own displacement δ_b:
 //!   δ_b = τη (cos θ_Y − cos θ_d) / (1 + τη k_b),   k_b = n̂ᵀ (∂²A/∂x_b²) n̂ / ℓ_b ≥ 0,
 //! where k_b is exact: each face's area is |e|/2 times b's distance to the line of its opposite
 //! edge e, whose second derivative along n̂ is (n̂·N_f)²/dist. A step never takes b past the
