@@ -262,28 +262,32 @@ bool TimeStepController::judge_adaptive(long step, double tau, const StepCheck& 
                                   ? a.safety * std::sqrt(a.tolerance / check.error_estimate)
                                   : a.growth;
   energy_stood_aside_.reset();
-  // A rise of the energy alone that does not fall with τ as the time step's would: a rate of the
-  // semi-discrete flow where the mesh no longer resolves it; the rule stands aside for this step.
-  const bool energy_alone = check.energy_rose && !check.non_finite && check.inverted_triangles == 0 &&
-                            !check.displacement_exceeded && !check.volume_exceeded && !check.error_exceeded;
-  const bool energy_rate = energy_alone && energy_rejected_tau_ > tau &&
+  const double proposed = std::min(a.max_tau, tau * std::min({a.growth, displacement_factor, error_factor}));
+  // A rise of the energy that does not fall with τ as the time step's would (whether or not it is
+  // still above round-off): a rate of the semi-discrete flow where the mesh no longer resolves it.
+  // The rule stands aside for this step, and the next goes on from what the first trial, which
+  // failed on the energy alone, would have proposed: τ neither creeps down nor stays put.
+  const bool others_kept = !check.non_finite && check.inverted_triangles == 0 && !check.displacement_exceeded &&
+                           !check.volume_exceeded && !check.error_exceeded;
+  const bool energy_rate = others_kept && energy_rejected_tau_ > tau && check.energy_change > 0 &&
                            check.energy_change > kEnergyRateShare * energy_rejected_rise_ *
                                                      std::pow(tau / energy_rejected_tau_, 1.5);
   if (!check.failed() || energy_rate) {
     state_.rejections = 0;
-    state_.next_tau = std::min(a.max_tau, tau * std::min({a.growth, displacement_factor, error_factor}));
+    state_.next_tau = proposed;
     if (energy_rate) {
       energy_stood_aside_ = EnergyStandAside{energy_rejected_tau_, energy_rejected_rise_, tau, check.energy_change};
-      state_.next_tau = std::min(a.max_tau, energy_rejected_tau_);
+      state_.next_tau = std::max(proposed, energy_rejected_next_tau_);
     }
     energy_rejected_tau_ = 0;
     if (tau >= state_.turning_since_tau)
       state_.turning_since_tau = 0;
     return true;
   }
-  if (energy_alone && energy_rejected_tau_ == 0) {
+  if (others_kept && check.energy_rose && energy_rejected_tau_ == 0) {
     energy_rejected_tau_ = tau;
     energy_rejected_rise_ = check.energy_change;
+    energy_rejected_next_tau_ = proposed;
   }
   ++state_.rejections;
   if (check.inverted_triangles > 0 && state_.turning_since_tau == 0)
