@@ -4,7 +4,9 @@
 #include "sdflow/errors.h"
 #include "sdflow/flow/retriangulation.h"
 #include "sdflow/flow/surface_diffusion.h"
+#include "sdflow/geometry/material_volume.h"
 #include "sdflow/geometry/measures.h"
+#include "sdflow/geometry/normals.h"
 #include "sdflow/geometry/topology.h"
 #include "sdflow/run/simulation.h"
 #include "sdflow/shapes/catalogue.h"
@@ -440,18 +442,20 @@ TEST(RetriangulationHook, a_forced_call_runs_the_pipeline_whatever_the_schedule)
   EXPECT_NE(report.detail.find("no step could be taken"), std::string::npos) << report.detail;
 }
 
-//! A capsule of radius 1, L/D = 9, along x (edges of 0.3), its middle pinched by `depth` (radius
-//! down by depth (1 - (x/1.2)²) for |x| < 1.2): through the axis for a depth above 1, as a neck is
-//! between two steps, or to a thin neck of radius 1 − depth.
-Mesh pinched_capsule(double depth = 1.3)
+//! A capsule of radius 1 along x whose straight part runs from −`half_length` to `half_length`
+//! (the default: L/D = 9), edges of 0.3, pinched by `depth` around x = `centre` (radius down by
+//! depth (1 - u²), u = (x − centre)/1.2, for |u| < 1): through the axis for a depth above 1, as a
+//! neck is between two steps, or to a thin neck of radius 1 − depth.
+Mesh pinched_capsule(double depth = 1.3, double half_length = 8, double centre = 0)
 {
-  const std::string expression = "sqrt(max(abs(x)-8,0)^2+y^2+z^2)-1";
+  const std::string expression = fmt::format("sqrt(max(abs(x)-{},0)^2+y^2+z^2)-1", half_length);
+  const double end = half_length + 1.5;
   const ExpressionParameters shape{expression,
-                                   Eigen::AlignedBox3d(Eigen::Vector3d(-9.5, -1.5, -1.5), Eigen::Vector3d(9.5, 1.5, 1.5))};
+                                   Eigen::AlignedBox3d(Eigen::Vector3d(-end, -1.5, -1.5), Eigen::Vector3d(end, 1.5, 1.5))};
   Mesh mesh = mesh_implicit_surface(expression_surface(shape), {.edge_length = 0.3}).mesh;
   for (const auto v : mesh.vertices()) {
     const Eigen::Vector3d p = to_eigen(mesh.point(v));
-    const double rho = std::hypot(p.y(), p.z()), u = p.x() / 1.2;
+    const double rho = std::hypot(p.y(), p.z()), u = (p.x() - centre) / 1.2;
     if (std::abs(u) >= 1 || rho == 0)
       continue;
     const double scale = (rho - depth * (1 - u * u)) / rho;
@@ -649,6 +653,46 @@ TEST(RetriangulationHook, a_step_that_failed_at_a_sliver_is_remeshed_around_it_a
   EXPECT_GT(shortest, 0.2 * schedule.pipeline.edge_length);
 }
 
+//! A remeshing around the vertices where a step failed can leave a vertex whose star gives no normal
+//! to offset along (two vertices at one point stopped a 100-sphere packing at step 3, 9cfa5af): its
+//! volume cannot be restored, so the whole pipeline runs instead. Here the degenerate star is the
+//! input's, far from where the step failed, and the local remeshing keeps it as it was; without the
+//! curved projection and with the uniform ℓ the remeshing itself takes no normals or curvatures of
+//! the whole surface, so it is the volume restoration that meets the star.
+TEST(RetriangulationHook, a_local_remeshing_whose_volume_cannot_be_restored_gives_way_to_the_whole_pipeline)
+{
+  Mesh sphere = analytic::icosphere(3);
+  const double ell = mean_edge_length(sphere);
+  // A vertex moved onto a neighbour: the two triangles on their edge have no area, its normal no direction.
+  const auto collapsed = sphere.vertex_handle(0);
+  sphere.set_point(collapsed, sphere.point(*sphere.vv_iter(collapsed)));
+  ASSERT_THROW(vertex_normals(sphere), InvalidMesh);
+  int farthest = 0;
+  for (const auto v : sphere.vertices())
+    if ((sphere.point(v) - sphere.point(collapsed)).norm() >
+        (sphere.point(sphere.vertex_handle(farthest)) - sphere.point(collapsed)).norm())
+      farthest = v.idx();
+  RetriangulationSchedule schedule;
+  schedule.pipeline.edge_length = ell;
+  schedule.pipeline.edges_per_radius = 0;
+  schedule.pipeline.curved_projection = false;
+  Mesh mesh = sphere;
+  const RetriangulationReport report =
+      make_retriangulation_hook(schedule)(mesh, {.step = 1, .force = true, .failed_vertices = {farthest}});
+  EXPECT_TRUE(report.remeshed) << report.detail;
+  EXPECT_FALSE(report.local) << report.detail;
+  EXPECT_FALSE(report.refused) << report.detail;
+  EXPECT_NE(report.detail.find("where the step failed left a surface whose volume cannot be restored"),
+            std::string::npos)
+      << report.detail;
+  EXPECT_NE(report.detail.find("so the whole pipeline ran"), std::string::npos) << report.detail;
+  EXPECT_EQ(report.measures.faces_rebuilt, static_cast<long>(sphere.n_faces())) << "the whole surface, not a patch";
+  EXPECT_NO_THROW(vertex_normals(mesh)) << "the degenerate star is gone";
+  EXPECT_EQ(count_topology(mesh), count_topology(sphere));
+  EXPECT_NEAR(material_volume(mesh), material_volume(sphere), 1e-9 * material_volume(sphere))
+      << "the whole pipeline's result is given its volume back";
+}
+
 //! A re-triangulation that would leave nothing (here every component below the clean-up's face
 //! count) is refused and the surface kept: the flow keeps each body's volume, so no body of it
 //! vanishes in one step (a fuzzed coarse body whose rebuild the clean-up dropped whole made the
@@ -669,6 +713,37 @@ TEST(RetriangulationHook, a_pipeline_that_keeps_nothing_is_refused_and_the_surfa
   EXPECT_NE(report.detail.find("nothing is left"), std::string::npos) << report.detail;
   EXPECT_EQ(vertex_positions(mesh), vertex_positions(sphere)) << "a refusal keeps the surface as it was";
   EXPECT_EQ(face_indices(mesh), face_indices(sphere));
+}
+
+//! Where the surface crosses itself, a rebuild that changes the material volume of the bodies it
+//! keeps by more than a twentieth is a different body, not a surgery at the crossings: refused
+//! (volume-not-kept) and the surface kept as it was. A capsule with a straight part of length 4,
+//! pinched through its axis off its middle (at x = 1.2): the whole pipeline's rebuild of it loses
+//! 14% of the volume. The local surgery is off, so that the whole pipeline's rebuild is the one
+//! judged and no capping of the crossings follows the refusal.
+TEST(RetriangulationHook, a_rebuild_that_does_not_keep_the_volume_is_refused_and_the_surface_kept)
+{
+  const Mesh crossed = pinched_capsule(1.3, 2, 1.2);
+  ASSERT_FALSE(self_intersections(crossed).empty());
+  const double volume = material_volume(crossed);
+  RetriangulationSchedule schedule;
+  schedule.local_surgery = false;
+  schedule.pipeline.edge_length = 0.3;
+  // What reaches the refusal: the rebuild the hook judges changes the volume by more than a
+  // twentieth (no component of the capsule is dropped whole, so no debris is counted in).
+  const RetriangulationResult rebuilt = retriangulate(crossed, schedule.pipeline);
+  ASSERT_GT(std::abs(material_volume(rebuilt.mesh) - volume), 0.05 * volume);
+
+  Mesh mesh = crossed;
+  const RetriangulationReport report = make_retriangulation_hook(schedule)(mesh, {.step = 1});
+  EXPECT_TRUE(report.refused) << report.detail;
+  EXPECT_EQ(report.refusal, RefusalReason::volume_not_kept) << report.detail;
+  EXPECT_EQ(refusal_name(report.refusal), "volume-not-kept");
+  EXPECT_FALSE(report.changed());
+  EXPECT_NE(report.detail.find("refused: the rebuild changed the material volume"), std::string::npos)
+      << report.detail;
+  EXPECT_EQ(vertex_positions(mesh), vertex_positions(crossed)) << "a refusal keeps the surface as it was";
+  EXPECT_EQ(face_indices(mesh), face_indices(crossed));
 }
 
 //! A tetrahedron (4 faces, below the clean-up's 16) of edge `size` at `corner`, outward oriented.
