@@ -18,12 +18,14 @@
 namespace sdflow {
 namespace {
 
-//! A rim vertex b's contact-line geometry: its outward in-plane normal n̂_b, ℓ_b, cos θ_d and k_b.
+//! A rim vertex b's contact-line geometry: its outward in-plane normal n̂_b, ℓ_b, k_b, and the
+//! gradients of which cos θ_d is made with the film's pressure (contact_angle_cosine).
 struct ContactPoint {
   int vertex = 0;
   Eigen::Vector3d outward = Eigen::Vector3d::Zero();
   double half_chord = 0; //!< ℓ_b = |∂A_base/∂x_b|
-  double cos_angle = 0;  //!< ((∂E_h/∂x_b − λ ∂V/∂x_b) · n̂_b) / ℓ_b (E_h the area for the isotropic energy)
+  Eigen::Vector3d energy_gradient = Eigen::Vector3d::Zero(); //!< ∂E_h/∂x_b (E_h the area for the isotropic energy)
+  Eigen::Vector3d volume_gradient = Eigen::Vector3d::Zero(); //!< ∂V/∂x_b
   double stiffness = 0;  //!< k_b = n̂ᵀ ∂²E_h/∂x_b² n̂ / ℓ_b
 };
 
@@ -36,11 +38,11 @@ struct InteriorPressure {
   std::vector<double> pressure, offset_rate;
 };
 
-//! λ of each component of `mesh` at vertex positions `x`, with the normals of `op`.
-InteriorPressure interior_pressure(const Mesh& mesh, const VertexVectors& x, const FlowOperators& op)
+//! λ of each of the `count` components of `mesh` (`face_component`, as face_component_ids gives
+//! them) at vertex positions `x`, with the normals of `op`.
+InteriorPressure interior_pressure(const Mesh& mesh, const VertexVectors& x, const FlowOperators& op,
+                                   const std::vector<int>& face_component, int count)
 {
-  int count = 0;
-  const std::vector<int> face_component = face_component_ids(mesh, &count);
   InteriorPressure p{std::vector<int>(static_cast<std::size_t>(x.rows()), -1),
                      std::vector<double>(static_cast<std::size_t>(count), 0.0),
                      std::vector<double>(static_cast<std::size_t>(count), 0.0)};
@@ -70,12 +72,19 @@ InteriorPressure interior_pressure(const Mesh& mesh, const VertexVectors& x, con
   return p;
 }
 
+//! The same, with the components of `mesh` found here.
+InteriorPressure interior_pressure(const Mesh& mesh, const VertexVectors& x, const FlowOperators& op)
+{
+  int count = 0;
+  const std::vector<int> face_component = face_component_ids(mesh, &count);
+  return interior_pressure(mesh, x, op, face_component, count);
+}
+
 //! The contact points of every boundary loop, loop by loop, on the substrate z = `z0`. A boundary
 //! loop runs against its faces, so with the film's normals outward it turns clockwise seen from
 //! above and e_z × (x_{b+1} − x_{b−1}) points out of the film: it is 2 ∂A_base/∂x_b, the base
 //! polygon's area gradient.
-std::vector<ContactPoint> contact_points(const Mesh& mesh, const VertexVectors& x, const FlowOperators& op, double z0,
-                                         const InteriorPressure& interior)
+std::vector<ContactPoint> contact_points(const Mesh& mesh, const VertexVectors& x, const FlowOperators& op, double z0)
 {
   std::vector<ContactPoint> points;
   const Eigen::Vector3d origin(0, 0, z0); // on the plane, where the loops' caps hold no volume
@@ -91,7 +100,6 @@ std::vector<ContactPoint> contact_points(const Mesh& mesh, const VertexVectors& 
       if (!(p.half_chord > 0))
         throw InvalidMesh(fmt::format("substrate: the contact line folds back on itself at vertex {}", p.vertex));
       p.outward = Eigen::Vector3d(-chord.y(), chord.x(), 0.0) / chord.norm();
-      Eigen::Vector3d energy_gradient = Eigen::Vector3d::Zero(), volume_gradient = Eigen::Vector3d::Zero();
       double curvature = 0;
       const Eigen::Vector3d xb = x.row(p.vertex);
       for (const auto h : mesh.voh_range(b)) {
@@ -106,22 +114,28 @@ std::vector<ContactPoint> contact_points(const Mesh& mesh, const VertexVectors& 
         // convex along n̂ with second derivative uᵀ D²γ(a) u (for the area, |e|² (n̂·N_f)² / (4 |f|)).
         const FaceEnergy face = op.parts.energy->face_energy(area_vector);
         const Eigen::Vector3d u = 0.5 * p.outward.cross(xp - xq);
-        energy_gradient += 0.5 * (xp - xq).cross(face.gradient);
-        volume_gradient += (xp - origin).cross(xq - origin) / 6.0;
+        p.energy_gradient += 0.5 * (xp - xq).cross(face.gradient);
+        p.volume_gradient += (xp - origin).cross(xq - origin) / 6.0;
         curvature += u.dot(face.hessian * u);
       }
-      // Less the pressure's part, λ ∂V/∂x_b: it is balanced by the volume, not by the contact line
-      // (on an exact cap cos θ_d is then off by O(h), which moves the rim by O(h²) only). With the
-      // λ of the interior offset that gives the swept volume back, rim and offset together lower
-      // W_h (docs/method.md, "Substrate", "Energy").
-      energy_gradient -= interior.pressure[static_cast<std::size_t>(interior.component[static_cast<std::size_t>(p.vertex)])] *
-                         volume_gradient;
-      p.cos_angle = energy_gradient.dot(p.outward) / p.half_chord;
       p.stiffness = curvature / p.half_chord;
       points.push_back(p);
     }
   }
   return points;
+}
+
+//! cos θ_d = ((∂E_h/∂x_b − λ ∂V/∂x_b) · n̂_b) / ℓ_b at the contact point `p`, λ its component's
+//! pressure in `interior`. Less the pressure's part, λ ∂V/∂x_b: it is balanced by the volume, not by
+//! the contact line (on an exact cap cos θ_d is then off by O(h), which moves the rim by O(h²)
+//! only). With the λ of the interior offset that gives the swept volume back, rim and offset
+//! together lower W_h (docs/method.md, "Substrate", "Energy").
+double contact_angle_cosine(const ContactPoint& p, const InteriorPressure& interior)
+{
+  Eigen::Vector3d gradient = p.energy_gradient;
+  gradient -= interior.pressure[static_cast<std::size_t>(interior.component[static_cast<std::size_t>(p.vertex)])] *
+              p.volume_gradient;
+  return gradient.dot(p.outward) / p.half_chord;
 }
 
 //! Whether the highest vertex of component k lies inside the material of the other components: a
@@ -221,8 +235,8 @@ VertexVectors rim_displacements(const Mesh& mesh, const VertexVectors& positions
 {
   const double cos_young = std::cos(substrate.contact_angle * std::numbers::pi / 180), mobility = substrate.mobility;
   VertexVectors displacement = VertexVectors::Zero(positions.rows(), 3);
-  for (const ContactPoint& p : contact_points(mesh, positions, operators, substrate.z, interior)) {
-    const double drive = cos_young - p.cos_angle;
+  for (const ContactPoint& p : contact_points(mesh, positions, operators, substrate.z)) {
+    const double drive = cos_young - contact_angle_cosine(p, interior);
     double delta = 0;
     if (std::isinf(mobility))
       delta = p.stiffness > 0 ? drive / p.stiffness : 0.0;
@@ -244,10 +258,10 @@ VertexVectors contact_line_displacements(const Mesh& mesh, const VertexVectors& 
 std::vector<double> contact_angle_cosines(const Mesh& mesh, const VertexVectors& positions,
                                           const FlowOperators& operators, double substrate_z)
 {
+  const InteriorPressure interior = interior_pressure(mesh, positions, operators);
   std::vector<double> cosines;
-  for (const ContactPoint& p :
-       contact_points(mesh, positions, operators, substrate_z, interior_pressure(mesh, positions, operators)))
-    cosines.push_back(p.cos_angle);
+  for (const ContactPoint& p : contact_points(mesh, positions, operators, substrate_z))
+    cosines.push_back(contact_angle_cosine(p, interior));
   return cosines;
 }
 
@@ -257,7 +271,7 @@ double SubstrateBoundary::tau_limit(const Mesh& mesh, const FlowOperators& opera
     return std::numeric_limits<double>::infinity();
   const VertexVectors x = vertex_positions(mesh);
   double stiffest = 0;
-  for (const ContactPoint& p : contact_points(mesh, x, operators, options_.z, interior_pressure(mesh, x, operators)))
+  for (const ContactPoint& p : contact_points(mesh, x, operators, options_.z))
     stiffest = std::max(stiffest, p.stiffness);
   return stiffest > 0 ? 1 / (options_.mobility * stiffest) : std::numeric_limits<double>::infinity();
 }
@@ -280,12 +294,12 @@ void SubstrateBoundary::move_rim(const Mesh& mesh, const FlowOperators& operator
 {
   if (!positions.allFinite())
     return; // the trial is rejected as it stands
-  // One pressure for the rim's law and the offset below: the offset then changes E_h by λ times the
-  // volume it gives back, which the rim's angle already counted, so the two together lower W_h.
-  const InteriorPressure interior = interior_pressure(mesh, positions, operators);
-  const VertexVectors displacement = rim_displacements(mesh, positions, operators, options_, tau, interior);
   int count = 0;
   const std::vector<int> component = face_component_ids(mesh, &count);
+  // One pressure for the rim's law and the offset below: the offset then changes E_h by λ times the
+  // volume it gives back, which the rim's angle already counted, so the two together lower W_h.
+  const InteriorPressure interior = interior_pressure(mesh, positions, operators, component, count);
+  const VertexVectors displacement = rim_displacements(mesh, positions, operators, options_, tau, interior);
   const FaceIndices faces = face_indices(mesh);
   const std::vector<BoundaryLoop> loops = boundary_loop_vertices(mesh, component);
   if (loops.empty())
