@@ -574,11 +574,13 @@ double SurfaceDiffusion::trial_step(const TrialContext& context, long next_step,
   Eigen::VectorXd edge_lengths = vertex_mean_edge_lengths(surface_.mesh);
   const Topology& topology = surface_.topology;
   volumes = material_volumes(positions, surface_.triangles, topology.face_component, topology.count, topology.loops);
-  const double energy = flow_energy(parts_, surface_.mesh, positions);
+  TimeStepController& controller = trials_.controller();
+  // Only adaptive steps check the energy (check_trial); a constant or tabled τ's trials never read it,
+  // so there it stays 0, which the trials below take as no energy to compare with.
+  const double energy = controller.adaptive() ? flow_energy(parts_, surface_.mesh, positions) : 0.0;
   times.acceptance += watch.seconds();
   TrialPlan plan = plan_trials(next_step, std::move(edge_lengths));
   const AdaptiveOptions& adaptive = plan.adaptive;
-  TimeStepController& controller = trials_.controller();
   int start_retries = 0;
   const std::array<Eigen::VectorXd, 2> guesses = warm_starts(w_.previous, w_.earlier);
   for (;;) {
