@@ -719,8 +719,8 @@ TEST(RetriangulationHook, a_pipeline_that_keeps_nothing_is_refused_and_the_surfa
 //! keeps by more than a twentieth is a different body, not a surgery at the crossings: refused
 //! (volume-not-kept) and the surface kept as it was. A capsule with a straight part of length 4,
 //! pinched through its axis off its middle (at x = 1.2): the whole pipeline's rebuild of it loses
-//! 14% of the volume. The local surgery is off, so that the whole pipeline's rebuild is the one
-//! judged and no capping of the crossings follows the refusal.
+//! 14% of the volume. The local surgery is off first, so that the whole pipeline's rebuild is the
+//! one judged and no capping of the crossings follows the refusal.
 TEST(RetriangulationHook, a_rebuild_that_does_not_keep_the_volume_is_refused_and_the_surface_kept)
 {
   const Mesh crossed = pinched_capsule(1.3, 2, 1.2);
@@ -744,6 +744,19 @@ TEST(RetriangulationHook, a_rebuild_that_does_not_keep_the_volume_is_refused_and
       << report.detail;
   EXPECT_EQ(vertex_positions(mesh), vertex_positions(crossed)) << "a refusal keeps the surface as it was";
   EXPECT_EQ(face_indices(mesh), face_indices(crossed));
+
+  // With the local surgery on (the default; here it declines, its patch too large), the refusal
+  // is followed by capping the crossings: the capsule breaks in two with its volume given back.
+  schedule.local_surgery = true;
+  Mesh capped = crossed;
+  const RetriangulationReport by_caps = make_retriangulation_hook(schedule)(capped, {.step = 1});
+  EXPECT_FALSE(by_caps.refused) << by_caps.detail;
+  EXPECT_TRUE(by_caps.split) << by_caps.detail;
+  EXPECT_NE(by_caps.detail.find("every rebuild was refused or failed (volume-not-kept), so the crossings were capped"),
+            std::string::npos)
+      << by_caps.detail;
+  EXPECT_EQ(component_topology(capped).size(), 2u);
+  EXPECT_NEAR(material_volume(capped), volume, 1e-9 * volume);
 }
 
 //! A tetrahedron (4 faces, below the clean-up's 16) of edge `size` at `corner`, outward oriented.
