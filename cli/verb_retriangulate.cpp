@@ -10,6 +10,7 @@
 #include "sdflow/io/io.h"
 #include "sdflow/io/repair.h"
 #include "sdflow/limits.h"
+#include "sdflow/log.h"
 #include "sdflow/retri/input_checks.h"
 #include "sdflow/retri/pipeline.h"
 
@@ -18,6 +19,7 @@
 
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace sdflow::cli {
@@ -99,12 +101,20 @@ void run(const RetriangulateArguments& args)
   check_count(args.options.remesh_iterations, limits.max_iterations, "--remesh-iterations", limits);
   const BuiltMesh input = read_mesh_or_repair(args.input);
   check_span(input.mesh, args.input); // a far vertex would also make the size estimate meaningless
-  check_remeshed_size(input.mesh, args.options.edge_length,
-                      fmt::format("retriangulate --edge-length {}", args.options.edge_length), limits);
-  check_retriangulation_input(input.mesh, args.options, args.input);
+  RetriangulationOptions options = args.options;
+  if (options.edge_length == 0)
+    if (const std::optional<double> ell = coarse_component_edge_length(input.mesh, options)) {
+      options.edge_length = *ell;
+      logger().info("{}: a component is too coarse to re-triangulate at the mean edge length: using "
+                    "--edge-length {:.3g}, which gives the smallest one enough vertices",
+                    args.input, *ell);
+    }
+  check_remeshed_size(input.mesh, options.edge_length,
+                      fmt::format("retriangulate --edge-length {}", options.edge_length), limits);
+  check_retriangulation_input(input.mesh, options, args.input);
   WorkProgress progress("retriangulate");
   progress.stage(fmt::format("re-triangulating {} faces", input.mesh.n_faces()));
-  const RetriangulationResult result = retriangulate(input.mesh, args.options);
+  const RetriangulationResult result = retriangulate(input.mesh, options);
   progress.stage("writing " + args.output);
   write_mesh(result.mesh, args.output, {.encoding = args.encoding, .vertex_fields = surface_fields(result.mesh)});
   progress.finish();

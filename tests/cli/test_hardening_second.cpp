@@ -262,9 +262,15 @@ TEST_F(HardeningSecond, a_surface_too_coarse_to_retriangulate_is_refined_or_refu
   const auto advised = run_sdflow("run --input " + path("scene.ply") + " --out " + path("scene_fine") +
                                   " --steps 2 -q --edge-length " + edge);
   EXPECT_EQ(advised.exit_code, 0) << advised.output;
+  // `retriangulate` with no ℓ takes the one that works itself (the advice a run gives for bodies
+  // that overlap is `sdflow retriangulate IN -o OUT`, issue 32); an ℓ given is kept and refused.
   const auto retri = run_sdflow("retriangulate " + path("icosahedron.off") + " -o " + path("ico.ply"));
-  EXPECT_EQ(retri.exit_code, 2) << retri.output;
-  expect_mentions(retri.output, "too coarse to re-triangulate");
+  EXPECT_EQ(retri.exit_code, 0) << retri.output;
+  expect_mentions(retri.output, "too coarse to re-triangulate at the mean edge length: using --edge-length");
+  const auto retri_given =
+      run_sdflow("retriangulate " + path("icosahedron.off") + " -o " + path("ico_given.ply") + " --edge-length 1.05");
+  EXPECT_EQ(retri_given.exit_code, 2) << retri_given.output;
+  expect_mentions(retri_given.output, "fewer than the 20 it needs");
   // Without re-triangulation the flow needs no neighbourhoods: the icosahedron runs.
   EXPECT_EQ(run_sdflow("run --input " + path("icosahedron.off") + " --out " + path("ico_plain") +
                        " --steps 2 -q --no-retriangulate")

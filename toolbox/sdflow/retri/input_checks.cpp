@@ -36,6 +36,19 @@ std::vector<double> component_areas(const Mesh& mesh)
   return areas;
 }
 
+std::optional<double> coarse_component_edge_length(const Mesh& mesh, const RetriangulationOptions& options)
+{
+  const std::vector<double> areas = component_areas(mesh);
+  const double mean = mean_edge_length(mesh);
+  if (areas.empty() || !(mean > 0) || !std::isfinite(mean))
+    return std::nullopt;
+  const double smallest = *std::min_element(areas.begin(), areas.end());
+  const double needed = retriangulation_vertex_need(options);
+  if (estimated_vertices(smallest, mean) >= needed)
+    return std::nullopt;
+  return edge_length_for_vertices(smallest, 2 * needed);
+}
+
 void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions& options, std::string_view source,
                                  const UserTerms& terms)
 {
@@ -69,7 +82,7 @@ void check_retriangulation_input(const Mesh& mesh, const RetriangulationOptions&
   const double vertices = estimated_vertices(*smallest, ell);
   if (vertices >= needed)
     return;
-  // Twice the need, so that the suggestion is not itself at the edge.
+  // Twice the need, so that the suggestion is not itself at the edge (coarse_component_edge_length).
   const double suggested = edge_length_for_vertices(*smallest, 2 * needed);
   throw InvalidMesh(fmt::format(
       "{}: {} (area {:.3g}) is too coarse to re-triangulate at the edge length ℓ = {:.3g}{}: it would have about "

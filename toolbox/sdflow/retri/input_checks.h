@@ -9,6 +9,7 @@
 #include "sdflow/retri/pipeline.h"
 #include "sdflow/user_terms.h"
 
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -29,6 +30,12 @@ std::vector<double> component_areas(const Mesh& mesh);
 //! The edge length a component of `area` needs to be re-triangulated with `vertices` vertices
 //! (the inverse of estimated_vertices, limits.h).
 double edge_length_for_vertices(double area, double vertices);
+
+//! The edge length that gives the smallest component of `mesh` twice retriangulation_vertex_need(
+//! options) vertices (so that it is not itself at the edge), when its mean edge length leaves that
+//! component fewer than the need; nullopt when the mean edge length will do (or there is none).
+//! `sdflow retriangulate` takes it when no ℓ is given; check_retriangulation_input suggests it.
+std::optional<double> coarse_component_edge_length(const Mesh& mesh, const RetriangulationOptions& options);
 
 //! Refuse (InvalidMesh naming `source`) a surface that `options` cannot re-triangulate: a vertex
 //! far from the others (check_span, span.h), a closed component thinner than the debris bound

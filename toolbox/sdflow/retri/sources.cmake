@@ -1,6 +1,7 @@
 # Re-triangulation (docs/design.md §3): the pipeline and the stages that only it composes.
 target_sources(sdflow_toolbox PRIVATE
   sdflow/retri/components.cpp
+  sdflow/retri/corefine.cpp
   sdflow/retri/curvature_targets.cpp
   sdflow/retri/input_checks.cpp
   sdflow/retri/fixed_rim.cpp
