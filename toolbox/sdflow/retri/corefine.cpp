@@ -165,10 +165,12 @@ private:
   {
     const Mesh& m = *mesh_[s];
     const std::array<int, 3> other = corners(1 - s, g);
-    const double *o0 = points_[other[0]].data(), *o1 = points_[other[1]].data(), *o2 = points_[other[2]].data();
+    // Copies, not references: crossing_point appends to points_, which may move its storage.
+    const Eigen::Vector3d a = points_[other[0]], b = points_[other[1]], c = points_[other[2]];
+    const double *o0 = a.data(), *o1 = b.data(), *o2 = c.data();
     for (auto h : m.fh_range(f)) {
-      const Eigen::Vector3d& p = points_[global(s, h.from())];
-      const Eigen::Vector3d& q = points_[global(s, h.to())];
+      const Eigen::Vector3d p = points_[global(s, h.from())];
+      const Eigen::Vector3d q = points_[global(s, h.to())];
       const int sp = exact::side(o0, o1, o2, p.data()), sq = exact::side(o0, o1, o2, q.data());
       if (sp == 0 || sq == 0)
         degenerate("a vertex lies on the plane of a face of the other surface it meets");
