@@ -26,7 +26,8 @@ The tables go between "<!-- tables: anisotropic-remesh-energy -->" and
 import argparse
 import math
 import os
-import re
+import subprocess
+import sys
 
 import numpy as np
 import sdflow
@@ -172,15 +173,8 @@ def main():
     if a.print:
         print(table)
         return
-    with open(a.doc) as f:
-        doc = f.read()
-    begin, end = "<!-- tables: anisotropic-remesh-energy -->\n", "<!-- end of tables: anisotropic-remesh-energy -->"
-    if begin not in doc or end not in doc:
-        raise SystemExit(f"{a.doc}: no {begin.strip()} … {end} block")
-    doc = re.sub(re.escape(begin) + ".*?" + re.escape(end), lambda _: begin + table + end, doc, flags=re.S)
-    with open(a.doc + ".tmp", "w") as f:
-        f.write(doc)
-    os.replace(a.doc + ".tmp", a.doc)
+    subprocess.run([sys.executable, os.path.join(HERE, "lib", "replace-doc-table.py"), a.doc, "anisotropic-remesh-energy"],
+                   input=table, text=True, check=True)
 
 
 if __name__ == "__main__":

@@ -19,7 +19,8 @@ import argparse
 import importlib.util
 import math
 import os
-import re
+import subprocess
+import sys
 
 import sdflow
 
@@ -95,15 +96,8 @@ def main():
     if a.print:
         print(table)
         return
-    with open(a.doc) as f:
-        doc = f.read()
-    begin, end = "<!-- tables: substrate-energy-rate -->\n", "<!-- end of tables: substrate-energy-rate -->"
-    if begin not in doc or end not in doc:
-        raise SystemExit(f"{a.doc}: no {begin.strip()} … {end} block")
-    doc = re.sub(re.escape(begin) + ".*?" + re.escape(end), lambda _: begin + table + end, doc, flags=re.S)
-    with open(a.doc + ".tmp", "w") as f:
-        f.write(doc)
-    os.replace(a.doc + ".tmp", a.doc)
+    subprocess.run([sys.executable, os.path.join(HERE, "lib", "replace-doc-table.py"), a.doc, "substrate-energy-rate"],
+                   input=table, text=True, check=True)
 
 
 if __name__ == "__main__":
