@@ -52,6 +52,9 @@ void report_json(const RetriangulateArguments& args, const BuiltMesh& input, con
                    {"splits", static_cast<int64_t>(r.remesh.splits)},
                    {"collapses", static_cast<int64_t>(r.remesh.collapses)},
                    {"flips", static_cast<int64_t>(r.remesh.flips)},
+                   {"remeshing_crossings", r.remeshing_crossings},
+                   {"remeshing_refinements", r.refinements},
+                   {"remeshing_refused", r.remeshing_refused},
                    {"intersecting_pairs", r.intersecting_pairs},
                    {"removed_faces", r.removed_faces},
                    {"rebuilt", r.rebuilt},
@@ -67,6 +70,33 @@ void report_json(const RetriangulateArguments& args, const BuiltMesh& input, con
   print_json(std::move(root));
 }
 
+//! Stage 1's line of the text report: what the remeshing did, or why it was refused (the wording of
+//! retriangulation_summary, retri/pipeline.cpp).
+std::string remeshing_line(const RetriangulationResult& r)
+{
+  if (r.remeshing_refused) {
+    std::string why;
+    if (r.remeshing_crossings == 0)
+      why = "it grew past the bound on its vertices";
+    else if (r.refinements == 0)
+      why = fmt::format("it made {} face pairs of a surface that did not cross itself cross, and a round finer there "
+                        "would have made too many vertices",
+                        r.remeshing_crossings);
+    else
+      why = fmt::format("it made {} face pairs of a surface that did not cross itself cross, and {} round(s) finer "
+                        "there did not help",
+                        r.remeshing_crossings, r.refinements);
+    return fmt::format("remeshing to edge length {:.6g} refused: {}; the surface kept its triangles", r.edge_length,
+                       why);
+  }
+  std::string line = fmt::format("remeshed to edge length {:.6g}: {} splits, {} collapses, {} flips", r.edge_length,
+                                 r.remesh.splits, r.remesh.collapses, r.remesh.flips);
+  if (r.remeshing_crossings > 0)
+    line += fmt::format(", redone {} time(s) finer where it made {} face pairs cross", r.refinements,
+                        r.remeshing_crossings);
+  return line;
+}
+
 void report_text(const RetriangulateArguments& args, const BuiltMesh& input, const RetriangulationResult& r)
 {
   std::cout << fmt::format("{}: {} vertices, {} faces, {} component(s) -> {} vertices, {} faces, {} component(s)\n",
@@ -75,8 +105,7 @@ void report_text(const RetriangulateArguments& args, const BuiltMesh& input, con
   if (r.merged_components > 0)
     std::cout << fmt::format("  0. {} intersecting component(s) joined into others (Appendix B)\n",
                              r.merged_components);
-  std::cout << fmt::format("  1. remeshed to edge length {:.6g}: {} splits, {} collapses, {} flips ({:.3f} s)\n",
-                           r.edge_length, r.remesh.splits, r.remesh.collapses, r.remesh.flips, r.seconds.remesh);
+  std::cout << "  1. " << remeshing_line(r) << fmt::format(" ({:.3f} s)\n", r.seconds.remesh);
   std::cout << fmt::format("  2. {} intersecting face pairs, {} faces removed ({:.3f} s)\n", r.intersecting_pairs,
                            r.removed_faces, r.seconds.intersections);
   if (r.rebuilt) {
@@ -87,7 +116,8 @@ void report_text(const RetriangulateArguments& args, const BuiltMesh& input, con
                              r.unused_points, r.seconds.reconstruction);
     std::cout << fmt::format("  5. {} hole(s) filled ({:.3f} s)\n", r.filled_holes, r.seconds.holes);
   } else {
-    std::cout << "  3-5. nothing intersects: the remeshed surface is kept\n";
+    std::cout << fmt::format("  3-5. nothing intersects: the {} surface is kept\n",
+                             r.remeshing_refused ? "input's" : "remeshed");
   }
   std::cout << fmt::format("  6. {} debris component(s) dropped (small or flat); {} boundary loop(s) remain\n", r.dropped_components,
                            r.open_holes);

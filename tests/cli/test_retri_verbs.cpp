@@ -177,6 +177,36 @@ TEST_F(RetriCommands, retriangulate_keep_boundary_returns_the_rim_vertex_for_ver
   }
 }
 
+//! A thin plate with sharp edges whose remeshing crosses itself at its mean edge length whatever the
+//! rounds finer there do (RetriangulationHook.a_remeshing_refused_with_nothing_rebuilt_is_reported_with_its_reason):
+//! stage 1 is refused and the plate keeps its triangles. The report says so on line 1, where it
+//! said "0 splits, 0 collapses, 0 flips" as if it had remeshed, and the JSON carries it.
+TEST_F(RetriCommands, retriangulate_says_when_its_remeshing_was_refused)
+{
+  const Mesh plate = test::cad_plate(1, 0.3, 0.01, 20, 3); // ℓ (its mean edge) 0.075, 7 times its thickness
+  write_mesh(plate, path("plate.off"));
+  const auto r = analytic::run_sdflow("retriangulate " + path("plate.off") + " -o " + path("kept.ply") + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("\"remeshing_refused\" : true"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"remeshing_refinements\""), std::string::npos) << r.output;
+  const std::string crossings = "\"remeshing_crossings\" : ";
+  const auto at = r.output.find(crossings);
+  EXPECT_NE(at, std::string::npos) << r.output;
+  if (at != std::string::npos) {
+    EXPECT_GT(std::stoi(r.output.substr(at + crossings.size())), 0) << r.output;
+  }
+  EXPECT_EQ(face_indices(read_mesh(path("kept.ply")).mesh), face_indices(plate)) << "a refusal keeps the triangles";
+
+  const auto text = analytic::run_sdflow("retriangulate " + path("plate.off") + " -o " + path("kept.off"));
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  const auto first = text.output.find("  1. ");
+  ASSERT_NE(first, std::string::npos) << text.output;
+  const std::string line = text.output.substr(first, text.output.find('\n', first) - first);
+  EXPECT_NE(line.find("refused"), std::string::npos) << line;
+  EXPECT_NE(line.find("kept its triangles"), std::string::npos) << line;
+  EXPECT_EQ(line.find("splits"), std::string::npos) << line;
+}
+
 TEST_F(RetriCommands, retriangulate_refuses_bad_input_and_options_without_writing)
 {
   write_mesh(analytic::icosphere(1), path("sphere.off"));
