@@ -151,12 +151,12 @@ same-as-cli)
   [[ $status -eq 0 && -s "$work/input.ply" ]] || fail "meshlabserver could not convert $mesh"
   # Re-triangulation is on by default on both sides; the cases without it say so on both.
   compare_with_cli adaptive "12 true 0.001 0.5 false false false 0.1 0 0 false" --adaptive --beta 0.5 \
-    --no-conserve-volume --no-retriangulate
+    --no-retriangulate
   compare_with_cli constant "8 false 0.05 0.5 true false false 0.1 0 0 false" --tau 0.05 --beta 0.5 --conserve-volume \
     --no-retriangulate
   # Half the mean edge length (0.61): the first step's surface has edges longer than 2ℓ.
   compare_with_cli retriangulated "4 true 0.001 0.5 false false true 0.3 0 0 false" --adaptive --beta 0.5 \
-    --no-conserve-volume --edge-length 0.3
+    --edge-length 0.3
   expect_changed "$work/retriangulated.meshlab.ply"
   # The constant case with one scheme option changed.
   compare_with_cli normal_integral "8 false 0.05 0.5 true false false 0.1 1 0 false" --tau 0.05 --beta 0.5 \
