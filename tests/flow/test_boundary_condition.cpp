@@ -134,7 +134,6 @@ double volume_error(const Mesh& start, double end_time, int steps, BoundaryCondi
   p.time_step.mode = TimeStepMode::constant;
   p.time_step.tau = end_time / steps;
   p.time_step.adaptive.max_volume_change = 1; // the paper's rule leaks ~1% a step: measured, not refused
-  p.conserve_volume = false;                   // the step's own change, which the restoration would hide
   // Volume-gradient areas: with them 1ᵀ M w is the rate of the volume itself, so what is left is
   // the step's error, not the Voronoi areas' O(h²) difference from the swept volume.
   p.scheme = {.boundary = boundary, .mass = VertexMass::volume_gradient};

@@ -42,7 +42,6 @@ Mesh evolve(const Mesh& mesh, double tau, int steps, const SchemeOptions& scheme
   p.time_step.tau = tau;
   p.scheme = scheme;
   p.solver = solver_options;
-  p.conserve_volume = false; // the scheme's step alone, whose volume change some of these tests measure
   SurfaceDiffusion flow(mesh, p);
   while (!flow.finished())
     flow.step();

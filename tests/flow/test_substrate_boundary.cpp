@@ -409,7 +409,6 @@ double substrate_volume_error(double end_time, int steps)
   p.time_step.mode = TimeStepMode::constant;
   p.time_step.tau = end_time / steps;
   p.scheme.mass = VertexMass::volume_gradient; // 1ᵀ M w is then the volume's own rate (as in FixedBoundary's test)
-  p.conserve_volume = false;                   // the step's own change, which the restoration would hide
   SurfaceDiffusion flow(analytic::spherical_cap(8, 1, 90), p);
   const double before = material_volume(flow.mesh());
   while (!flow.finished())

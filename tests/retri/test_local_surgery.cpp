@@ -107,7 +107,6 @@ Mesh first_crossing(const Mesh& start, double end_time)
   p.retriangulation.pipeline.refinement_rounds = 0;
   p.time_step.adaptive.start_steps = 0;
   p.retriangulation.degraded_variation = 0;
-  p.conserve_volume = false; // nor the volume restored after each step
   const RetriangulationHook retriangulate = make_retriangulation_hook(p.retriangulation);
   Mesh crossed, at_surgery;
   const RetriangulationHook capture = [&](Mesh& mesh, const RetriangulationContext& context) {
@@ -181,12 +180,11 @@ Mesh last_before_genus_change(const Mesh& start, double end_time)
   p.end_time = end_time;
   p.retriangulation.pipeline.edge_length = mean_edge_length(start);
   p.retriangulation.local_surgery = false;
-  // As in the fixture above: the surfaces these runs reached with the paper's stage 1, no start steps,
-  // no margin on degraded elements and no volume restored after each step.
+  // As in the fixture above: the surfaces these runs reached with the paper's stage 1, no start steps
+  // and no margin on degraded elements.
   p.retriangulation.pipeline.refinement_rounds = 0;
   p.time_step.adaptive.start_steps = 0;
   p.retriangulation.degraded_variation = 0;
-  p.conserve_volume = false;
   const RetriangulationHook retriangulate = make_retriangulation_hook(p.retriangulation);
   Mesh before;
   bool changed = false;

@@ -27,9 +27,7 @@ struct FlowOptions {
   TimeStepOptions time_step;
   SchemeOptions scheme;
   SolverOptions solver;
-  //! Restore each component's material volume after every step (volume.h): the exact flow
-  //! conserves it, the discrete step only to first order in τ (paper preset: off).
-  bool conserve_volume = true;
+  bool conserve_volume = false;
   //! Take the next step's first trial on a second core while the re-triangulation hook looks at the
   //! surface, dropping it when the look re-triangulates (surface_diffusion.h): the same results,
   //! sooner. Off: one after the other.

@@ -112,7 +112,6 @@ void add_flow_option_entries(std::vector<ParameterEntry>& s)
                          "closed by flat caps over its boundary). The flow conserves volume in theory; this removes the "
                          "small drift of the discrete scheme."};
     bind<bool>(e, &RunParameters::conserve_volume);
-    e.paper = false;
   }
   {
     auto& e = add(s, entry("refinement", "--refinement", ParameterType::real,
