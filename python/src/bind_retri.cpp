@@ -127,6 +127,9 @@ void bind_retri(py::module_& m)
         info["splits"] = r.remesh.splits;
         info["collapses"] = r.remesh.collapses;
         info["flips"] = r.remesh.flips;
+        info["remeshing_crossings"] = r.remeshing_crossings;
+        info["remeshing_refinements"] = r.refinements;
+        info["remeshing_refused"] = r.remeshing_refused;
         info["intersecting_pairs"] = r.intersecting_pairs;
         info["removed_faces"] = r.removed_faces;
         info["rebuilt"] = r.rebuilt;
