@@ -610,6 +610,66 @@ TEST(RetriangulationHook, a_remeshing_refused_with_nothing_rebuilt_is_reported_w
   EXPECT_TRUE(noted) << "events.log gets the refusal";
 }
 
+//! The flow's last resort (RetriangulationContext::close_unresolved_gaps): a flat void a fifteenth
+//! of ℓ thick inside a ball, below the finest edge a refinement makes (ℓ/8), is one no remeshing of
+//! the run resolves: stage 1 crosses itself across it, the whole pipeline is refused, and a step
+//! that cannot be taken stopped the run with exit 3 (CGAL's femur.off, a void the flow left 0.02 ℓ
+//! thick, and turbine.off, two walls 0.006 ℓ apart, with the volume kept at every step). Asked for
+//! the last resort, the hook takes the crossed remeshing as the flow's crossing and rebuilds it,
+//! logged with the width it measured before the remeshing; without it, the refusal stands.
+TEST(RetriangulationHook, the_last_resort_takes_a_remeshing_across_a_void_thinner_than_the_finest_edge)
+{
+  const double thickness = 0.02;
+  const Mesh ball = analytic::icosphere(4, 2);
+  const Mesh lens = analytic::ellipsoid(4, 0.6, 0.6, thickness / 2);
+  const Mesh the_void = test::mapped(lens, [](const Eigen::Vector3d& p) { return Eigen::Vector3d(p.x(), p.y(), -p.z()); });
+  const Mesh body = test::disjoint_union({&ball, &the_void});
+  ASSERT_TRUE(self_intersections(body).empty());
+  ASSERT_LT(material_volume(body), material_volume(ball)) << "the lens is a void of the ball";
+  RetriangulationSchedule schedule;
+  schedule.local = false;
+  schedule.pipeline.edge_length = 0.3;
+  schedule.pipeline.edges_per_radius = 0; // the uniform ℓ
+  const RetriangulationHook hook = make_retriangulation_hook(schedule);
+
+  Mesh refused = body;
+  const RetriangulationReport plain = hook(refused, {.step = 1, .force = true});
+  ASSERT_EQ(plain.refusal, RefusalReason::remeshing_crossed) << plain.detail;
+  EXPECT_EQ(vertex_positions(refused), vertex_positions(body));
+
+  Mesh mesh = body;
+  const RetriangulationReport report = hook(mesh, {.step = 1, .force = true, .close_unresolved_gaps = true});
+  ASSERT_FALSE(report.refused) << report.detail;
+  ASSERT_TRUE(report.changed()) << report.detail;
+  EXPECT_NE(report.detail.find("the last resort"), std::string::npos) << report.detail;
+  EXPECT_TRUE(self_intersections(mesh).empty());
+  // The void, a rebuild of two sheets closer than anything the run resolves, is dropped as debris:
+  // the ball is left, with the material volume the surface had (the void's counted as debris).
+  EXPECT_EQ(count_topology(mesh).components, 1) << report.detail;
+  EXPECT_EQ(count_topology(mesh).genus, 0);
+  EXPECT_LT(report.measures.debris_volume, 0) << "a void's volume is negative";
+  EXPECT_NEAR(material_volume(mesh) + report.measures.debris_volume, material_volume(body),
+              1e-9 * material_volume(body));
+}
+
+//! The last resort closes nothing a finer remeshing would resolve: the CAD plate a sixth of ℓ thick
+//! above, whose remeshing crosses itself at the run's ℓ, is thicker than the finest edge (ℓ/8), so
+//! the refusal stands, says why, and the plate keeps its triangles.
+TEST(RetriangulationHook, the_last_resort_leaves_a_part_thicker_than_the_finest_edge_alone)
+{
+  const Mesh plate = test::cad_plate(1, 0.3, 0.01, 20, 3);
+  RetriangulationSchedule schedule;
+  schedule.local = false;
+  schedule.pipeline.edge_length = mean_edge_length(plate);
+  Mesh mesh = plate;
+  const RetriangulationReport report =
+      make_retriangulation_hook(schedule)(mesh, {.step = 1, .force = true, .close_unresolved_gaps = true});
+  EXPECT_EQ(report.refusal, RefusalReason::remeshing_crossed);
+  EXPECT_NE(report.detail.find("a finer remeshing would resolve"), std::string::npos) << report.detail;
+  EXPECT_EQ(vertex_positions(mesh), vertex_positions(plate));
+  EXPECT_EQ(face_indices(mesh), face_indices(plate));
+}
+
 //! A step that no τ makes acceptable on a thin CAD plate (whose whole-surface remeshing is refused,
 //! above) fails at a sliver: the forced call remeshes around the vertices where it failed and keeps
 //! the rest of the surface, where before it ran the whole pipeline, was refused and the run stopped

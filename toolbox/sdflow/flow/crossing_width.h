@@ -23,4 +23,13 @@ namespace sdflow {
 //! crossings, or with ℓ or reach not > 0.
 double crossing_width(const Mesh& mesh, const std::vector<FacePair>& crossings, double edge_length, double reach = 2);
 
+//! For each pair of `crossings`, face pairs of `crossed` (a remeshing of `surface` that crosses
+//! itself where `surface` does not), the smallest local feature size of `surface` at its vertices
+//! within `reach` · `edge_length` of a vertex of the pair's faces: how wide the gap or neck was
+//! that the remeshing pulled through itself there (infinite when no ray meets a face). Throws
+//! InvalidParameter as crossing_width does.
+std::vector<double> widths_where_remeshing_crossed(const Mesh& surface, const Mesh& crossed,
+                                                   const std::vector<FacePair>& crossings, double edge_length,
+                                                   double reach = 1);
+
 } // namespace sdflow

@@ -20,11 +20,17 @@ FlowHook::FlowHook(const Mesh& mesh, long tolerated_degraded)
 
 RetriangulationReport FlowHook::look(Mesh& mesh, long step, double time, bool force, StepTimes& times,
                                      std::function<void()> changing, const VertexVectors* step_start,
-                                     const std::vector<int>& failed_vertices)
+                                     const std::vector<int>& failed_vertices, bool close_unresolved_gaps)
 {
   try {
-    RetriangulationReport report =
-        hook_(mesh, {step, time, tolerated_degraded_, force, std::move(changing), step_start, failed_vertices});
+    RetriangulationReport report = hook_(mesh, {.step = step,
+                                                .time = time,
+                                                .tolerated_degraded = tolerated_degraded_,
+                                                .force = force,
+                                                .changing = std::move(changing),
+                                                .step_start = step_start,
+                                                .failed_vertices = failed_vertices,
+                                                .close_unresolved_gaps = close_unresolved_gaps});
     if (report.degraded_left >= 0)
       tolerated_degraded_ = report.degraded_left;
     times.retriangulation_check += report.check_seconds;

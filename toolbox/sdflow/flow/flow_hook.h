@@ -35,11 +35,12 @@ public:
   //! The hook's look at `mesh` after step `step` at `time` (`force`: re-triangulate it whatever
   //! the look finds; `changing`: called before it changes the surface; `step_start`: the positions
   //! the step started from, RetriangulationContext::step_start; `failed_vertices`: where the step
-  //! that forces it failed), its seconds added to `times`. The hook's failure stops the flow like an
-  //! unstable step: it is rethrown as a SolverFailure.
+  //! that forces it failed; `close_unresolved_gaps`: the flow's last resort,
+  //! RetriangulationContext::close_unresolved_gaps), its seconds added to `times`. The hook's
+  //! failure stops the flow like an unstable step: it is rethrown as a SolverFailure.
   RetriangulationReport look(Mesh& mesh, long step, double time, bool force, StepTimes& times,
                              std::function<void()> changing = {}, const VertexVectors* step_start = nullptr,
-                             const std::vector<int>& failed_vertices = {});
+                             const std::vector<int>& failed_vertices = {}, bool close_unresolved_gaps = false);
 
   //! With the guard: throws SolverFailure when `mesh`, moved by step `step` to `time`, crosses
   //! itself (SelfIntersectionGuard::check).

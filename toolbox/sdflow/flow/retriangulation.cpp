@@ -178,6 +178,13 @@ std::string restore_volume(const Mesh& before, Mesh& after, RetriangulationMeasu
   return note;
 }
 
+//! The surface whose volumes a re-triangulation of `mesh` gives back: `mesh`, or the one the last
+//! resort remeshed into it (RetriangulationContext::remeshed_across_gaps).
+const Mesh& volume_source(const Mesh& mesh, const RetriangulationContext& context)
+{
+  return context.remeshed_across_gaps ? *context.remeshed_across_gaps->from : mesh;
+}
+
 //! The largest share of the surface's faces a local remeshing takes (the worn faces with their
 //! rings); beyond it the whole pipeline runs. On the three spheres on a plane the first steps,
 //! while the surface settles to its curvature-adapted sizing, wear 10–35% of it at once: remeshing
@@ -472,6 +479,13 @@ struct CrossingSize {
 CrossingSize crossing_size(const Mesh& mesh, const std::vector<FacePair>& crossings, double ell,
                            const RetriangulationContext& context)
 {
+  if (context.remeshed_across_gaps && !crossings.empty()) {
+    const double before = context.remeshed_across_gaps->width;
+    return {before, fmt::format("the narrowest neck or gap within 2 ℓ of them {:.3g} = {:.3g} ℓ before the "
+                                "remeshing that crossed there (the last resort: narrower than any remeshing of the "
+                                "run resolves)",
+                                before, before / ell)};
+  }
   const double width = crossings.empty() ? std::numeric_limits<double>::infinity() : crossing_width(mesh, crossings, ell);
   if (context.step_start && !crossings.empty()) {
     Mesh start = mesh;
@@ -530,7 +544,8 @@ void cap_crossings_instead(Mesh& mesh, const std::vector<FacePair>& crossings, c
   report = RetriangulationReport{.check_seconds = report.check_seconds, .pipeline_seconds = report.pipeline_seconds};
   report.measures = measured;
   Stopwatch volume;
-  const std::string volume_note = s.restore_volume ? restore_volume(mesh, r.mesh, report.measures) : std::string{};
+  const std::string volume_note =
+      s.restore_volume ? restore_volume(volume_source(mesh, context), r.mesh, report.measures) : std::string{};
   report.volume_seconds = volume.seconds();
   report.surgery = true;
   report.split = r.components_after > r.components_before;
@@ -569,14 +584,104 @@ std::string_view refusal_name(RefusalReason reason)
   return "unknown";
 }
 
+namespace {
+
+//! The looks the last resort takes at most while its rebuild still crosses itself.
+constexpr int kLastResortLooks = 3;
+
+//! The flow's last resort (RetriangulationContext::close_unresolved_gaps): `report`, a refusal for
+//! stage 1's own crossings, is replaced by what `look` makes of `crossed`, the remeshing it refused,
+//! taken as the flow's crossing, when each of its crossings lies where `mesh` is narrower than the
+//! finest edge a refinement makes: a gap or a neck the flow closed below anything the run resolves,
+//! which no remeshing separates and which blocks the step (CGAL's turbine.off, two walls 0.006 ℓ
+//! apart, and femur.off, a void 0.02 ℓ thick, stopped with exit 3 so). Otherwise, or when that look
+//! changes nothing or is refused too, the refusal stands and its detail says why.
+void close_unresolved_gaps(Mesh& mesh, CrossedRemeshing crossed, const RetriangulationSchedule& schedule,
+                           const RetriangulationContext& context, RetriangulationReport& report,
+                           const RetriangulationHook& look)
+{
+  const double ell = schedule.pipeline.edge_length;
+  const double finest = finest_refinement_edge(schedule.pipeline, ell);
+  const std::vector<double> widths = widths_where_remeshing_crossed(mesh, crossed.mesh, crossed.pairs, ell);
+  const double widest = widths.empty() ? std::numeric_limits<double>::infinity()
+                                       : *std::max_element(widths.begin(), widths.end());
+  if (!(widest <= finest)) {
+    report.detail += fmt::format("; not taken as the flow's crossing: the remeshing crossed where the surface is "
+                                 "{:.3g} ℓ wide, which a finer remeshing would resolve (finest edge {:.3g} ℓ)",
+                                 widest / ell, finest / ell);
+    return;
+  }
+  RetriangulationContext taken = context;
+  taken.force = false;
+  taken.close_unresolved_gaps = false;
+  taken.step_start = nullptr;
+  taken.failed_vertices.clear();
+  taken.remeshed_across_gaps = RetriangulationContext::Remeshed{.from = &mesh, .width = widest};
+  Mesh surface = std::move(crossed.mesh);
+  RetriangulationReport second = look(surface, taken);
+  // A rebuild of sheets this close can cross itself again; the looks go on (as the run's next
+  // look would) while it does, and a surface left crossing is not taken.
+  for (int again = 1; !second.refused && second.changed() && again < kLastResortLooks &&
+                      !self_intersections(surface).empty();
+       ++again) {
+    RetriangulationReport next = look(surface, taken);
+    second.refused = next.refused;
+    second.refusal = next.refusal;
+    second.remeshed = second.remeshed || next.remeshed;
+    second.surgery = second.surgery || next.surgery;
+    second.split = second.split || next.split;
+    second.merged = second.merged || next.merged;
+    second.cleaned = second.cleaned || next.cleaned;
+    second.detail += fmt::format("; crossing itself still, again: {}", next.detail);
+    second.degraded_left = next.degraded_left;
+    second.measures.after = next.measures.after;
+    second.measures.faces_after = next.measures.faces_after;
+    // Each look gives back the volumes of the surface first remeshed, so the last one's count
+    // what was dropped in all.
+    second.measures.debris_volume = next.measures.debris_volume;
+    second.measures.volume_restored = next.measures.volume_restored;
+    if (!std::isnan(next.measures.crossing_size))
+      second.measures.crossing_size = next.measures.crossing_size;
+  }
+  if (second.refused || !second.changed() || !self_intersections(surface).empty()) {
+    report.detail += fmt::format("; taken as the flow's crossing ({} face pairs where the surface was at most "
+                                 "{:.3g} ℓ wide), its re-triangulation did not help: {}",
+                                 crossed.pairs.size(), widest / ell, second.detail);
+    return;
+  }
+  second.detail = fmt::format("the last resort: stage 1 crossed itself in {} face pairs where the surface was at most "
+                              "{:.3g} ℓ wide, below the finest edge {:.3g} ℓ, so the crossing is the flow's: {}",
+                              crossed.pairs.size(), widest / ell, finest / ell, second.detail);
+  // The refused pipeline's seconds count with the ones it handed on.
+  second.check_seconds += report.check_seconds;
+  second.volume_seconds += report.volume_seconds;
+  RetriangulationResult::Seconds& sum = second.pipeline_seconds;
+  const RetriangulationResult::Seconds& refused = report.pipeline_seconds;
+  sum.merge += refused.merge;
+  sum.remesh += refused.remesh;
+  sum.intersections += refused.intersections;
+  sum.normals += refused.normals;
+  sum.reconstruction += refused.reconstruction;
+  sum.holes += refused.holes;
+  sum.components += refused.components;
+  sum.side_by_side += refused.side_by_side;
+  mesh = std::move(surface);
+  report = std::move(second);
+}
+
+} // namespace
+
 RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& schedule)
 {
   if (!(schedule.pipeline.edge_length > 0))
     throw InvalidParameter("the re-triangulation hook needs a resolved target edge length (> 0)");
   auto watch = std::make_shared<IntersectionWatch>();
-  const auto look = [schedule, watch](Mesh& mesh, const RetriangulationContext& context) {
+  // `crossed`, when given, gets the remeshing that a refusal for its own crossings (remeshing_crossed)
+  // did not keep.
+  const auto look = [schedule, watch](Mesh& mesh, const RetriangulationContext& context,
+                                      std::optional<CrossedRemeshing>* crossed) {
     RetriangulationReport report;
-    if (!context.force && context.step % schedule.every != 0)
+    if (!context.force && !context.remeshed_across_gaps && context.step % schedule.every != 0)
       return report;
     Stopwatch stopwatch;
     Verdict verdict;
@@ -728,6 +833,8 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     }
     if (r.remeshing_refused && !r.rebuilt && r.dropped_components == 0 && r.merged_components == 0) {
       // Stage 1 refused and nothing else to do: the surface keeps its triangles, and the run says so.
+      if (crossed)
+        *crossed = std::move(r.crossed_remeshing);
       refuse(report, RefusalReason::remeshing_crossed, mesh, schedule,
              fmt::format("{}: {}{}; refused: nothing was rebuilt, so the surface keeps its triangles",
                          verdict.reason, fallback, retriangulation_summary(r)));
@@ -737,7 +844,8 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     const double rebuilt_volume = verdict.intersecting ? material_volume(r.mesh) : 0;
     std::string volume_note;
     try {
-      volume_note = schedule.restore_volume ? restore_volume(mesh, r.mesh, report.measures) : std::string{};
+      volume_note =
+          schedule.restore_volume ? restore_volume(volume_source(mesh, context), r.mesh, report.measures) : std::string{};
     } catch (const InvalidMesh& e) {
       report.measures = {};
       return nothing_kept(e.what());
@@ -766,9 +874,13 @@ RetriangulationHook make_retriangulation_hook(const RetriangulationSchedule& sch
     mesh = std::move(r.mesh);
     return report;
   };
-  return [look](Mesh& mesh, const RetriangulationContext& context) {
+  return [look, schedule](Mesh& mesh, const RetriangulationContext& context) {
     const Stopwatch whole;
-    RetriangulationReport report = look(mesh, context);
+    std::optional<CrossedRemeshing> crossed;
+    RetriangulationReport report = look(mesh, context, context.close_unresolved_gaps ? &crossed : nullptr);
+    if (crossed)
+      close_unresolved_gaps(mesh, std::move(*crossed), schedule, context, report,
+                            [&look](Mesh& m, const RetriangulationContext& c) { return look(m, c, nullptr); });
     report.other_seconds = unreported_seconds(report, whole.seconds());
     return report;
   };

@@ -11,6 +11,7 @@
 
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -95,6 +96,21 @@ struct RetriangulationContext {
   //! over, a vertex moved beyond the displacement bound, at every τ). The hook remeshes around them
   //! alone first, and runs the whole pipeline only when that does not give a surface to go on from.
   std::vector<int> failed_vertices;
+  //! With `force`: the flow's last resort before it stops (surface_diffusion.h). When the whole
+  //! pipeline is refused because stage 1 kept making crossings of its own (remeshing_crossed), and
+  //! each of them lies where the surface is narrower than the finest edge a refinement makes
+  //! (finest_refinement_edge: a gap or neck the flow closed below anything the run resolves), the
+  //! crossed remeshing is taken as the flow's crossing and re-triangulated as one; the change is
+  //! logged with the widest of those widths, measured before the remeshing.
+  bool close_unresolved_gaps = false;
+  //! Set by that last resort on the crossed remeshing it hands on (a look whatever the schedule
+  //! says): the surface it remeshed, whose volumes the outcome is given back, and the width logged
+  //! as the trigger of a topology change there.
+  struct Remeshed {
+    const Mesh* from = nullptr;
+    double width = 0;
+  };
+  std::optional<Remeshed> remeshed_across_gaps;
 };
 
 //! What a re-triangulation measured: what called for it and what came of it (the numbers of its

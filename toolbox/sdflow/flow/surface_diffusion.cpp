@@ -152,7 +152,8 @@ StepRecord SurfaceDiffusion::step()
 //! Trials of the step after `first` until one is accepted. A step that no τ makes acceptable (a
 //! triangle beside a closing neck that turns over whatever the step) is retried after a
 //! re-triangulation of the surface it starts from (around where it failed, then, failing again,
-//! the whole surface); a table's step that still fails is then
+//! the whole surface, then the last resort of closing gaps below the run's resolution); a table's
+//! step that still fails is then
 //! covered by adaptive steps (time_step.h). `events` gets the re-triangulation's and the fallback's.
 SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, std::vector<StepEvent>& events)
 {
@@ -175,6 +176,7 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
   // gives the hook `failed`, the vertices where the last trial failed, to remesh around alone; if
   // it did, and the step fails again, a second call re-triangulates the whole surface.
   bool failed_given = false, whole_tried = false;
+  RefusalReason whole_refused = RefusalReason::none;
   const auto retriangulated = [&](std::string_view why, const std::vector<int>& failed) {
     if (!hook_.retriangulates() || whole_tried)
       return false;
@@ -184,6 +186,29 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
                                                               std::exchange(failed_given, true) ? std::vector<int>{}
                                                                                                 : failed);
     whole_tried = !report.local;
+    if (whole_tried)
+      whole_refused = report.refusal;
+    note_refusal(report, events);
+    if (!report.changed())
+      return false;
+    adopt_retriangulation(report, before, events, a.record.times);
+    restart_controller();
+    return true;
+  };
+  // The last resort of a step that still cannot be taken after the whole surface's re-triangulation
+  // was refused for stage 1's own crossings: the hook closes the gaps the flow brought below what
+  // the run resolves (RetriangulationContext::close_unresolved_gaps); once a step.
+  bool last_resort_tried = false;
+  const auto closed_unresolved_gaps = [&](std::string_view why) {
+    if (!hook_.retriangulates() || whole_refused != RefusalReason::remeshing_crossed ||
+        std::exchange(last_resort_tried, true))
+      return false;
+    note(next_step, time_,
+         fmt::format("{}: closing the gaps the flow brought below what the run resolves (the last resort), then "
+                     "trying again",
+                     why));
+    const VertexVectors before = vertex_positions(surface_.mesh);
+    const RetriangulationReport report = call_retriangulation(surface_.mesh, true, a.record.times, {}, {}, true);
     note_refusal(report, events);
     if (!report.changed())
       return false;
@@ -209,8 +234,9 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
       continue;
     } catch (const SolverFailure& e) {
       const auto* unacceptable = dynamic_cast<const UnacceptableStep*>(&e);
-      if (retriangulated(fmt::format("no acceptable step ({})", e.what()),
-                         unacceptable ? unacceptable->vertices : std::vector<int>{}))
+      const std::string why = fmt::format("no acceptable step ({})", e.what());
+      if (retriangulated(why, unacceptable ? unacceptable->vertices : std::vector<int>{}) ||
+          closed_unresolved_gaps(why))
         continue;
       if (!table || a.fell_back || controller_before.fallback_left > 0)
         throw;
@@ -381,12 +407,13 @@ void SurfaceDiffusion::prepare_retriangulation(RetriangulationHook hook, long to
 
 RetriangulationReport SurfaceDiffusion::call_retriangulation(Mesh& mesh, bool force, StepTimes& times,
                                                              std::function<void()> changing,
-                                                             const std::vector<int>& failed_vertices)
+                                                             const std::vector<int>& failed_vertices,
+                                                             bool close_unresolved_gaps)
 {
   // A forced look re-triangulates the surface a step could not leave: no step led to it.
   const bool stepped = !force && step_start_.rows() == static_cast<Eigen::Index>(mesh.n_vertices());
   return hook_.look(mesh, step_, time_, force, times, std::move(changing), stepped ? &step_start_ : nullptr,
-                    failed_vertices);
+                    failed_vertices, close_unresolved_gaps);
 }
 
 //! Take the re-triangulated mesh: new connectivity and operators, fresh factorisations with the

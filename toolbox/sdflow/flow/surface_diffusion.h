@@ -141,10 +141,12 @@ private:
   //! either, the guard that stops the flow at a self-intersection (intersection_guard.h).
   void prepare_retriangulation(RetriangulationHook hook, long tolerated_degraded);
   //! The hook's look at `mesh`, the flow's surface or a copy of it, after the last step (FlowHook::look;
-  //! `failed_vertices`: where a step that forces it failed, RetriangulationContext::failed_vertices).
+  //! `failed_vertices`: where a step that forces it failed, RetriangulationContext::failed_vertices;
+  //! `close_unresolved_gaps`: the last resort of a step that cannot be taken, the context's field of that name).
   RetriangulationReport call_retriangulation(Mesh& mesh, bool force, StepTimes& times,
                                              std::function<void()> changing = {},
-                                             const std::vector<int>& failed_vertices = {});
+                                             const std::vector<int>& failed_vertices = {},
+                                             bool close_unresolved_gaps = false);
   //! A refused re-triangulation (RetriangulationReport::refused) becomes an event and a warning.
   void note_refusal(const RetriangulationReport& report, std::vector<StepEvent>& events);
   void adopt_retriangulation(const RetriangulationReport& report, const VertexVectors& before,

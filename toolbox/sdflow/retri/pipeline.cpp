@@ -303,10 +303,13 @@ StageOne remesh_without_own_crossings(const Mesh& input, const std::vector<FaceP
                                       std::vector<double> targets, RemeshOptions remesh,
                                       const RetriangulationOptions& options, double ell, RetriangulationResult& r)
 {
+  // The last remeshing that crossed itself, which the refusal hands on (RetriangulationResult::crossed_remeshing).
+  std::optional<CrossedRemeshing> crossed;
   const auto refuse = [&] {
     r.remeshing_refused = true;
     r.remesh = {};
     r.remesh.edge_length = ell;
+    r.crossed_remeshing = std::move(crossed);
     return StageOne{input, crossings};
   };
   std::optional<LocalThickness> thickness;
@@ -346,6 +349,7 @@ StageOne remesh_without_own_crossings(const Mesh& input, const std::vector<FaceP
       r.remeshing_crossings = static_cast<int>(s.pairs.size());
     // A round that did not reduce the crossings will not be helped by the next one: on
     // rotor_small.off the first made 663 crossing pairs where there were 79 to remove.
+    crossed = CrossedRemeshing{s.mesh, s.pairs};
     if (round == options.refinement_rounds || (round > 0 && s.pairs.size() >= last_pairs))
       return refuse();
     last_pairs = s.pairs.size();
@@ -354,7 +358,7 @@ StageOne remesh_without_own_crossings(const Mesh& input, const std::vector<FaceP
     if (targets.empty())
       targets.assign(input.n_vertices(), ell);
     refine_targets(input, crossing_points(s.mesh, s.pairs), *thickness, ell,
-                   kFinestRefinement * options.min_edge_fraction * ell, targets);
+                   finest_refinement_edge(options, ell), targets);
     if (rim_kept_in_stage_one(options))
       floor_targets_beside_kept_boundary(input, targets);
     if (const double estimate = estimated_vertices(input, targets); estimate > refinement_bound(first_vertices)) {
@@ -746,6 +750,11 @@ RetriangulationResult retriangulate_with(const Mesh& input, const Retriangulatio
 }
 
 } // namespace
+
+double finest_refinement_edge(const RetriangulationOptions& options, double edge_length)
+{
+  return kFinestRefinement * options.min_edge_fraction * edge_length;
+}
 
 RetriangulationResult retriangulate(const Mesh& input, const RetriangulationOptions& options)
 {

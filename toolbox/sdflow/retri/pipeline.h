@@ -27,6 +27,7 @@
 #include "sdflow/spatial/intersect.h"
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -111,6 +112,18 @@ inline bool rim_kept_in_stage_one(const RetriangulationOptions& options)
   return options.keep_boundary && !options.resample_boundary;
 }
 
+//! The finest edge a refinement round of stage 1 aims at: half the sizing's finest edge,
+//! min_edge_fraction · ℓ / 2 for the pipeline's ℓ `edge_length` (RetriangulationOptions::refinement_rounds).
+//! A gap or a neck narrower than it is one no remeshing of the run resolves.
+double finest_refinement_edge(const RetriangulationOptions& options, double edge_length);
+
+//! A stage-1 remeshing refused because it crossed itself where its input did not: the surface it
+//! made and its intersecting face pairs.
+struct CrossedRemeshing {
+  Mesh mesh;
+  std::vector<FacePair> pairs;
+};
+
 //! What each stage did, and how long it took (seconds of wall time).
 struct RetriangulationResult {
   Mesh mesh; //!< valid, closed components oriented outward, garbage-collected
@@ -121,6 +134,9 @@ struct RetriangulationResult {
   int remeshing_crossings = 0;
   int refinements = 0;            //!< stage 1: remeshings redone finer where they made crossings
   bool remeshing_refused = false; //!< stage 1 kept making crossings: skipped, the input's triangles kept
+  //! Stage 1 refused: the last of its remeshings that crossed itself (none when none did), which a
+  //! run's last resort may take as the flow's crossing (flow/retriangulation.h).
+  std::optional<CrossedRemeshing> crossed_remeshing;
   long remeshed_vertices = 0;     //!< stage 1: vertices of the largest remeshing it made, its rounds included
   int intersecting_pairs = 0;   //!< stage 2
   int removed_faces = 0;        //!< stage 2
