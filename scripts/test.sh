@@ -26,7 +26,8 @@ if [[ "${1:-}" == "--sanitize" ]]; then
   # The long convergence studies run in the optimised suite only (tests/long-under-sanitizers.txt says
   # which, and which shorter tests run their code under the sanitizers).
   skip=(-E "$(grep -v '^#' tests/long-under-sanitizers.txt | paste -sd'|')")
-  # Line tables only (-g1): enough for the sanitizers' stack traces, and much quicker to compile and
+  # The tests' own code is compiled without the sanitizers, at -O1 (tests/CMakeLists.txt): they watch
+  # the toolbox and the CLI. Line tables only (-g1): enough for the sanitizers' stack traces, and much quicker to compile and
   # link than full debug information, which CI's time budget does not afford. Clang, with the fuzz
   # harnesses: the toolbox is compiled once, instrumented for both (its libFuzzer edge counters cost the
   # tests little).
