@@ -172,6 +172,18 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
     s.turning_since_tau = 0;
     trials_.restart_controller(s);
   };
+  // The hook's forced look at the surface the step starts from (`failed`: where the step failed;
+  // `last_resort`: RetriangulationContext::close_unresolved_gaps), adopted when it changed it.
+  const auto forced = [&](const std::vector<int>& failed, bool last_resort) {
+    const VertexVectors before = vertex_positions(surface_.mesh);
+    RetriangulationReport report = call_retriangulation(surface_.mesh, true, a.record.times, {}, failed, last_resort);
+    note_refusal(report, events);
+    if (report.changed()) {
+      adopt_retriangulation(report, before, events, a.record.times);
+      restart_controller();
+    }
+    return report;
+  };
   // Re-triangulate the surface the step starts from; true when that changed it. The first call
   // gives the hook `failed`, the vertices where the last trial failed, to remesh around alone; if
   // it did, and the step fails again, a second call re-triangulates the whole surface.
@@ -181,19 +193,12 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
     if (!hook_.retriangulates() || whole_tried)
       return false;
     note(next_step, time_, fmt::format("{}: re-triangulating, then trying again", why));
-    const VertexVectors before = vertex_positions(surface_.mesh);
-    const RetriangulationReport report = call_retriangulation(surface_.mesh, true, a.record.times, {},
-                                                              std::exchange(failed_given, true) ? std::vector<int>{}
-                                                                                                : failed);
+    const RetriangulationReport report =
+        forced(std::exchange(failed_given, true) ? std::vector<int>{} : failed, false);
     whole_tried = !report.local;
     if (whole_tried)
       whole_refused = report.refusal;
-    note_refusal(report, events);
-    if (!report.changed())
-      return false;
-    adopt_retriangulation(report, before, events, a.record.times);
-    restart_controller();
-    return true;
+    return report.changed();
   };
   // The last resort of a step that still cannot be taken after the whole surface's re-triangulation
   // was refused for stage 1's own crossings: the hook closes the gaps the flow brought below what
@@ -207,14 +212,7 @@ SurfaceDiffusion::Accepted SurfaceDiffusion::accepted_trial(FirstTrial& first, s
          fmt::format("{}: closing the gaps the flow brought below what the run resolves (the last resort), then "
                      "trying again",
                      why));
-    const VertexVectors before = vertex_positions(surface_.mesh);
-    const RetriangulationReport report = call_retriangulation(surface_.mesh, true, a.record.times, {}, {}, true);
-    note_refusal(report, events);
-    if (!report.changed())
-      return false;
-    adopt_retriangulation(report, before, events, a.record.times);
-    restart_controller();
-    return true;
+    return forced({}, true).changed();
   };
   for (bool taken = false;;) {
     try {
