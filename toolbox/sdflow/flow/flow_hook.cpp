@@ -36,16 +36,8 @@ RetriangulationReport FlowHook::look(Mesh& mesh, long step, double time, bool fo
     times.retriangulation_check += report.check_seconds;
     times.volume_restoration += report.volume_seconds;
     times.retriangulation_other += report.other_seconds;
-    auto& p = times.pipeline;
-    const auto& q = report.pipeline_seconds;
-    p.merge += q.merge;
-    p.remesh += q.remesh;
-    p.intersections += q.intersections;
-    p.normals += q.normals;
-    p.reconstruction += q.reconstruction;
-    p.holes += q.holes;
-    p.components += q.components;
-    times.side_by_side += q.side_by_side;
+    times.pipeline.add_stages(report.pipeline_seconds);
+    times.side_by_side += report.pipeline_seconds.side_by_side;
     return report;
   } catch (const SolverFailure&) {
     throw;

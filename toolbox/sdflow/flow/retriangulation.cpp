@@ -655,16 +655,8 @@ void close_unresolved_gaps(Mesh& mesh, CrossedRemeshing crossed, const Retriangu
   // The refused pipeline's seconds count with the ones it handed on.
   second.check_seconds += report.check_seconds;
   second.volume_seconds += report.volume_seconds;
-  RetriangulationResult::Seconds& sum = second.pipeline_seconds;
-  const RetriangulationResult::Seconds& refused = report.pipeline_seconds;
-  sum.merge += refused.merge;
-  sum.remesh += refused.remesh;
-  sum.intersections += refused.intersections;
-  sum.normals += refused.normals;
-  sum.reconstruction += refused.reconstruction;
-  sum.holes += refused.holes;
-  sum.components += refused.components;
-  sum.side_by_side += refused.side_by_side;
+  second.pipeline_seconds.add_stages(report.pipeline_seconds);
+  second.pipeline_seconds.side_by_side += report.pipeline_seconds.side_by_side;
   mesh = std::move(surface);
   report = std::move(second);
 }

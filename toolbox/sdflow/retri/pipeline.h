@@ -166,6 +166,17 @@ struct RetriangulationResult {
     //! Of the stages above, the seconds two of them ran at once (stage 4's clean-up beside stage
     //! 2's search), which both count: their sum exceeds the wall time by this much.
     double side_by_side = 0;
+    //! Add `other`'s seven stages (side_by_side apart) to these.
+    void add_stages(const Seconds& other)
+    {
+      merge += other.merge;
+      remesh += other.remesh;
+      intersections += other.intersections;
+      normals += other.normals;
+      reconstruction += other.reconstruction;
+      holes += other.holes;
+      components += other.components;
+    }
   } seconds;
 };
 
