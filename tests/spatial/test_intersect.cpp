@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -279,6 +280,30 @@ TEST(SelfIntersections, threads_do_not_change_the_result_on_a_large_mesh)
   EXPECT_EQ(self_intersections(a, {.execution = Execution::sequential}), parallel);
   SelfIntersectionTracker sequential_tracker(a, {.execution = Execution::sequential});
   EXPECT_EQ(sequential_tracker.pairs(), parallel);
+}
+
+TEST(SelfIntersections, a_capped_search_stops_past_its_cap_and_is_complete_below_it)
+{
+  // The folded icosphere of the test above: its cap of fold crosses the rest in hundreds of pairs.
+  const Mesh a = test::mapped(analytic::icosphere(5), [](const Eigen::Vector3d& p) {
+    Eigen::Vector3d q = p;
+    if (q.z() > 0.2)
+      q.z() = 0.2 - 2.2 * (q.z() - 0.2);
+    return q;
+  });
+  const auto all = self_intersections(a);
+  ASSERT_GT(all.size(), 100u);
+  for (const Execution execution : {Execution::parallel, Execution::sequential}) {
+    SCOPED_TRACE(execution == Execution::parallel ? "parallel" : "sequential");
+    // At or above the full count the cap changes nothing.
+    EXPECT_EQ(self_intersections(a, {.execution = execution, .stop_after = all.size()}), all);
+    // Below it the list says so by its length, and holds only true pairs.
+    const auto capped = self_intersections(a, {.execution = execution, .stop_after = 20});
+    EXPECT_GT(capped.size(), 20u);
+    EXPECT_LE(capped.size(), all.size());
+    for (const FacePair& pair : capped)
+      EXPECT_TRUE(std::binary_search(all.begin(), all.end(), pair));
+  }
 }
 
 TEST(SelfIntersections, invariant_under_exact_scaling_and_translation)

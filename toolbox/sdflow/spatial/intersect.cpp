@@ -10,8 +10,10 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace sdflow {
@@ -541,12 +543,19 @@ std::vector<FacePair> tree_self_intersections(const Bvh& tree, const Intersectio
       pairs.push_back({t, t});
   adjacent_intersections(tree, tester, Stars(tree), options.execution, pairs);
   // Faces sharing no vertex, through the tree; seeds split the traversal into independent parts.
+  // Past options.stop_after pairs the traversal goes on but tests nothing more.
+  const std::size_t stop_after = options.stop_after > 0 ? options.stop_after : std::numeric_limits<std::size_t>::max();
+  std::atomic<std::size_t> count = pairs.size();
   const auto seeds = tree.traversal_seeds(options.execution == Execution::parallel ? 256 : 1);
   collect_blocks(options.execution, seeds.size(), [&](std::size_t begin, std::size_t end, std::vector<FacePair>& found) {
-    for (std::size_t i = begin; i < end; ++i)
+    for (std::size_t i = begin; i < end && count.load(std::memory_order_relaxed) <= stop_after; ++i)
       tree.for_each_overlapping_pair(seeds[i], [&](int s, int t) {
-        if (!tester.adjacent(s, t) && !tester.degenerate(s) && !tester.degenerate(t) && tester.faces(s, t))
+        if (count.load(std::memory_order_relaxed) > stop_after)
+          return;
+        if (!tester.adjacent(s, t) && !tester.degenerate(s) && !tester.degenerate(t) && tester.faces(s, t)) {
           found.push_back({std::min(s, t), std::max(s, t)});
+          count.fetch_add(1, std::memory_order_relaxed);
+        }
       });
   }, pairs);
   std::sort(pairs.begin(), pairs.end());

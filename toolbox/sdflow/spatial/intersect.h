@@ -23,6 +23,7 @@
 
 #include <array>
 #include <compare>
+#include <cstddef>
 #include <memory>
 #include <vector>
 
@@ -42,6 +43,11 @@ enum class Execution { sequential, parallel };
 //! How intersections are searched.
 struct IntersectionOptions {
   Execution execution = Execution::parallel;
+  //! 0: every pair. Otherwise the search may stop once it has found more than this many pairs, and
+  //! a list longer than `stop_after` is then incomplete (which pairs it holds depends on the
+  //! threads): for a caller that only needs to know the surface crosses itself everywhere, where
+  //! the full list of a crumpled surface can run to tens of millions of pairs.
+  std::size_t stop_after = 0;
 };
 
 //! Do the closed triangles a and b have a point in common? Exact. Throws InvalidParameter when
