@@ -14,11 +14,13 @@
 #     --max-vertices N closed surfaces up to N vertices (default 60000)
 #     --only REGEX     only the files whose name matches (a subset; the document says so)
 #     --compact        also run samples/compact_27.toml (its metrics are read from its own run)
+#     --with "FLAGS"   add these run flags to every run (e.g. --with --conserve-volume: a trial of
+#                      a setting against the defaults); the document says so
 # Exit status: 0 when every run reached T with exit 0 or was refused before step 1 with exit 2,
 # 1 otherwise (the document lists which).
 set -euo pipefail
-usage() { sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'; }
-quick=0 budget="" max_vertices=60000 only="" out="" compact=0
+usage() { sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; }
+quick=0 budget="" max_vertices=60000 only="" out="" compact=0 with=""
 while [[ $# -gt 0 ]]; do
   case $1 in
     -h|--help) usage; exit 0 ;;
@@ -28,6 +30,7 @@ while [[ $# -gt 0 ]]; do
     --only) only=$2; shift ;;
     --out) out=$2; shift ;;
     --compact) compact=1 ;;
+    --with) with=$2; shift ;;
     -*) usage >&2; exit 2 ;;
     *) break ;;
   esac
@@ -39,6 +42,7 @@ cd "$(dirname "$0")/.."
 sdflow=$(realpath "${1:-build/release/cli/sdflow}")
 [[ -x $sdflow ]] || { echo "robustness.sh: build sdflow first ($sdflow)" >&2; exit 2; }
 [[ $quick -eq 1 || -n $out ]] || out=docs/robustness.md
+read -ra with_flags <<< "$with" # words of --with, passed as arguments, never through a shell
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -105,7 +109,7 @@ print(s["vertices"], s["boundary_loops"])' "$work/stats.json")
   # SIGINT at the budget (the run stops at its next step with a checkpoint), SIGKILL 30 s later if
   # a single step holds it longer.
   nice timeout -k 30 -s INT "$budget" "$sdflow" -q run --input "$prepared" -o "$run" --end-time "$end_time" \
-    > "$work/run.out" 2>&1 || status=$?
+    "${with_flags[@]}" > "$work/run.out" 2>&1 || status=$?
   wall=$(( ($(date +%s%N) - start) / 1000000 ))
   message=$(grep -v '^\s*$' "$work/run.out" | tail -1 | cut -c1-160 || true)
   python3 - "$run" "$name" "$source" "$vertices" "$repaired" "$status" "$wall" "$end_time" "$message" >> "$results" <<'EOF'
@@ -167,7 +171,7 @@ if [[ $compact -eq 1 ]]; then
   echo "robustness.sh: compact_27 (samples/compact_27.toml)" >&2
   samples/make_meshes.sh "$sdflow" > /dev/null
   run=$work/compact_27 status=0 start=$(date +%s%N)
-  nice "$sdflow" -q run samples/compact_27.toml --out "$run" > "$work/run.out" 2>&1 || status=$?
+  nice "$sdflow" -q run samples/compact_27.toml --out "$run" "${with_flags[@]}" > "$work/run.out" 2>&1 || status=$?
   wall=$(( ($(date +%s%N) - start) / 1000000 ))
   vertices=$(awk -F, 'NR == 2 { print $4 }' "$run/metrics.csv")
   end_time=$(awk -F, 'END { print $2 }' "$run/metrics.csv")
@@ -184,9 +188,9 @@ print("\t".join(["compact_27 (sample)", "sdflow", vertices, "no", status, "reach
 EOF
 fi
 
-python3 - "$results" "$budget" "$max_vertices" "$only" "$quick" "$out" "$("$sdflow" --version 2>/dev/null | head -1)" <<'EOF'
+python3 - "$results" "$budget" "$max_vertices" "$only" "$quick" "$out" "$("$sdflow" --version 2>/dev/null | head -1)" "$with" <<'EOF'
 import re, sys
-results, budget, max_vertices, only, quick, out, version = sys.argv[1:]
+results, budget, max_vertices, only, quick, out, version, with_flags = sys.argv[1:]
 rows = [line.rstrip("\n").split("\t") for line in open(results) if line.strip()]
 reached = sum(1 for r in rows if r[5] == "reached T")
 refused = sum(1 for r in rows if r[5] == "refused before step 1")
@@ -214,8 +218,9 @@ lines = [
     f"; wall budget {budget} s a run, surfaces up to {max_vertices} vertices; {version}). "
     "Every closed surface of CGAL's sample data (`libcgal-demo`, `data/meshes`) and of geomview's example "
     "objects, after `sdflow repair` where `stats` refuses the file and `sdflow repair "
-    "--remove-self-intersections` where it crosses itself (`run` refuses such a surface), runs with the defaults "
-    "(`sdflow run --input FILE --end-time T`) to T = (0.02 D)⁴, D the bounding-box diagonal: far enough for "
+    "--remove-self-intersections` where it crosses itself (`run` refuses such a surface), runs " +
+    (f"with the defaults and `{with_flags}` (`sdflow run --input FILE --end-time T {with_flags}`)" if with_flags else
+     "with the defaults (`sdflow run --input FILE --end-time T`)") + " to T = (0.02 D)⁴, D the bounding-box diagonal: far enough for "
     "the flow to smooth what is finer than a fiftieth of the object, not for its large-scale change. "
     "Files with boundary, point sets and files sdflow cannot read are not in the corpus "
     "(`scripts/repair-samples.sh` lists the unreadable ones). The runs go one at a time under `nice` on the "
